@@ -1,0 +1,53 @@
+"""Named robot presets: ``get_preset(name)(**params) -> Robot``.
+
+Each preset is a plain function of keyword parameters (SI units) with documented defaults,
+so a study file can name a preset and override any of its parameters.  Presets are
+imported lazily by name.
+"""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+from typing import Any, Callable
+
+from ..description import Robot
+
+__all__ = ["PRESET_NAMES", "get_preset", "preset_parameters", "build_preset"]
+
+_PRESET_PATHS: dict[str, str] = {
+    "steel_rod": "workbench.robot.presets.steel_rod:steel_rod",
+    "hannan_walker": "workbench.robot.presets.hannan_walker:hannan_walker",
+    "cojocaru_tronconic": "workbench.robot.presets.cojocaru:cojocaru_tronconic",
+    "shao_harvester": "workbench.robot.presets.shao:shao_harvester",
+}
+
+PRESET_NAMES: tuple[str, ...] = tuple(_PRESET_PATHS)
+
+
+def get_preset(name: str) -> Callable[..., Robot]:
+    """Return the preset function registered as ``name`` (KeyError lists known names)."""
+    try:
+        path = _PRESET_PATHS[name]
+    except KeyError:
+        raise KeyError(f"unknown robot preset {name!r}; known presets: {', '.join(PRESET_NAMES)}") from None
+    module, func = path.split(":")
+    return getattr(importlib.import_module(module), func)
+
+
+def preset_parameters(name: str) -> dict[str, Any]:
+    """The keyword parameters of preset ``name`` with their defaults."""
+    sig = inspect.signature(get_preset(name))
+    return {k: p.default for k, p in sig.parameters.items() if p.kind is p.KEYWORD_ONLY or p.default is not p.empty}
+
+
+def build_preset(name: str, **params: Any) -> Robot:
+    """Build preset ``name`` with parameter overrides; unknown parameters raise TypeError naming them."""
+    fn = get_preset(name)
+    known = preset_parameters(name)
+    unknown = sorted(set(params) - set(known))
+    if unknown:
+        raise TypeError(
+            f"preset {name!r} has no parameter(s) {', '.join(unknown)}; known: {', '.join(sorted(known))}"
+        )
+    return fn(**params)
