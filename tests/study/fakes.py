@@ -1,0 +1,97 @@
+"""Fake models for the runner tests (importable by worker processes: module-level functions).
+
+``arc`` bends the robot into a planar constant-curvature arc with ``kappa = T0 d / EI`` from
+the first tendon tension (an exact pure-moment solution, cheap).  Magic first-tendon tensions
+trigger failure modes:
+
+- 13.0 -> raises ``RuntimeError``
+- 7.0  -> returns NaN positions
+- 66.0 -> ``os._exit(3)`` (kills the worker process)
+- 5.0  -> result with ``converged = False``
+"""
+
+from __future__ import annotations
+
+import os
+import time
+
+import numpy as np
+
+from workbench.models.result import PhysicsResult, SolverInfo
+
+RAISE, NAN, EXIT, NOCONV = 13.0, 7.0, 66.0, 5.0
+
+
+def _arc(robot, load, options, *, spin: float = 0.0):
+    if spin:
+        t_end = time.perf_counter() + spin
+        while time.perf_counter() < t_end:
+            pass
+    T = load.actuation.values if load.actuation is not None else (0.0,)
+    t0 = float(T[0])
+    if t0 == RAISE:
+        raise RuntimeError("fake model exploded")
+    if t0 == EXIT:
+        os._exit(3)
+    L = robot.length
+    g = robot.sections[0].tendons
+    EI = robot.sections[0].cross_section.EI
+    kappa = t0 * g.offset / EI
+    s = np.linspace(0.0, L, options.n_stations)
+    if abs(kappa) < 1e-12:
+        pos = np.column_stack([0 * s, 0 * s, s])
+    else:
+        pos = np.column_stack([(1 - np.cos(kappa * s)) / kappa, 0 * s, np.sin(kappa * s) / kappa])
+    th = kappa * L
+    R = np.array([[np.cos(th), 0, np.sin(th)], [0, 1, 0], [-np.sin(th), 0, np.cos(th)]])
+    F = np.eye(4)
+    F[:3, :3] = R
+    F[:3, 3] = pos[-1]
+    if t0 == NAN:
+        pos = pos * np.nan
+    return PhysicsResult(
+        model="fake", stations=s, positions=pos, tip_frame=F, length_change=0.0,
+        tendon_tensions=np.asarray(T, float), tip_twist=0.0,
+        solver=SolverInfo(converged=(t0 != NOCONV), iterations=1, message="fake"),
+        extras={"kappa": kappa},
+        series={"tip_position": np.tile(pos[-1], (3, 1))},
+    )
+
+
+def arc(robot, load, options):
+    return _arc(robot, load, options)
+
+
+def arc_spin_1p5ms(robot, load, options):
+    return _arc(robot, load, options, spin=1.5e-3)
+
+
+def arc_spin_20ms(robot, load, options):
+    return _arc(robot, load, options, spin=20e-3)
+
+
+_MODELS = {"cc": arc, "ancf": arc, "spring_link": arc}
+
+
+def lookup(name):
+    """Model lookup: every model name maps to the fake arc."""
+    return _MODELS[name]
+
+
+def lookup_spin_1p5ms(name):
+    return arc_spin_1p5ms
+
+
+def lookup_spin_20ms(name):
+    return arc_spin_20ms
+
+
+def fake_arc_actuation(robot, kappa, phi, mode, pretension=0.0):
+    """Stand-in for workbench.models.cc.actuation_from_arc: T0 = kappa EI / d (planar)."""
+    from workbench.robot import TendonActuation
+
+    g = robot.sections[0].tendons
+    EI = robot.sections[0].cross_section.EI
+    vals = [0.0] * robot.n_tendons
+    vals[0] = float(kappa[0]) * EI / g.offset
+    return TendonActuation(mode, tuple(vals), pretension=pretension)

@@ -1,0 +1,127 @@
+"""Sweep expansion (pure): a validated :class:`~workbench.study.spec.Study` -> list of cases.
+
+Each case carries its fully resolved parameters and a stable ``case_id``: the first 16 hex
+digits of the SHA-256 of the canonical JSON of those parameters.  The id depends only on the
+parameter values (not on the case's position in the sweep, the study name or the models), so
+reruns and resumes match cases exactly.
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import itertools
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .spec import Study, canonical_json
+
+__all__ = ["Case", "expand", "count_cases", "case_id_for", "flatten_params"]
+
+
+@dataclass(frozen=True)
+class Case:
+    """One case of a sweep.
+
+    Attributes
+    ----------
+    case_id : str
+        Stable hash of ``params``.
+    index : int
+        Position in the expansion order (for messages only).
+    params : dict
+        Resolved ``{"robot": {...}, "load": {...}, "solver": {...}, "derived": {...}}``
+        (plain data, picklable).
+    swept : dict
+        The swept values of this case, ``{dotted path: value}``.
+    """
+
+    case_id: str
+    index: int
+    params: dict[str, dict[str, Any]]
+    swept: dict[str, Any]
+
+
+def case_id_for(params: dict[str, Any]) -> str:
+    """Stable id of a resolved parameter set (16 hex digits of SHA-256 of canonical JSON)."""
+    return hashlib.sha256(canonical_json(params).encode()).hexdigest()[:16]
+
+
+def _blocks(study: Study) -> list[list[dict[str, Any]]]:
+    sw = study.sweep
+    blocks: list[list[dict[str, Any]]] = []
+    for path, values in sw.get("product", {}).items():
+        blocks.append([{path: v} for v in values])
+    z = sw.get("zip", {})
+    if z:
+        n = len(next(iter(z.values())))
+        blocks.append([{p: vals[i] for p, vals in z.items()} for i in range(n)])
+    if "cases" in sw:
+        blocks.append([dict(c) for c in sw["cases"]])
+    for tag, block in ((0, "random"), (1, "latin_hypercube")):
+        spec = sw.get(block)
+        if spec:
+            blocks.append(_samples(spec, study.seed, tag, latin=(block == "latin_hypercube")))
+    return blocks
+
+
+def _samples(spec: dict[str, Any], seed: int, tag: int, *, latin: bool) -> list[dict[str, Any]]:
+    """Uniform or Latin-hypercube samples, keys in sorted order, seeded by ``[seed, tag]``."""
+    n = int(spec["n"])
+    rng = np.random.default_rng(np.random.SeedSequence([int(seed), tag]))
+    cols: dict[str, list[Any]] = {}
+    for path in sorted(k for k in spec if k != "n"):
+        lo, hi = spec[path]["low"], spec[path]["high"]
+        integer = isinstance(lo, int) and isinstance(hi, int)
+        if latin:
+            u = (rng.permutation(n) + rng.uniform(0.0, 1.0, n)) / n  # one sample per stratum
+        else:
+            u = rng.uniform(0.0, 1.0, n)
+        if integer:
+            vals = [int(min(hi, lo + np.floor(x * (hi - lo + 1)))) for x in u]
+        else:
+            vals = [float(lo + x * (hi - lo)) for x in u]
+        cols[path] = vals
+    return [{p: cols[p][i] for p in cols} for i in range(n)]
+
+
+def count_cases(study: Study) -> int:
+    """Number of cases :func:`expand` would produce (without expanding)."""
+    n = 1
+    sw = study.sweep
+    for values in sw.get("product", {}).values():
+        n *= len(values)
+    if sw.get("zip"):
+        n *= len(next(iter(sw["zip"].values())))
+    if "cases" in sw:
+        n *= len(sw["cases"])
+    for block in ("random", "latin_hypercube"):
+        if sw.get(block):
+            n *= int(sw[block]["n"])
+    return n
+
+
+def expand(study: Study) -> list[Case]:
+    """All cases of ``study``, in a deterministic order (blocks' Cartesian product)."""
+    cases = []
+    for i, combo in enumerate(itertools.product(*_blocks(study))):
+        swept: dict[str, Any] = {}
+        for part in combo:
+            swept.update(part)
+        params = copy.deepcopy(study.base)
+        for path, value in swept.items():
+            section, _, key = path.partition(".")
+            params[section][key] = value
+        cases.append(Case(case_id=case_id_for(params), index=i, params=params, swept=swept))
+    return cases
+
+
+def flatten_params(params: dict[str, dict[str, Any]]) -> dict[str, Any]:
+    """``{"robot": {"length": 0.8}}`` -> ``{"p.robot.length": 0.8}``; lists become JSON strings."""
+    out: dict[str, Any] = {}
+    for section, d in params.items():
+        for k, v in d.items():
+            out[f"p.{section}.{k}"] = canonical_json(v) if isinstance(v, (list, tuple, dict)) else v
+    return out

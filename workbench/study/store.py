@@ -1,0 +1,205 @@
+"""Result store: one folder per study run, Parquet part files written atomically.
+
+Layout of ``data/<study>/``::
+
+    _manifest.json                        resolved spec, config hash, versions, git, host, runs
+    part-0000000000000000000-schema.parquet   zero rows: the table's full schema (sorts first)
+    part-<time_ns>-<pid>-<seq>.parquet    result rows, all rows of a case in one part
+
+Every file is written to a dot-name, fsynced and renamed (then the folder is fsynced), so
+``pandas.read_parquet(folder)`` always reads a consistent table and a SIGKILL at any moment
+loses at most the not-yet-flushed cases, which ``--resume`` recomputes.  The manifest is
+``_manifest.json`` (not ``manifest.json``): Parquet dataset discovery skips names starting with
+``_`` or ``.``, but fails on any other non-Parquet file in the folder.
+
+Why a schema file: Parquet dataset discovery takes the schema from the first file (sorted
+names) and silently drops columns that other files add.  The schema file holds the union
+of all columns seen so far, in a canonical order, and is rewritten (atomically) *before* a part
+that adds columns, so columns never go missing (e.g. when the first part holds only failed
+rows).  Array columns are ``list<double>`` holding the row-major flattened array; their
+per-row shapes (``-1`` = leading length varies) are in the schema metadata
+``workbench.shapes`` (JSON) -- see :func:`array_shapes`.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import time
+from pathlib import Path
+from typing import Any, Iterable, Mapping
+
+import pyarrow as pa
+import pyarrow.parquet as pq
+
+__all__ = ["ResultStore", "atomic_write_bytes", "read_table", "array_shapes", "MANIFEST", "SCHEMA_FILE"]
+
+MANIFEST = "_manifest.json"
+SCHEMA_FILE = "part-0000000000000000000-schema.parquet"
+_SHAPES_KEY = b"workbench.shapes"
+
+_F64, _LIST = pa.float64(), pa.list_(pa.float64())
+CORE_COLUMNS: tuple[tuple[str, pa.DataType], ...] = (
+    ("case_id", pa.string()), ("model", pa.string()), ("status", pa.string()), ("error", pa.string()),
+    ("wall_time", _F64), ("robot_length", _F64), ("robot_gravity", _F64),
+    ("tip_x", _F64), ("tip_y", _F64), ("tip_z", _F64), ("tip_frame", _LIST),
+    ("length_change", _F64), ("tip_twist", _F64), ("converged", pa.bool_()), ("iterations", pa.int64()),
+    ("stations", _LIST), ("positions", _LIST), ("tendon_tensions", _LIST), ("joint_angles", _LIST),
+    ("time", _LIST),
+)
+_CORE_NAMES = {n for n, _ in CORE_COLUMNS}
+
+
+def _fsync_dir(folder: Path) -> None:
+    fd = os.open(folder, os.O_RDONLY)
+    try:
+        os.fsync(fd)
+    finally:
+        os.close(fd)
+
+
+def atomic_write_bytes(path: Path, write) -> None:
+    """Write ``path`` via ``write(fileobj)`` to ``.<name>.tmp``, fsync, rename, fsync the folder."""
+    path = Path(path)
+    tmp = path.with_name(f".{path.name}.tmp")
+    with open(tmp, "wb") as f:
+        write(f)
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(tmp, path)
+    _fsync_dir(path.parent)
+
+
+def _param_type(values: Iterable[Any]) -> pa.DataType:
+    kinds = {type(v) for v in values if v is not None}
+    if not kinds:
+        return pa.float64()
+    if kinds <= {bool}:
+        return pa.bool_()
+    if kinds <= {int}:
+        return pa.int64()
+    if kinds <= {int, float}:
+        return pa.float64()
+    return pa.string()
+
+
+def _canonical_order(fields: Mapping[str, pa.DataType]) -> list[tuple[str, pa.DataType]]:
+    core = [(n, t) for n, t in CORE_COLUMNS]
+    rest = sorted(n for n in fields if n not in _CORE_NAMES)
+    groups = [n for n in rest if n.startswith("p.")] + [n for n in rest if n.startswith("series.")] \
+        + [n for n in rest if not n.startswith(("p.", "series."))]
+    return core + [(n, fields[n]) for n in groups]
+
+
+class ResultStore:
+    """Append-only Parquet store of one study run.
+
+    Parameters
+    ----------
+    folder : path-like
+    param_rows : iterable of dict, optional
+        Flattened ``p.*`` parameters of every case of the study: fixes the ``p.*`` column
+        types up front (mixed int/float -> float, anything else mixed -> string).
+    flush_rows, flush_seconds : int, float
+        Buffered rows are written as one part when either limit is reached (and on
+        :meth:`flush` / :meth:`close`).  Cases are never split across parts.
+    """
+
+    def __init__(self, folder: str | Path, param_rows: Iterable[Mapping[str, Any]] = (),
+                 flush_rows: int = 256, flush_seconds: float = 2.0) -> None:
+        self.folder = Path(folder)
+        self.folder.mkdir(parents=True, exist_ok=True)
+        self.flush_rows, self.flush_seconds = int(flush_rows), float(flush_seconds)
+        self._buffer: list[dict[str, Any]] = []
+        self._last_flush = time.monotonic()
+        self._seq = 0
+        self._fields: dict[str, pa.DataType] = {n: t for n, t in CORE_COLUMNS}
+        self._shapes: dict[str, list[int]] = {"tip_frame": [4, 4], "positions": [-1, 3]}
+        schema_path = self.folder / SCHEMA_FILE
+        if schema_path.exists():
+            old = pq.read_schema(schema_path)
+            self._fields.update({f.name: f.type for f in old})
+            if old.metadata and _SHAPES_KEY in old.metadata:
+                self._shapes.update(json.loads(old.metadata[_SHAPES_KEY]))
+        values: dict[str, list[Any]] = {}
+        for row in param_rows:
+            for k, v in row.items():
+                values.setdefault(k, []).append(v)
+        for k, vs in values.items():
+            self._fields.setdefault(k, _param_type(vs))
+        self._schema: pa.Schema | None = None
+        self._write_schema_if_changed()
+
+    # -- reading ----------------------------------------------------------------------
+    def part_files(self) -> list[Path]:
+        return sorted(p for p in self.folder.glob("part-*.parquet") if p.name != SCHEMA_FILE)
+
+    def finished_case_ids(self) -> set[str]:
+        """Case ids with rows on disk (reads only the ``case_id`` column)."""
+        ids: set[str] = set()
+        for p in self.part_files():
+            ids.update(pq.read_table(p, columns=["case_id"]).column("case_id").to_pylist())
+        return ids
+
+    def cleanup_temporaries(self) -> list[Path]:
+        """Remove ``.*.tmp`` files left by a killed writer; returns what was removed."""
+        removed = []
+        for p in self.folder.glob(".*.tmp"):
+            p.unlink()
+            removed.append(p)
+        return removed
+
+    # -- writing ----------------------------------------------------------------------
+    def _current_schema(self) -> pa.Schema:
+        fields = _canonical_order(self._fields)
+        meta = {_SHAPES_KEY: json.dumps(self._shapes, sort_keys=True).encode()}
+        return pa.schema([pa.field(n, t) for n, t in fields], metadata=meta)
+
+    def _write_schema_if_changed(self) -> None:
+        schema = self._current_schema()
+        if self._schema is not None and schema.equals(self._schema, check_metadata=True):
+            return
+        atomic_write_bytes(self.folder / SCHEMA_FILE, lambda f: pq.write_table(schema.empty_table(), f))
+        self._schema = schema
+
+    def add(self, rows: list[dict[str, Any]]) -> None:
+        """Buffer the rows of one case (all models); flushes when a limit is reached."""
+        self._buffer.extend(rows)
+        if len(self._buffer) >= self.flush_rows or time.monotonic() - self._last_flush >= self.flush_seconds:
+            self.flush()
+
+    def flush(self) -> Path | None:
+        """Write the buffered rows as one part file (atomic); returns its path."""
+        self._last_flush = time.monotonic()
+        if not self._buffer:
+            return None
+        rows, self._buffer = self._buffer, []
+        for r in rows:
+            for name, shape in (r.pop("_shapes", None) or {}).items():
+                self._shapes.setdefault(name, shape)
+            for k, v in r.items():
+                if k not in self._fields:
+                    self._fields[k] = _LIST if isinstance(v, (list, tuple)) else pa.float64()
+        self._write_schema_if_changed()
+        table = pa.Table.from_pylist(rows, schema=self._schema)
+        name = f"part-{time.time_ns():019d}-{os.getpid()}-{self._seq:06d}.parquet"
+        self._seq += 1
+        path = self.folder / name
+        atomic_write_bytes(path, lambda f: pq.write_table(table, f))
+        return path
+
+    def close(self) -> None:
+        self.flush()
+
+
+def read_table(folder: str | Path):
+    """The result table of a study folder as a pandas DataFrame (same as ``pd.read_parquet``)."""
+    import pandas as pd
+
+    return pd.read_parquet(Path(folder))
+
+
+def array_shapes(folder: str | Path) -> dict[str, list[int]]:
+    """Per-row shapes of the array columns (``-1``: varies, e.g. the number of stations)."""
+    md = pq.read_schema(Path(folder) / SCHEMA_FILE).metadata or {}
+    return json.loads(md.get(_SHAPES_KEY, b"{}"))
