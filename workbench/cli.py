@@ -48,6 +48,7 @@ def _parser() -> argparse.ArgumentParser:
     # advanced / tests: 'module:function' returning the model function for a name
     r.add_argument("--model-lookup", help=argparse.SUPPRESS)
     r.add_argument("--arc-actuation", help=argparse.SUPPRESS)
+    r.add_argument("--flush-rows", type=int, default=256, help=argparse.SUPPRESS)
 
     s = sub.add_parser("show", help="summarise a study result folder")
     s.add_argument("folder", help="e.g. data/example")
@@ -151,7 +152,7 @@ def _cmd_run(args) -> int:
     progress = {"auto": None, "on": True, "off": False}[args.progress]
     try:
         summary = run_study(study, folder, executor, resume=args.resume, model_lookup=lookup,
-                             arc_actuation=arc, progress=progress)
+                             arc_actuation=arc, progress=progress, flush_rows=args.flush_rows)
     except StudyError as e:
         _err(e.problems)
         return 2

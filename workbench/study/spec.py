@@ -531,7 +531,10 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
                                  f"({canonical_json(c.swept)})")
             continue
         seen[c.case_id] = c.index
-        case_problems.extend(f"case {c.index} {canonical_json(c.swept)}: {m}" for m in _case_rules(c.params, study))
+        for m in _case_rules(c.params, study):
+            key, _, reason = m.partition(": ")
+            where = f" (case {c.index}: {canonical_json(c.swept)})" if c.swept else ""
+            case_problems.append(f"{key}{where}: {reason}")
         if len(case_problems) > 20:
             case_problems.append("... (further case problems not listed)")
             break

@@ -1,0 +1,126 @@
+"""Study-file validation: the malformed corpus, one line per problem, before any case runs."""
+
+from __future__ import annotations
+
+import dataclasses
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from workbench.cli import main
+from workbench.models.result import SolverOptions
+from workbench.study import StudyError, count_cases, load_study
+from workbench.study.spec import SolverSection
+
+HERE = Path(__file__).parent
+BAD = sorted((HERE / "bad_configs").glob("*.toml"))
+ROOT = HERE.parents[1]
+
+
+def _expectation(path: Path) -> tuple[str, str]:
+    first = path.read_text().splitlines()[0]
+    assert first.startswith("# expect: "), f"{path} lacks its '# expect: key | reason' line"
+    key, _, reason = first[len("# expect: "):].partition(" | ")
+    return key.strip(), reason.strip()
+
+
+def test_corpus_is_large_enough():
+    assert len(BAD) >= 30
+
+
+@pytest.mark.parametrize("path", BAD, ids=[p.stem for p in BAD])
+def test_malformed_study_rejected_with_one_line(path):
+    key, reason = _expectation(path)
+    with pytest.raises(StudyError) as ei:
+        load_study(path)
+    problems = ei.value.problems
+    assert len(problems) == 1, problems
+    line = problems[0]
+    assert "\n" not in line
+    assert line.startswith(f"{path}: {key}"), line  # names file and key path
+    assert reason in line, line  # and the reason
+
+
+def test_all_problems_reported_together(write_study):
+    p = write_study("""
+        [derived]
+        gravity_parameter = nan
+        """, base=(HERE / "bad_configs" / "unknown_key_robot.toml").read_text().replace("n_elements = 8", "n_elements = 0")
+                                   .replace('preset = "steel_rod"', 'preset = "steel_rod"\ndiameter = -1.0'))
+    with pytest.raises(StudyError) as ei:
+        load_study(p)
+    text = "\n".join(ei.value.problems)
+    assert "robot.lenght" in text and "solver.n_elements" in text and "robot.diameter" in text
+    assert "derived.gravity_parameter: must be finite" in text
+    assert len(ei.value.problems) == 4
+
+
+def test_cli_validate_bad_exit_2_no_traceback(capsys):
+    path = HERE / "bad_configs" / "negative_length.toml"
+    assert main(["validate", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert err.strip().splitlines() == [f"{path}: robot.length: must be > 0 [m], got -0.8"]
+    assert "Traceback" not in err
+
+
+def test_cli_run_bad_config_runs_nothing(tmp_path, capsys):
+    out = tmp_path / "out"
+    path = HERE / "bad_configs" / "nan_in_sweep_axis.toml"
+    rc = main(["run", str(path), "--out", str(out), "--in-process", "--model-lookup", "fakes:lookup"])
+    assert rc == 2
+    assert not out.exists()
+    assert "must be finite" in capsys.readouterr().err
+
+
+def test_cli_subprocess_exit_code_and_single_line():
+    path = HERE / "bad_configs" / "unknown_model.toml"
+    r = subprocess.run([sys.executable, "-m", "workbench", "validate", str(path)], capture_output=True,
+                       text=True, cwd=ROOT, timeout=60)
+    assert r.returncode == 2
+    assert r.stderr.strip().splitlines() == [f"{path}: study.models[1]: unknown model 'ancff'; did you mean 'ancf'?"]
+
+
+def test_solver_section_mirrors_solver_options():
+    fields = {f.name: f.default for f in dataclasses.fields(SolverOptions)}
+    section = SolverSection()
+    assert set(SolverSection.model_fields) == set(fields)
+    assert section.model_dump() == fields
+
+
+def test_good_study_and_defaults(write_study):
+    study = load_study(write_study())
+    assert study.models == ("cc", "ancf")
+    assert study.base["robot"]["length"] == 0.8 and study.base["robot"]["diameter"] == 6e-3
+    assert study.base["solver"]["n_elements"] == 8
+    assert study.base["load"]["tip_force"] == [0.0, 0.0, 0.0]
+    assert count_cases(study) == 1
+
+
+def test_int_accepted_for_float_parameter(write_study):
+    a = load_study(write_study("", base=_good_with("length = 1")))
+    b = load_study(write_study("", base=_good_with("length = 1.0")))
+    assert a.base["robot"]["length"] == 1.0 and isinstance(a.base["robot"]["length"], float)
+    assert a.config_hash == b.config_hash
+
+
+def _good_with(line: str) -> str:
+    from conftest import GOOD
+
+    return GOOD.replace("length = 0.8", line)
+
+
+def test_max_cases_override(write_study):
+    p = write_study("""
+        [sweep]
+        product = { "robot.length" = [0.5, 0.6, 0.7], "solver.n_elements" = [4, 8] }
+        """)
+    assert count_cases(load_study(p)) == 6
+    with pytest.raises(StudyError, match="6 cases exceed the limit max_cases = 5"):
+        load_study(p, max_cases=5)
+
+
+def test_example_study_is_valid():
+    study = load_study(ROOT / "studies" / "example.toml")
+    assert study.name == "example" and count_cases(study) == 9
