@@ -95,3 +95,10 @@ def fake_arc_actuation(robot, kappa, phi, mode, pretension=0.0):
     vals = [0.0] * robot.n_tendons
     vals[0] = float(kappa[0]) * EI / g.offset
     return TendonActuation(mode, tuple(vals), pretension=pretension)
+
+
+def die_on_one(x):
+    """Task for executor tests: SIGKILLs its own process on payload 1."""
+    if x == 1:
+        os.kill(os.getpid(), 9)
+    return x * x
