@@ -128,3 +128,14 @@ def test_cli_local_cluster_with_os_exit(tmp_path, write_study):
     r = subprocess.run([sys.executable, "-m", "workbench", "show", str(out)], env=env, capture_output=True,
                        text=True, timeout=60, cwd=tmp_path)
     assert r.returncode == 1 and "ok 6, failed 4" in r.stdout, r.stdout
+
+
+@pytest.mark.parametrize("kind", ["isolated", "dask"])
+def test_crash_inside_a_batch_is_blamed_on_its_case(tmp_path, write_study, kind, request):
+    """A batch whose worker dies is rerun case by case: only the crashing case fails."""
+    ex = IsolatedExecutor() if kind == "isolated" else DaskExecutor(
+        scheduler=request.getfixturevalue("dask_scheduler"))
+    s = run_study(_study(write_study), tmp_path / "o", ex, model_lookup=fakes.lookup, progress=False,
+                  batch_size=4)
+    assert s.n_failed == 4 and s.n_ok == 6
+    _check(tmp_path / "o")

@@ -20,6 +20,7 @@ from typing import Any, Callable, Iterator, Mapping, Sequence
 import numpy as np
 
 from .expand import flatten_params
+from .spec import canonical_json
 
 __all__ = [
     "build_robot",
@@ -27,6 +28,7 @@ __all__ = [
     "build_options",
     "evaluate_case",
     "evaluate_payload",
+    "evaluate_batch",
     "failed_rows",
     "row_from_result",
     "gravity_from_parameter",
@@ -207,7 +209,8 @@ def _reason(e: BaseException) -> str:
 
 def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str],
                   model_lookup: Callable[[str], Callable] | None = None,
-                  arc_actuation: Callable | None = None) -> list[dict[str, Any]]:
+                  arc_actuation: Callable | None = None,
+                  robot_cache: dict[str, Any] | None = None) -> list[dict[str, Any]]:
     """Evaluate one case for every model; returns one row per model (never raises).
 
     Parameters
@@ -221,11 +224,20 @@ def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str]
         Must be picklable (a module-level function) when used with process executors.
     arc_actuation : callable, optional
         Replaces ``workbench.models.cc.actuation_from_arc`` (tests).
+    robot_cache : dict, optional
+        Memo of built robots keyed by their parameters (robots are frozen), shared by the
+        cases of one batch.
     """
     if model_lookup is None:
         from ..models import get_model as model_lookup
     try:
-        robot = build_robot(params["robot"], params.get("derived"))
+        if robot_cache is None:
+            robot = build_robot(params["robot"], params.get("derived"))
+        else:
+            key = canonical_json([params["robot"], params.get("derived")])
+            robot = robot_cache.get(key)
+            if robot is None:
+                robot = robot_cache[key] = build_robot(params["robot"], params.get("derived"))
         load = build_load(robot, params["load"], arc_actuation)
         options = build_options(params["solver"])
     except Exception as e:  # noqa: BLE001 - recorded as the case's failure reason
@@ -245,5 +257,17 @@ def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str]
 
 
 def evaluate_payload(payload: tuple) -> list[dict[str, Any]]:
-    """``evaluate_case(*payload)``: the picklable task function the executors run."""
+    """``evaluate_case(*payload)``: a picklable task function for one case."""
     return evaluate_case(*payload)
+
+
+def evaluate_batch(batch: tuple) -> list[list[dict[str, Any]]]:
+    """The task function the runner submits: several cases, one list of rows per case.
+
+    ``batch = (cases, models, model_lookup, arc_actuation)`` with ``cases`` a list of
+    ``(case_id, params)``.  Batching amortises the per-task cost of process executors; robots
+    are built once per distinct robot parameter set within the batch.
+    """
+    cases, models, model_lookup, arc_actuation = batch
+    cache: dict[str, Any] = {}
+    return [evaluate_case(cid, params, models, model_lookup, arc_actuation, cache) for cid, params in cases]

@@ -38,6 +38,8 @@ class WorkerCrash:
 
 
 class Executor(Protocol):
+    slots: int  # tasks it runs at once (batch sizing)
+
     def __enter__(self) -> "Executor": ...
     def __exit__(self, *exc: Any) -> None: ...
     def imap_unordered(self, fn: Callable[[Any], Any], payloads: Sequence[Any]) -> Iterator[tuple[int, Any]]: ...
@@ -47,6 +49,7 @@ class SerialExecutor:
     """In-process serial execution (no isolation: for debugging and unit tests)."""
 
     name = "serial (in-process)"
+    slots = 1
 
     def __enter__(self) -> "SerialExecutor":
         return self
@@ -90,6 +93,7 @@ class IsolatedExecutor:
     """Serial execution in one spawned child process, restarted after a crash."""
 
     name = "serial (isolated child process)"
+    slots = 1
 
     def __init__(self) -> None:
         self._ctx = mp.get_context("spawn")
@@ -207,14 +211,24 @@ class DaskExecutor:
             self._cfg.__exit__(None, None, None)
             self._cfg = None
 
+    @property
+    def slots(self) -> int:
+        """Worker threads of the cluster (for batch sizing)."""
+        if self._client is None:
+            return self.n_workers or 1
+        return max(1, sum(self._client.nthreads().values()))
+
     def imap_unordered(self, fn, payloads):
         from distributed import as_completed
         from distributed.scheduler import KilledWorker
 
+        import uuid
+
+        tag = uuid.uuid4().hex[:12]
         index = {}
         futures = []
         for i, p in enumerate(payloads):
-            f = self._client.submit(fn, p, pure=False, key=f"case-{i}-{id(payloads)}")
+            f = self._client.submit(fn, p, pure=False, key=f"cases-{tag}-{i}")
             index[f.key] = i
             futures.append(f)
         try:
@@ -224,7 +238,7 @@ class DaskExecutor:
                     out = f.result()
                 except KilledWorker as e:
                     out = WorkerCrash(f"worker process died while running this case "
-                                      f"({self.allowed_failures + 1} worker(s) lost): {e}")
+                                      f"({self.allowed_failures + 1} worker(s) lost)")
                 except Exception as e:  # noqa: BLE001
                     out = WorkerCrash(f"task failed: {type(e).__name__}: {e}")
                 f.release()

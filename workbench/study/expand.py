@@ -8,7 +8,6 @@ reruns and resumes match cases exactly.
 
 from __future__ import annotations
 
-import copy
 import hashlib
 import itertools
 from dataclasses import dataclass
@@ -110,7 +109,8 @@ def expand(study: Study) -> list[Case]:
         swept: dict[str, Any] = {}
         for part in combo:
             swept.update(part)
-        params = copy.deepcopy(study.base)
+        params = {sec: {k: (list(v) if isinstance(v, list) else v) for k, v in d.items()}
+                  for sec, d in study.base.items()}
         for path, value in swept.items():
             section, _, key = path.partition(".")
             params[section][key] = value
