@@ -136,7 +136,8 @@ def main() -> None:
         rows.append((spin, "runner serial isolated", through_runner(study, IsolatedExecutor(), lookup)))
     clusters = {}
     with dask.config.set({"distributed.scheduler.worker-saturation": 1.0,
-                          "distributed.scheduler.allowed-failures": 1}):
+                          "distributed.scheduler.allowed-failures": 1,
+                          "distributed.scheduler.work-stealing": False}):
         for w in (1, 2):
             t0 = time.perf_counter()
             clusters[w] = LocalCluster(n_workers=w, threads_per_worker=1, processes=True,

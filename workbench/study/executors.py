@@ -159,10 +159,13 @@ class DaskExecutor:
     allowed_failures : int
         How many worker deaths a task may cause before it is marked failed
         (``distributed.scheduler.allowed-failures``; 1 = one retry on another worker).
+    lost_timeout : float
+        Give up (``RuntimeError``) when the cluster has had no worker for this long [s].
     """
 
     def __init__(self, n_workers: int | None = None, scheduler: str | None = None,
-                 allowed_failures: int = 1) -> None:
+                 allowed_failures: int = 1, lost_timeout: float = 120.0) -> None:
+        self.lost_timeout = float(lost_timeout)
         if n_workers is not None and n_workers < 1:
             raise ValueError(f"n_workers must be >= 1, got {n_workers}")
         self.n_workers = n_workers
@@ -182,6 +185,7 @@ class DaskExecutor:
         self._cfg = dask.config.set({
             "distributed.scheduler.worker-saturation": 1.0,
             "distributed.scheduler.allowed-failures": self.allowed_failures,
+            "distributed.scheduler.work-stealing": False,
             "distributed.worker.daemon": False,
         })
         self._cfg.__enter__()
@@ -219,7 +223,9 @@ class DaskExecutor:
         return max(1, sum(self._client.nthreads().values()))
 
     def imap_unordered(self, fn, payloads):
-        from distributed import as_completed
+        import time
+
+        from distributed import wait
         from distributed.scheduler import KilledWorker
 
         import uuid
@@ -231,18 +237,37 @@ class DaskExecutor:
             f = self._client.submit(fn, p, pure=False, key=f"cases-{tag}-{i}")
             index[f.key] = i
             futures.append(f)
+        remaining = set(futures)
+        lost_since = None
         try:
-            for f in as_completed(futures):
-                i = index[f.key]
+            while remaining:
                 try:
-                    out = f.result()
-                except KilledWorker as e:
-                    out = WorkerCrash(f"worker process died while running this case "
-                                      f"({self.allowed_failures + 1} worker(s) lost)")
-                except Exception as e:  # noqa: BLE001
-                    out = WorkerCrash(f"task failed: {type(e).__name__}: {e}")
-                f.release()
-                yield i, out
+                    done, _ = wait(list(remaining), timeout=5.0, return_when="FIRST_COMPLETED")
+                except TimeoutError:
+                    done = set()
+                if not done:
+                    # a cluster without workers would wait for ever: give up after a while
+                    if not self._client.scheduler_info().get("workers"):
+                        lost_since = lost_since or time.monotonic()
+                        if time.monotonic() - lost_since > self.lost_timeout:
+                            raise RuntimeError(
+                                f"the Dask cluster has had no workers for {self.lost_timeout:.0f} s; "
+                                f"finished cases are stored (continue with --resume)")
+                    else:
+                        lost_since = None
+                    continue
+                for f in done:
+                    remaining.discard(f)
+                    i = index[f.key]
+                    try:
+                        out = f.result()
+                    except KilledWorker:
+                        out = WorkerCrash(f"worker process died while running this case "
+                                          f"({self.allowed_failures + 1} worker(s) lost)")
+                    except Exception as e:  # noqa: BLE001
+                        out = WorkerCrash(f"task failed: {type(e).__name__}: {e}")
+                    f.release()
+                    yield i, out
         finally:
             for f in futures:
                 f.cancel()
