@@ -120,14 +120,16 @@ def build_options(solver: Mapping[str, Any]):
     return SolverOptions(**solver)
 
 
-def _base_row(case_id: str, model: str, params: Mapping[str, Any]) -> dict[str, Any]:
-    return {"case_id": case_id, "model": model, **flatten_params(params)}
+def _base_row(case_id: str, model: str, params: Mapping[str, Any], flat: Mapping[str, Any] | None = None
+              ) -> dict[str, Any]:
+    return {"case_id": case_id, "model": model, **(flat if flat is not None else flatten_params(params))}
 
 
 def failed_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str], reason: str,
-                wall_time: float = float("nan")) -> list[dict[str, Any]]:
+                wall_time: float = float("nan"), flat: Mapping[str, Any] | None = None) -> list[dict[str, Any]]:
     """One failed row per model (used for build failures and for crashed workers)."""
-    return [{**_base_row(case_id, m, params), "status": "failed", "error": reason, "wall_time": wall_time}
+    flat = flatten_params(params) if flat is None else flat
+    return [{**_base_row(case_id, m, params, flat), "status": "failed", "error": reason, "wall_time": wall_time}
             for m in models]
 
 
@@ -138,11 +140,13 @@ def _arr(x) -> list[float] | None:
 
 
 def row_from_result(res, case_id: str, model: str, params: Mapping[str, Any], robot,
-                    wall_time: float) -> dict[str, Any]:
+                    wall_time: float, flat: Mapping[str, Any] | None = None) -> dict[str, Any]:
     """Flatten a PhysicsResult into a row; non-finite numbers make the row ``failed``."""
     T = np.asarray(res.tip_frame, dtype=float)
+    bad = [k for k, a in (("positions", res.positions), ("tendon_tensions", res.tendon_tensions),
+                          ("tip_frame", T)) if not np.isfinite(a).all()]
     row = {
-        **_base_row(case_id, model, params),
+        **_base_row(case_id, model, params, flat),
         "status": "ok",
         "error": "",
         "wall_time": float(wall_time),
@@ -171,11 +175,9 @@ def row_from_result(res, case_id: str, model: str, params: Mapping[str, Any], ro
     for name, v in dict(res.extras).items():
         row[f"x.{name}"] = float(v)
     row["_shapes"] = shapes
-    bad = [k for k in ("tip_x", "tip_y", "tip_z", "length_change", "tip_twist") if not math.isfinite(row[k])]
-    for k in ("positions", "tendon_tensions", "tip_frame"):
-        if row[k] is not None and not np.all(np.isfinite(row[k])):
-            bad.append(k)
-    bad += [k for k, v in row.items() if k.startswith(("x.", "series.")) and not np.all(np.isfinite(v))]
+    bad += [k for k in ("length_change", "tip_twist") if not math.isfinite(row[k])]
+    bad += [f"series.{k}" for k, v in dict(res.series).items() if not np.isfinite(np.asarray(v, float)).all()]
+    bad += [f"x.{k}" for k, v in dict(res.extras).items() if not math.isfinite(float(v))]
     if bad:
         row["status"] = "failed"
         row["error"] = f"non-finite result in {', '.join(bad)}"
@@ -242,6 +244,7 @@ def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str]
         options = build_options(params["solver"])
     except Exception as e:  # noqa: BLE001 - recorded as the case's failure reason
         return failed_rows(case_id, params, models, f"building the case failed: {_reason(e)}")
+    flat = flatten_params(params)
     rows = []
     for name in models:
         t0 = time.perf_counter()
@@ -250,9 +253,9 @@ def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str]
             with _quiet_exudyn_if_loaded():
                 res = fn(robot, load, options)
             wall = time.perf_counter() - t0
-            rows.append(row_from_result(res, case_id, name, params, robot, wall))
+            rows.append(row_from_result(res, case_id, name, params, robot, wall, flat))
         except Exception as e:  # noqa: BLE001 - ModelFailure, exudyn.SolverError, bugs: all recorded
-            rows.append(failed_rows(case_id, params, [name], _reason(e), time.perf_counter() - t0)[0])
+            rows.append(failed_rows(case_id, params, [name], _reason(e), time.perf_counter() - t0, flat)[0])
     return rows
 
 
