@@ -58,6 +58,12 @@ Annotated example (``studies/example.toml`` is a runnable one)::
     random = { n = 4, "robot.tendon_offset" = { low = 0.01, high = 0.03 } }  # uniform samples
     # latin_hypercube = { n = 8, "load.bend_plane" = { low = 0.0, high = 3.14 } }
 
+    [report]                    # optional hints for workbench.report (not in the config hash)
+    axes = ["kappaL", "gamma"]  # columns to plot against (default: the sweep axes)
+    reference = "cc"            # reference model of the comparison (one of study.models)
+    # derived = { d_over_L = "`p.robot.tendon_offset` / robot_length" }  # pandas eval
+    # labels = { gamma = "gamma = q L^3 / EI" }
+
 Sweep semantics: every ``product`` axis, the ``zip`` group, the ``cases`` list, the ``random``
 samples and the ``latin_hypercube`` samples are *blocks*; the cases are the Cartesian product of
 the blocks (in that order), each case merging one entry of every block (above: 3*2*2*2*4 = 96
@@ -162,6 +168,16 @@ class SweepSection(BaseModel):
     latin_hypercube: dict[str, Any] | None = None
 
 
+class ReportSection(BaseModel):
+    """Presentation hints for ``workbench.report`` (not part of the config hash)."""
+
+    model_config = _CFG
+    axes: list[str] = Field(default_factory=list)
+    derived: dict[str, str] = Field(default_factory=dict)
+    labels: dict[str, str] = Field(default_factory=dict)
+    reference: str | None = None
+
+
 class StudyFile(BaseModel):
     model_config = _CFG
     study: StudySection
@@ -170,6 +186,7 @@ class StudyFile(BaseModel):
     solver: SolverSection = Field(default_factory=SolverSection)
     derived: DerivedSection = Field(default_factory=DerivedSection)
     sweep: SweepSection = Field(default_factory=SweepSection)
+    report: ReportSection = Field(default_factory=ReportSection)
 
 
 _SECTION_MODELS: dict[str, type[BaseModel]] = {
@@ -178,6 +195,7 @@ _SECTION_MODELS: dict[str, type[BaseModel]] = {
     "solver": SolverSection,
     "derived": DerivedSection,
     "sweep": SweepSection,
+    "report": ReportSection,
 }
 
 # Units per key, for messages.
@@ -221,6 +239,7 @@ class Study:
     max_cases: int
     base: dict[str, dict[str, Any]]
     sweep: dict[str, Any] = field(default_factory=dict)
+    report: dict[str, Any] = field(default_factory=dict)
 
     def resolved(self) -> dict[str, Any]:
         """Plain-data resolved spec (what the manifest records)."""
@@ -231,6 +250,7 @@ class Study:
             },
             **{k: dict(v) for k, v in self.base.items()},
             "sweep": self.sweep,
+            "report": self.report,
         }
 
     @property
@@ -445,6 +465,9 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
                                 .replace("; known keys:", "; known models:"))
         if len(set(st.models)) != len(st.models):
             problems.append("study.models: lists a model twice")
+        rep = sections.get("report")
+        if rep is not None and rep.reference is not None and rep.reference not in st.models:
+            problems.append(f"report.reference: {rep.reference!r} is not one of study.models ({', '.join(st.models)})")
 
     # robot: preset + overrides
     robot_base: dict[str, Any] | None = None
@@ -513,7 +536,7 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
     study = Study(
         path=source, name=st.name, description=st.description, seed=st.seed,
         models=tuple(st.models), max_cases=int(max_cases if max_cases is not None else st.max_cases),
-        base=base, sweep=sweep_plain,
+        base=base, sweep=sweep_plain, report=sections["report"].model_dump(exclude_defaults=True),
     )
     # size and per-case checks need the expansion (pure, cheap)
     from .expand import count_cases, expand
