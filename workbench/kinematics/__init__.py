@@ -4,3 +4,6 @@ from .arc import backbone_points, forward_kinematics, jacobian, section_transfor
 from .planar import planar_forward_kinematics, planar_from_spatial_transform, planar_jacobian, spatial_from_planar
 from .tendons import arc_from_tendon_lengths, arcs_from_tendon_lengths, tendon_lengths_from_arc, tendon_lengths_from_arcs
 from .redundancy import IKResult, PathResult, follow_path, line_path, planar_inverse_kinematics, spatial_inverse_kinematics
+from .hannan_walker import cable_change_from_joint_angle, curvature_from_cable_change, curvature_from_joint_angle, joint_angle_from_cable_change, joint_angle_from_curvature
+from .tronconic import WireMove, plan_constant_speed_move, virtual_compression, wire_lengths_tronconic
+from .centre_of_arc import SingularConfiguration, centre_of_arc_jacobian, centre_of_arc_pose
