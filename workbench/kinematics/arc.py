@@ -85,14 +85,12 @@ def _section_aos(kappa, phi, ell):
     return Ra, pa
 
 
-def _chain_tip(kappa, phi, ell):
-    """Tip frame of sections along the last axis (already broadcast, float, checked)."""
-    shape = kappa.shape[:-1]
-    n = kappa.shape[-1]
-    # section axis first -> contiguous per-section slices
-    K = np.ascontiguousarray(np.moveaxis(kappa, -1, 0))
-    P = np.ascontiguousarray(np.moveaxis(phi, -1, 0))
-    L = np.ascontiguousarray(np.moveaxis(ell, -1, 0))
+_CHUNK = 1 << 14  # configurations per block: keeps the temporaries in cache
+
+
+def _chain_tip_block(K, P, L, out):
+    """Tip frames for section-major blocks ``K, P, L (n, b)`` written into ``out (b, 4, 4)``."""
+    n = K.shape[0]
     R_all, p_all = _section_soa(K, P, L)
     R = [[R_all[i][j][0] for j in range(3)] for i in range(3)]
     p = [p_all[i][0] for i in range(3)]
@@ -100,7 +98,30 @@ def _chain_tip(kappa, phi, ell):
         Rk = [[R_all[i][j][k] for j in range(3)] for i in range(3)]
         pk = [p_all[i][k] for i in range(3)]
         R, p = _compose_soa(R, p, Rk, pk)
-    return _pack_soa(R, p, shape)
+    tmp = np.empty((16, K.shape[1]))
+    for i in range(3):
+        for j in range(3):
+            tmp[4 * i + j] = R[i][j]
+        tmp[4 * i + 3] = p[i]
+    tmp[12:15] = 0.0
+    tmp[15] = 1.0
+    out.reshape(-1, 16)[...] = tmp.T
+
+
+def _chain_tip(kappa, phi, ell):
+    """Tip frame of sections along the last axis (already broadcast, float, checked)."""
+    shape = kappa.shape[:-1]
+    n = kappa.shape[-1]
+    # section axis first -> contiguous per-section rows
+    K = np.ascontiguousarray(kappa.reshape(-1, n).T)
+    P = np.ascontiguousarray(phi.reshape(-1, n).T)
+    L = np.ascontiguousarray(ell.reshape(-1, n).T)
+    m = K.shape[1]
+    out = np.empty((m, 4, 4))
+    for a in range(0, m, _CHUNK):
+        b = min(a + _CHUNK, m)
+        _chain_tip_block(K[:, a:b], P[:, a:b], L[:, a:b], out[a:b])
+    return out.reshape(shape + (4, 4))
 
 
 def _cumulative_frames(R, p):
