@@ -24,7 +24,8 @@ def test_pose_is_centre_of_the_arc():
         # x_1 points from the arc midpoint to the centre; z_1 is normal to the bending plane
         mid = backbone_points([k], [phi], [s], [s / 2])[0]
         d = T[:3, 3] - mid
-        np.testing.assert_allclose(R[:, 0], d / np.linalg.norm(d) * np.sign(k) if k > 0 else R[:, 0], atol=1e-12)
+        # (for k < 0 the centre lies on the other side: x_1 = sign(k) (O_1 - a)/|O_1 - a|)
+        np.testing.assert_allclose(R[:, 0], np.sign(k) * d / np.linalg.norm(d), atol=1e-12)
         np.testing.assert_allclose(R[:, 2] @ (pts[1] - pts[0]), 0.0, atol=1e-14)
 
 

@@ -82,7 +82,7 @@ def _equally_spaced(sigma: np.ndarray) -> bool:
         return False
     rel = np.mod(sigma - sigma[0], 2 * np.pi)
     rel = np.sort(rel)
-    return bool(np.allclose(rel, 2 * np.pi * np.arange(m) / m, atol=1e-9))
+    return bool(np.allclose(rel, 2 * np.pi * np.arange(m) / m, rtol=0.0, atol=1e-12))
 
 
 def arc_from_tendon_lengths(lengths, sigma, d, *, return_residual: bool = False):
