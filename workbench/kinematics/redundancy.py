@@ -286,7 +286,7 @@ def spatial_inverse_kinematics(
     Returns
     -------
     IKResult
-        ``q`` has shape (2, n): ``q[0]`` curvatures, ``q[1]`` angles.
+        ``q`` has shape (2, n): ``q[0]`` curvatures, ``q[1]`` angles wrapped to ``(-pi, pi]``.
     """
     k0, p0, ll = _check_sections(kappa0, phi0, ell)
     if k0.ndim != 1:
@@ -317,7 +317,8 @@ def spatial_inverse_kinematics(
         singular_threshold=singular_threshold, tol=tol, null_tol=null_tol,
         max_iter=int(max_iter), max_step=max_step,
     )
-    return IKResult(q=np.stack([q[:n], q[n:]]), success=ok, iterations=it, residual=r, reason=why)
+    phi = np.angle(np.exp(1j * q[n:]))  # wrap to (-pi, pi]
+    return IKResult(q=np.stack([q[:n], phi]), success=ok, iterations=it, residual=r, reason=why)
 
 
 def line_path(start, end, n_samples: int) -> np.ndarray:
