@@ -13,6 +13,7 @@ from workbench.kinematics import (
     plan_constant_speed_move,
     tendon_lengths_from_arc,
     virtual_compression,
+    wire_length_jacobian,
     wire_lengths_tronconic,
 )
 
@@ -170,6 +171,29 @@ def test_paper_experiment_wire1_delayed_3s():
     mv_t = plan_constant_speed_move([0, 0], [45 * DEG, 45 * DEG], 4.0, H=H, D1=0.10, D2=0.08, delays=[3, 0, 0])
     assert mv_t.theta is None
     assert 0.015 < mv_t.relative_compression.max() < 0.02
+
+
+@pytest.mark.parametrize("seed", [52, 53])
+def test_wire_length_jacobian_vs_finite_differences(seed):
+    rng = np.random.default_rng(seed)
+    h = 1e-6
+    for _ in range(10):
+        th = rng.uniform(-2.0, 2.0)
+        if _ == 0:
+            th = 0.0  # smooth through theta = 0
+        al = rng.uniform(-np.pi, np.pi)
+        H, D1, D2 = 0.35, rng.uniform(0.05, 0.12), rng.uniform(0.05, 0.12)
+        J = wire_length_jacobian(th, al, H, D1, D2)
+        fd = np.stack([
+            (wire_lengths_tronconic(th + h, al, H, D1, D2) - wire_lengths_tronconic(th - h, al, H, D1, D2)) / (2 * h),
+            (wire_lengths_tronconic(th, al + h, H, D1, D2) - wire_lengths_tronconic(th, al - h, H, D1, D2)) / (2 * h),
+        ], axis=-1)
+        np.testing.assert_allclose(J, fd, atol=1e-9)
+    # cylinder closed form
+    th, al = 0.6, 0.2
+    an = np.array([0, 120, 240]) * DEG - al
+    np.testing.assert_allclose(wire_length_jacobian(th, al, 0.35, 0.1, 0.1),
+                               np.stack([0.05 * np.cos(an), 0.05 * th * np.sin(an)], -1), atol=1e-15)
 
 
 def test_cojocaru_validation():

@@ -30,7 +30,7 @@ Modules
     :func:`joint_angle_from_curvature`, :func:`curvature_from_cable_change`.
 :mod:`.tronconic`
     Cojocaru et al. 3-wire tronconic sections: :func:`wire_lengths_tronconic` (Eq. 4-11),
-    :func:`virtual_compression` (Eq. 12), :func:`plan_constant_speed_move` -> :class:`WireMove`
+    :func:`wire_length_jacobian` (Eq. 23-24), :func:`virtual_compression` (Eq. 12), :func:`plan_constant_speed_move` -> :class:`WireMove`
     (Eq. 13-30).
 :mod:`.centre_of_arc`
     Shao et al.: :func:`centre_of_arc_pose` (Eq. 1-3), :func:`centre_of_arc_jacobian`
@@ -94,7 +94,13 @@ from .tendons import (
     tendon_lengths_from_arc,
     tendon_lengths_from_arcs,
 )
-from .tronconic import WireMove, plan_constant_speed_move, virtual_compression, wire_lengths_tronconic
+from .tronconic import (
+    WireMove,
+    plan_constant_speed_move,
+    virtual_compression,
+    wire_length_jacobian,
+    wire_lengths_tronconic,
+)
 
 __all__ = [
     "section_transform",
@@ -121,6 +127,7 @@ __all__ = [
     "joint_angle_from_curvature",
     "curvature_from_cable_change",
     "wire_lengths_tronconic",
+    "wire_length_jacobian",
     "virtual_compression",
     "WireMove",
     "plan_constant_speed_move",

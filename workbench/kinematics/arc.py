@@ -345,6 +345,11 @@ def jacobian(kappa, phi, ell) -> np.ndarray:
     rank deficient there, as for any (kappa, phi) parametrisation.
     """
     K, P, L = _check_sections(kappa, phi, ell)
+    return _jacobian(K, P, L)
+
+
+def _jacobian(K, P, L):
+    """:func:`jacobian` without input checks (inputs broadcast, float, ``(..., n)``)."""
     batch = K.shape[:-1]
     n = K.shape[-1]
     R, p = _section_aos(K, P, L)

@@ -27,8 +27,8 @@ from typing import Callable
 import numpy as np
 
 from ._checks import as_float, require_positive, section_arrays
-from .arc import _check_sections, forward_kinematics, jacobian
-from .planar import planar_forward_kinematics, planar_jacobian
+from .arc import _chain_tip, _check_sections, _jacobian, forward_kinematics
+from .planar import _planar_fk, _planar_jac, planar_forward_kinematics
 
 __all__ = [
     "IKResult",
@@ -235,8 +235,9 @@ def planar_inverse_kinematics(
     if q_d is not None and q_d.shape != k0.shape:
         raise ValueError(f"kappa_d must have shape {k0.shape}; got {q_d.shape}")
     _check_solver_opts(gain, null_gain, singular_threshold, tol, max_iter, max_step)
-    fk = lambda q: planar_forward_kinematics(q, ll)[:2, 3]  # noqa: E731
-    jac = lambda q: planar_jacobian(q, ll)  # noqa: E731
+    # inputs are checked above; the loop uses the unchecked kernels
+    fk = lambda q: _planar_fk(q, ll)[:2, 3]  # noqa: E731
+    jac = lambda q: _planar_jac(q, ll)  # noqa: E731
     q0 = k0.copy()
     if target_velocity is not None:
         v = _check_target(target_velocity, 2)
@@ -305,10 +306,10 @@ def spatial_inverse_kinematics(
     cols = np.concatenate([3 * np.arange(n), 3 * np.arange(n) + 1])  # kappa_i, then phi_i
 
     def fk(q):
-        return forward_kinematics(q[:n], q[n:], ll)[:3, 3]
+        return _chain_tip(q[:n], q[n:], ll)[:3, 3]
 
     def jac(q):
-        return jacobian(q[:n], q[n:], ll)[:3, cols]
+        return _jacobian(q[:n], q[n:], ll)[:3, cols]
 
     select = np.concatenate([np.ones(n), np.zeros(n)])
     q, ok, it, r, why = _resolved_rate(

@@ -50,6 +50,7 @@ from .tendons import arc_from_tendon_lengths
 
 __all__ = [
     "wire_lengths_tronconic",
+    "wire_length_jacobian",
     "virtual_compression",
     "WireMove",
     "plan_constant_speed_move",
@@ -108,6 +109,48 @@ def wire_lengths_tronconic(theta, alpha, H, D1, D2) -> np.ndarray:
     t = th[..., None]
     sc = _series.sinc(0.5 * t)
     return np.sqrt((a - b) ** 2 / (sc * sc) + (H[..., None] + a * t) * (H[..., None] + b * t))
+
+
+def wire_length_jacobian(theta, alpha, H, D1, D2) -> np.ndarray:
+    """Jacobian ``J_F = dL_w / d(theta, alpha)`` of the wire lengths (Cojocaru Eq. 23-24).
+
+    Parameters
+    ----------
+    theta, alpha, H, D1, D2
+        As in :func:`wire_lengths_tronconic`.
+
+    Returns
+    -------
+    J : ndarray, shape (..., 3, 2)
+        ``J[..., n, 0] = dL_wn/dtheta`` [m/rad], ``J[..., n, 1] = dL_wn/dalpha`` [m/rad].
+
+    Notes
+    -----
+    With ``L^2 = Q = (a - b)^2 / sinc(theta/2)^2 + (H + a theta)(H + b theta)``,
+    ``a = D1/2 cos alpha_n``, ``b = D2/2 cos alpha_n`` and ``d alpha_n / d alpha = -1``:
+    ``dL = dQ / (2 L)``,
+    ``dQ/dtheta = -(a - b)^2 sinc'(theta/2) / sinc(theta/2)^3 + a (H + b theta) + b (H + a theta)``,
+    ``dQ/dalpha = 2 (a - b)(a' - b') / sinc^2 + theta (a' (H + b theta) + b' (H + a theta))``
+    with ``a' = D1/2 sin alpha_n``, ``b' = D2/2 sin alpha_n``. For a cylinder this reduces to
+    ``dL_wn/dtheta = D/2 cos alpha_n``, ``dL_wn/dalpha = D/2 theta sin alpha_n``; Eq. 29
+    (``qdot = J_F^-1 C``) is then solved in closed form by :func:`plan_constant_speed_move`.
+    """
+    L = wire_lengths_tronconic(theta, alpha, H, D1, D2)  # validates
+    th, al, H, D1, D2 = broadcast_named(
+        theta=as_float("theta", theta), alpha=as_float("alpha", alpha), H=as_float("H", H),
+        D1=as_float("D1", D1), D2=as_float("D2", D2),
+    )
+    ang = np.asarray(_WIRE_AZIMUTH) - al[..., None]  # alpha_n
+    c, s = np.cos(ang), np.sin(ang)
+    a, b = 0.5 * D1[..., None] * c, 0.5 * D2[..., None] * c
+    da, db = 0.5 * D1[..., None] * s, 0.5 * D2[..., None] * s  # d/dalpha (d alpha_n/d alpha = -1)
+    t = th[..., None]
+    Hh = H[..., None]
+    sc = _series.sinc(0.5 * t)
+    dsc = _series.dsinc(0.5 * t)
+    dQ_dt = -((a - b) ** 2) * dsc / sc**3 + a * (Hh + b * t) + b * (Hh + a * t)
+    dQ_da = 2.0 * (a - b) * (da - db) / sc**2 + t * (da * (Hh + b * t) + db * (Hh + a * t))
+    return np.stack([dQ_dt, dQ_da], axis=-1) / (2.0 * L[..., None])
 
 
 def virtual_compression(wire_lengths, H) -> np.ndarray:
