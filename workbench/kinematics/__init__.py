@@ -3,10 +3,10 @@
 Conventions (SI units: m, rad, 1/m). A robot is a chain of ``n`` constant-curvature sections,
 each described by ``(kappa, phi, ell)``: curvature, bending-plane angle from the section's base
 ``x`` axis, arc length; the backbone tangent at a section's base is its base ``z`` axis and
-the arc bends *towards* ``phi`` (Webster & Jones 2010, Eq. 3). Every function is vectorised
-over leading batch dimensions ``(..., n)``, checks its inputs once (errors state the expected
-shape), and is exact and smooth as ``kappa -> 0`` (series branches for ``sin x/x`` and
-``(1 - cos x)/x``).
+the arc bends *towards* ``phi`` (Webster & Jones 2010, robot-independent mapping). Every
+function is vectorised over leading batch dimensions ``(..., n)``, checks its inputs once
+(errors state the expected shape), and is exact and smooth as ``kappa -> 0`` (series
+branches for ``sin x/x`` and ``(1 - cos x)/x``).
 
 Modules
 -------
@@ -30,8 +30,8 @@ Modules
     :func:`joint_angle_from_curvature`, :func:`curvature_from_cable_change`.
 :mod:`.tronconic`
     Cojocaru et al. 3-wire tronconic sections: :func:`wire_lengths_tronconic` (Eq. 4-11),
-    :func:`wire_length_jacobian` (Eq. 23-24), :func:`virtual_compression` (Eq. 12), :func:`plan_constant_speed_move` -> :class:`WireMove`
-    (Eq. 13-30).
+    :func:`wire_length_jacobian` (Eq. 23-24), :func:`virtual_compression` (Eq. 12),
+    :func:`plan_constant_speed_move` -> :class:`WireMove` (Eq. 13-30).
 :mod:`.centre_of_arc`
     Shao et al.: :func:`centre_of_arc_pose` (Eq. 1-3), :func:`centre_of_arc_jacobian`
     (Eq. 4-5, corrected), :class:`SingularConfiguration` (``k = 0``).

@@ -1,7 +1,7 @@
 """Spatial constant-curvature arcs: section transform, forward kinematics, tip Jacobian.
 
 Convention (Webster & Jones 2010, "Design and kinematic modeling of constant curvature
-continuum robots: a review", IJRR 29(13), Eq. 3 -- the arc-parameter formulation):
+continuum robots: a review", IJRR 29(13), 2010 -- the arc-parameter formulation):
 
 * each section starts at its base frame, backbone tangent = base ``z`` axis;
 * the section bends in the plane containing ``z`` and the direction at angle ``phi`` from
@@ -158,8 +158,8 @@ def section_transform(kappa, phi, ell) -> np.ndarray:
     T : ndarray, shape (..., 4, 4)
         ``T = Rz(phi) [Ry(kappa ell), p] Rz(-phi)`` with
         ``p = ((1 - cos kappa ell)/kappa cos phi, (1 - cos kappa ell)/kappa sin phi,
-        sin(kappa ell)/kappa)`` (Webster & Jones 2010, Eq. 3). The three inputs are broadcast
-        together. Exact and smooth as ``kappa -> 0`` (``T -> [I, (0, 0, ell)]``).
+        sin(kappa ell)/kappa)`` (Webster & Jones 2010, robot-independent mapping). The three
+        inputs are broadcast together. Exact and smooth as ``kappa -> 0`` (``T -> [I, (0, 0, ell)]``).
 
     Examples
     --------
@@ -215,7 +215,7 @@ def forward_kinematics(kappa, phi, ell, s=None) -> np.ndarray:
     Returns
     -------
     T : ndarray, shape (..., 4, 4) if ``s`` is None, else (..., m, 4, 4)
-        Tip frame ``T_1 T_2 ... T_n`` (product of Webster & Jones Eq. 3 transforms), or the
+        Tip frame ``T_1 T_2 ... T_n`` (product of the Webster & Jones arc transforms), or the
         backbone frames at the stations ``s``.
 
     Examples
@@ -330,7 +330,7 @@ def jacobian(kappa, phi, ell) -> np.ndarray:
 
     Notes
     -----
-    Derived from Webster & Jones 2010 Eq. 3: for section ``i`` with base frame
+    Derived from the arc transform of :func:`section_transform`: for section ``i`` with base frame
     ``(R_b, p_b)`` and end point ``p_e``, ``omega = R_b w_q`` and
     ``v = R_b v_q + omega x (p_tip - p_e)`` where, with ``theta = kappa ell`` and
     ``u = (-sin phi, cos phi, 0)``:
