@@ -23,4 +23,4 @@ def test_public_api_documented(name):
     doc = obj.__doc__ or ""
     assert len(doc) > 40, name
     if callable(obj) and not isinstance(obj, type):
-        assert "Returns" in doc or "Inverse of" in doc, name
+        assert "Returns" in doc and "Parameters" in doc, name

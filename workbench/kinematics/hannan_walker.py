@@ -140,7 +140,22 @@ def curvature_from_joint_angle(theta, s, joints_per_section: int = 4) -> np.ndar
 
 
 def joint_angle_from_curvature(k, s, joints_per_section: int = 4) -> np.ndarray:
-    """Inverse of :func:`curvature_from_joint_angle`: ``theta = k s / N`` [rad]."""
+    """Joint angle from the section curvature (inverse of :func:`curvature_from_joint_angle`).
+
+    Parameters
+    ----------
+    k : array_like, shape (...)
+        Section curvature [1/m].
+    s : float or array_like
+        Section arc length [m], ``> 0``.
+    joints_per_section : int
+        ``N`` (4 on the Hannan & Walker robot).
+
+    Returns
+    -------
+    theta : ndarray, shape (...)
+        ``theta = k s / N`` [rad] (Eq. 2-3 solved for ``theta``).
+    """
     k = as_float("k", k)
     s = as_float("s", s)
     require_positive("s", s)
