@@ -99,7 +99,9 @@ def _dls_step(J, e, tol_rel, null_vec):
     smax = S[0] if S.size else 0.0
     eps = tol_rel * smax
     smin = S[-1]
-    lam2 = 0.0 if smin >= eps else (1.0 - (smin / eps) ** 2) * eps**2 if eps > 0 else 0.0
+    lam2 = 0.0
+    if eps > 0 and smin < eps:  # smooth switch-on of the damping near a singularity
+        lam2 = (1.0 - (smin / eps) ** 2) * eps**2
     denom = S * S + lam2
     inv = np.where(denom > 0, S / np.where(denom > 0, denom, 1.0), 0.0)
     dq_task = Vt.T @ (inv * (U.T @ e))
@@ -155,7 +157,9 @@ def _resolved_rate(
             if since_best >= stall_iter:
                 return q, False, it, r, "stalled"
     ok = r <= tol
-    return q, ok, max_iter, r, ("converged (null-space task not settled)" if ok else "max_iterations")
+    if not ok:
+        return q, False, max_iter, r, "max_iterations"
+    return q, True, max_iter, r, ("converged" if q_d is None else "converged (null-space task not settled)")
 
 
 def _check_solver_opts(gain, null_gain, singular_threshold, tol, max_iter, max_step):
