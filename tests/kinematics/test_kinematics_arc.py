@@ -86,6 +86,17 @@ def test_section_transform_equals_webster_jones_product():
         np.testing.assert_allclose(section_transform(k, f, l), A @ inner @ B, atol=1e-13)
 
 
+def test_section_transform_broadcasts():
+    k = np.linspace(-3, 3, 5)[:, None]
+    f = np.array([0.0, 1.0, 2.0])
+    T = section_transform(k, f, 0.2)
+    assert T.shape == (5, 3, 4, 4)
+    np.testing.assert_allclose(T[4, 2], section_transform(3.0, 2.0, 0.2), atol=1e-15)
+    # forward_kinematics broadcasts per-section arrays too: (2, 1, n) with (n,)
+    F = forward_kinematics(np.ones((2, 1, 3)), np.zeros(3), np.full(3, 0.1))
+    assert F.shape == (2, 1, 4, 4)
+
+
 def test_section_transform_is_rigid_and_tip_on_circle():
     rng = np.random.default_rng(2)
     k, f, l = _random_config(rng, 1, (500,))
