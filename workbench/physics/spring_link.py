@@ -1,0 +1,572 @@
+"""Spring-link model: a chain of rigid links joined by rotational springs (Exudyn).
+
+A segmented backbone (Hannan & Walker's trunk, OpenCR-MuJoCo's "N links with springs of
+stiffness N EI / L") or the lumped equivalent of a continuous rod.
+
+Discretisation
+--------------
+``options.n_elements = N`` rigid links ("half-link"/tangent-polygon layout, see
+:mod:`workbench.physics._spring_link_geometry`): eyelet stations ``e_k`` equally spaced within
+every section (``N`` must be a multiple of the number of sections), joint ``k`` half-way between
+``e_{k-1}`` and ``e_k`` with bending stiffness ``k_k = EI(s_k) / (e_k - e_{k-1})`` (equivalent rod;
+a robot with explicit joint springs ``k`` is described by ``EI = k * ds``, which is what the
+Hannan & Walker preset does).  Link masses and inertias are integrated from the cross-section's
+mass per length (plus the sections' disk masses, spread over the link eyelets); the base plate
+carries the rod piece below the first joint.  Under a pure moment all joints turn by ``kappa ds``:
+the tip orientation is exact, positions converge as ``O(1/N^2)`` (measured in the tests).
+
+Dimension
+---------
+``SpringLinkParams.dimension = "auto"`` (default) builds the planar model (Exudyn ``RigidBody2D`` +
+``RevoluteJoint2D`` + ``CoordinateSpringDamper`` on the relative rotation) when every tendon lies at
+``sigma in {0, pi}`` and gravity, tip force and payload offset lie in the base x-z plane and the tip
+torque is about base y; otherwise it raises :class:`~workbench.models.ModelFailure` because the
+3-D chain is not implemented yet (see *Limitations*).  The planar model bends in the base x-z
+plane; Exudyn's plane (X, Y) is mapped to base (x, z).
+
+Tendons
+-------
+* ``tendon_model = "eyelets"``: one frictionless rope per tendon through eyelets at *every* link
+  (``e_0`` on the base plate up to the section-end eyelet), at offset ``d`` (``offset_at`` the
+  fraction of the tendon's own path, for tapered groups).  Tension control: one constant-force
+  ``ObjectConnectorSpringDamper`` (stiffness 0, ``force = T``) per straight rope segment, which is
+  *exactly* a frictionless rope with uniform tension ``T``.  Length control:
+  ``ObjectConnectorReevingSystemSprings`` (one rope, uniform tension ``T = EA_t (L - L_0) / L_0``)
+  through rigid eyelet markers, ``L_0 = L_ref + dl - pretension L_ref / EA_t``; a tendon in
+  compression is switched off (slack) and re-activated once taut again (active-set loop in
+  statics, per time step in dynamics).  The equivalence of both (reeving tension fed back as a
+  tension command gives the same shape) is a test.
+* ``tendon_model = "continuum"``: the tendon follows the centreline at constant offset, so it acts
+  as a torque ``T d`` on its terminating link and the opposite torque on the base (the chain is
+  axially rigid, so the compression ``T`` has no effect).  Tension control applies the torque;
+  length control uses that the tendon length is ``L_ref - d cos(sigma) beta_m`` with ``beta_m``
+  the rotation of the terminating link: a rotational spring ``EA_t d^2 / L_0`` to ground on that
+  link, switched off when slack.  Tapered offsets are not supported in continuum length mode.
+
+Statics and dynamics
+--------------------
+Static: own load ramp (``SolveStatic`` repeatedly with ``updateInitialValues=True``): a load factor
+scales gravity, tip loads and tendon commands together; the increment halves on failure; more
+than ``options.max_load_steps`` attempted steps raise :class:`ModelFailure`.  Dynamic:
+static equilibrium under gravity and tip loads with the tendon commands at ``t = 0``, then
+implicit generalised-alpha with the commands of :meth:`TendonActuation.command_at` updated every
+step; joint damping ``options.damping * k_k`` (``options.damping`` in seconds).
+
+Results
+-------
+Positions at ``options.n_stations`` reference stations interpolated along the straight links, tip
+frame at the end of the last link, ``length_change = 0`` (inextensible links), tensions,
+``joint_angles`` ``(N, 1)``: the bending angle of each joint towards base +x (rotation about base
++y) [rad].
+
+Limitations
+-----------
+3-D chains (Cardan joints), the optional axial spring and torsion are not implemented; a robot or
+load outside the x-z plane raises :class:`ModelFailure` naming the reason.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from typing import Callable, Literal
+
+import numpy as np
+
+from ..models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
+from ..robot import LoadCase, Robot
+from ._spring_link_geometry import ChainGeometry, chain_geometry_from_robot
+
+__all__ = ["SpringLinkParams", "run", "solve", "is_planar", "chain_geometry_from_robot"]
+
+_PLANE_TOL = 1e-12
+
+
+@dataclass(frozen=True)
+class SpringLinkParams:
+    """Model-specific settings of the spring-link chain.
+
+    Parameters
+    ----------
+    dimension : {"auto", "2d"}
+        ``"auto"``: planar when the robot and load are planar (see :func:`is_planar`).  ``"2d"``
+        forces the planar model and raises if the case is not planar.
+    max_active_set_iterations : int
+        Cap on slack/taut switching passes in a static length-controlled solve.
+    """
+
+    dimension: Literal["auto", "2d"] = "auto"
+    max_active_set_iterations: int = 20
+
+    def __post_init__(self) -> None:
+        if self.dimension not in ("auto", "2d"):
+            raise ValueError(f"SpringLinkParams.dimension must be 'auto' or '2d', got {self.dimension!r}")
+        if int(self.max_active_set_iterations) < 1:
+            raise ValueError("SpringLinkParams.max_active_set_iterations must be >= 1")
+
+
+def is_planar(robot: Robot, load: LoadCase) -> tuple[bool, str]:
+    """Whether ``robot`` under ``load`` stays in the base x-z plane.
+
+    Returns
+    -------
+    planar : bool
+    reason : str
+        Why not (empty when planar).
+    """
+    for j, sigma, _ in robot.tendon_table():
+        if abs(math.sin(sigma)) > 1e-9:
+            return False, f"tendon of section {j} at sigma = {sigma:.6g} rad is not in the x-z plane (sigma in {{0, pi}})"
+    g = robot.gravity_in_base()
+    if abs(g[1]) > _PLANE_TOL * max(1.0, np.linalg.norm(g)):
+        return False, f"gravity in the base frame {g.tolist()} has a y component"
+    if abs(load.tip_force[1]) > _PLANE_TOL:
+        return False, f"tip force {list(load.tip_force)} has a y component"
+    if abs(load.tip_torque[0]) > _PLANE_TOL or abs(load.tip_torque[2]) > _PLANE_TOL:
+        return False, f"tip torque {list(load.tip_torque)} is not about base y"
+    if robot.payload.mass > 0 and abs(robot.payload.offset[1]) > _PLANE_TOL:
+        return False, "payload offset has a y component"
+    return True, ""
+
+
+# ---------------------------------------------------------------------------------------------
+# tendon routing (pure numpy)
+# ---------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class _Tendon:
+    section: int
+    sigma: float
+    end_eyelet: int          # index m of the terminating eyelet
+    offsets: np.ndarray      # (m + 1,) offset d at eyelets 0..m
+    axial_stiffness: float
+    reference_length: float  # straight reference path length (eyelet 0 to m)
+    tapered: bool
+
+
+def _tendons(robot: Robot, geo: ChainGeometry) -> list[_Tendon]:
+    out = []
+    for j, sigma, grp in robot.tendon_table():
+        m = int(geo.section_end_eyelet[j])
+        e = geo.eyelets[: m + 1]
+        d = np.array([grp.offset_at(x / e[-1]) for x in e])
+        # straight reference: eyelets on a straight line, offsets may vary (taper)
+        L_ref = float(np.sum(np.hypot(np.diff(e), np.diff(d))))
+        out.append(_Tendon(j, float(sigma), m, d, grp.axial_stiffness, L_ref, grp.offset_tip is not None))
+    return out
+
+
+# ---------------------------------------------------------------------------------------------
+# planar Exudyn model
+# ---------------------------------------------------------------------------------------------
+class _Planar:
+    """Builds and drives the planar chain; holds Exudyn handles for one solve (not module state)."""
+
+    def __init__(self, robot: Robot, load: LoadCase, options: SolverOptions, geo: ChainGeometry) -> None:
+        import exudyn as exu
+        import exudyn.itemInterface as eii
+
+        self.exu = exu
+        self.robot, self.load, self.options, self.geo = robot, load, options, geo
+        self.tendons = _tendons(robot, geo)
+        act = load.actuation
+        if act is not None:
+            act.check_against(robot)
+        self.mode = None if act is None else act.mode
+        self.model = options.tendon_model
+        if self.mode == "length" and self.model == "continuum" and any(t.tapered for t in self.tendons):
+            raise ModelFailure(
+                "spring_link: continuum tendons with tapered offsets (offset_tip) are not supported in "
+                "length mode; use tendon_model='eyelets'"
+            )
+        N = geo.n_links
+        self.SC = exu.SystemContainer()
+        mbs = self.SC.AddSystem()
+        self.mbs = mbs
+        g = robot.gravity_in_base()
+        self.g2 = np.array([g[0], g[2], 0.0])
+
+        ground = mbs.AddObject(eii.ObjectGround(referencePosition=[0.0, 0.0, 0.0]))
+        self.ground = ground
+        ng = mbs.AddNode(eii.NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0]))
+        self.m_ground_coord = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=ng, coordinate=0))
+
+        # payload folded into the last link (point mass at its offset in the tip frame)
+        mass, com, inertia = geo.mass.copy(), geo.com.copy(), geo.inertia_bending.copy()
+        pm = robot.payload.mass
+        if pm > 0:
+            ox, _, oz = robot.payload.offset
+            px = np.array([0.0, com[-1]])
+            pp = np.array([ox, geo.link_lengths[-1] + oz])
+            mt = mass[-1] + pm
+            c = (mass[-1] * px + pm * pp) / mt
+            inertia[-1] = inertia[-1] + mass[-1] * np.sum((px - c) ** 2) + pm * np.sum((pp - c) ** 2)
+            mass[-1] = mt
+            self.com_last = c
+        else:
+            self.com_last = np.array([0.0, com[-1]])
+
+        self.nodes, self.bodies, self.coord_markers = [], [], []
+        for k in range(N):
+            n = mbs.AddNode(eii.NodeRigidBody2D(referenceCoordinates=[0.0, float(geo.joints[k]), 0.0]))
+            c = self.com_last if k == N - 1 else np.array([0.0, com[k]])
+            b = mbs.AddObject(
+                eii.RigidBody2D(nodeNumber=n, mass=float(mass[k]), inertia=float(inertia[k]),
+                                centerOfMass=[float(c[0]), float(c[1])])
+            )
+            self.nodes.append(n)
+            self.bodies.append(b)
+            self.coord_markers.append(mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=n, coordinate=2)))
+
+        # joints and rotational springs
+        self.joint_springs = []
+        for k in range(N):
+            if k == 0:
+                m0 = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0.0, float(geo.joints[0]), 0.0]))
+                c0 = self.m_ground_coord
+            else:
+                m0 = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=self.bodies[k - 1],
+                                                       localPosition=[0.0, float(geo.link_lengths[k - 1]), 0.0]))
+                c0 = self.coord_markers[k - 1]
+            m1 = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=self.bodies[k], localPosition=[0.0, 0.0, 0.0]))
+            mbs.AddObject(eii.RevoluteJoint2D(markerNumbers=[m0, m1]))
+            self.joint_springs.append(mbs.AddObject(eii.ObjectConnectorCoordinateSpringDamper(
+                markerNumbers=[c0, self.coord_markers[k]], stiffness=float(geo.stiffness[k]),
+                damping=float(options.damping * geo.stiffness[k]))))
+
+        # gravity
+        self.gravity_loads = []
+        if np.any(self.g2 != 0):
+            for b in self.bodies:
+                mm = mbs.AddMarker(eii.MarkerBodyMass(bodyNumber=b))
+                self.gravity_loads.append(mbs.AddLoad(eii.LoadMassProportional(markerNumber=mm, loadVector=[0.0, 0.0, 0.0])))
+        # tip loads
+        m_tip = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=self.bodies[-1],
+                                                  localPosition=[0.0, float(geo.link_lengths[-1]), 0.0]))
+        f, tq = load.tip_force, load.tip_torque
+        self.tip_force_full = np.array([f[0], f[2], 0.0])
+        self.tip_torque_full = np.array([0.0, 0.0, -tq[1]])
+        self.tip_force_load = mbs.AddLoad(eii.LoadForceVector(markerNumber=m_tip, loadVector=[0.0, 0.0, 0.0]))
+        self.tip_torque_load = mbs.AddLoad(eii.LoadTorqueVector(markerNumber=m_tip, loadVector=[0.0, 0.0, 0.0]))
+
+        # tendons
+        self.eyelet_markers: list[list[int]] = []
+        self.tendon_items: list[list[int]] = []
+        self.tendon_active = [True] * len(self.tendons)
+        for t in self.tendons:
+            c = math.cos(t.sigma)
+            c = 1.0 if c > 0 else -1.0
+            marks = []
+            _MK = eii.MarkerBodyRigid if (self.model == "eyelets" and self.mode == "length") else eii.MarkerBodyPosition
+            for k in range(t.end_eyelet + 1):
+                x = float(c * t.offsets[k])
+                if k == 0:
+                    marks.append(mbs.AddMarker(_MK(bodyNumber=ground, localPosition=[x, 0.0, 0.0])))
+                else:
+                    y = float(geo.eyelets[k] - geo.joints[k - 1])
+                    marks.append(mbs.AddMarker(_MK(bodyNumber=self.bodies[k - 1], localPosition=[x, y, 0.0])))
+            self.eyelet_markers.append(marks)
+            items = []
+            if self.mode is None:
+                pass
+            elif self.model == "eyelets" and self.mode == "tension":
+                for a, b in zip(marks[:-1], marks[1:]):
+                    items.append(mbs.AddObject(eii.ObjectConnectorSpringDamper(
+                        markerNumbers=[a, b], referenceLength=0.0, stiffness=0.0, force=0.0)))
+            elif self.model == "eyelets" and self.mode == "length":
+                n = len(marks)
+                items.append(mbs.AddObject(eii.ObjectConnectorReevingSystemSprings(
+                    markerNumbers=marks, stiffnessPerLength=float(t.axial_stiffness),
+                    dampingPerLength=float(options.damping * t.axial_stiffness),
+                    referenceLength=float(t.reference_length), regularizationForce=-1.0,
+                    sheavesRadii=[0.0] * n, sheavesAxes=exu.Vector3DList([[0.0, 0.0, 1.0]] * n))))
+            elif self.model == "continuum" and self.mode == "tension":
+                # the reaction torque on the base plate acts on ground and is omitted
+                mt = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=self.bodies[t.end_eyelet - 1]))
+                items.append(mbs.AddLoad(eii.LoadTorqueVector(markerNumber=mt, loadVector=[0.0, 0.0, 0.0])))
+            else:  # continuum, length
+                items.append(mbs.AddObject(eii.ObjectConnectorCoordinateSpringDamper(
+                    markerNumbers=[self.m_ground_coord, self.coord_markers[t.end_eyelet - 1]],
+                    stiffness=0.0, offset=0.0)))
+            self.tendon_items.append(items)
+        mbs.Assemble()
+        self.sign = [1.0 if math.cos(t.sigma) > 0 else -1.0 for t in self.tendons]
+
+    # -- load application ----------------------------------------------------------------
+    def rest_lengths(self, values: np.ndarray, pretension_factor: float) -> np.ndarray:
+        """Rope rest lengths L_0 for length commands ``values``."""
+        p = 0.0 if self.load.actuation is None else self.load.actuation.pretension
+        out = []
+        for t, v in zip(self.tendons, values):
+            L0 = t.reference_length + v - pretension_factor * p * t.reference_length / t.axial_stiffness
+            if L0 <= 0:
+                raise ModelFailure(f"spring_link: tendon rest length {L0:.4g} m <= 0 (command {v:.4g} m too short)")
+            out.append(L0)
+        return np.asarray(out)
+
+    def set_external(self, lam: float) -> None:
+        mbs = self.mbs
+        for ld in self.gravity_loads:
+            mbs.SetLoadParameter(ld, "loadVector", (lam * self.g2).tolist())
+        mbs.SetLoadParameter(self.tip_force_load, "loadVector", (lam * self.tip_force_full).tolist())
+        mbs.SetLoadParameter(self.tip_torque_load, "loadVector", (lam * self.tip_torque_full).tolist())
+
+    def set_tendons(self, values: np.ndarray, pretension_factor: float) -> None:
+        """Apply tendon commands (tensions [N] or length changes [m])."""
+        mbs = self.mbs
+        if self.mode is None:
+            return
+        self._values = np.asarray(values, dtype=float)
+        if self.mode == "length":
+            self._L0 = self.rest_lengths(self._values, pretension_factor)
+        for i, (t, items) in enumerate(zip(self.tendons, self.tendon_items)):
+            v = float(self._values[i])
+            if self.model == "eyelets" and self.mode == "tension":
+                for it in items:
+                    mbs.SetObjectParameter(it, "force", v)
+            elif self.model == "eyelets":
+                mbs.SetObjectParameter(items[0], "referenceLength", float(self._L0[i]))
+                mbs.SetObjectParameter(items[0], "activeConnector", bool(self.tendon_active[i]))
+            elif self.mode == "tension":
+                tau = -v * t.offsets[-1] * self.sign[i]
+                mbs.SetLoadParameter(items[0], "loadVector", [0.0, 0.0, tau])
+            else:
+                d, c, L0 = t.offsets[-1], self.sign[i], float(self._L0[i])
+                K = t.axial_stiffness * d * d / L0
+                phi_star = (L0 - t.reference_length) / (d * c)
+                mbs.SetObjectParameter(items[0], "stiffness", K if self.tendon_active[i] else 0.0)
+                mbs.SetObjectParameter(items[0], "offset", float(phi_star))
+
+    # -- state access ----------------------------------------------------------------------
+    def link_states(self) -> tuple[np.ndarray, np.ndarray]:
+        """Joint positions (N, 3) in the base frame and link angles beta (N,) (towards +x)."""
+        exu = self.exu
+        P = np.zeros((len(self.nodes), 3))
+        beta = np.zeros(len(self.nodes))
+        for k, n in enumerate(self.nodes):
+            q = self.mbs.GetNodeOutput(n, exu.OutputVariableType.Coordinates)
+            P[k] = [q[0], 0.0, self.geo.joints[k] + q[1]]
+            beta[k] = -q[2]
+        return P, beta
+
+    def tendon_lengths(self) -> np.ndarray:
+        exu = self.exu
+        out = []
+        for t, marks in zip(self.tendons, self.eyelet_markers):
+            if self.model == "continuum":
+                _, beta = self.link_states()
+                out.append(t.reference_length - t.offsets[-1] * self.sign[len(out)] * beta[t.end_eyelet - 1])
+            else:
+                pts = np.array([self.mbs.GetMarkerOutput(m, exu.OutputVariableType.Position) for m in marks])
+                out.append(float(np.sum(np.linalg.norm(np.diff(pts, axis=0), axis=1))))
+        return np.asarray(out)
+
+    def tensions(self) -> np.ndarray:
+        if self.mode is None:
+            return np.zeros(len(self.tendons))
+        if self.mode == "tension":
+            return self._values.copy()
+        L = self.tendon_lengths()
+        EA = np.array([t.axial_stiffness for t in self.tendons])
+        T = EA * (L - self._L0) / self._L0
+        return np.where(np.asarray(self.tendon_active), np.maximum(T, 0.0), 0.0)
+
+    def update_active_set(self) -> bool:
+        """Switch tendons slack/taut from the current state; True if anything changed."""
+        if self.mode != "length":
+            return False
+        L = self.tendon_lengths()
+        changed = False
+        for i in range(len(self.tendons)):
+            taut = bool(L[i] > self._L0[i])
+            if taut != self.tendon_active[i]:
+                self.tendon_active[i] = taut
+                changed = True
+        return changed
+
+    def result(self, solver: SolverInfo, time_: np.ndarray | None = None,
+               series: dict | None = None) -> PhysicsResult:
+        geo, robot = self.geo, self.robot
+        P, beta = self.link_states()
+        stations = np.linspace(0.0, robot.length, self.options.n_stations)
+        pos = np.zeros((stations.size, 3))
+        for i, s in enumerate(stations):
+            if s < geo.joints[0]:
+                pos[i] = [0.0, 0.0, s]
+                continue
+            k = int(np.searchsorted(geo.joints, s, side="right") - 1)
+            u = s - geo.joints[k]
+            pos[i] = P[k] + u * np.array([math.sin(beta[k]), 0.0, math.cos(beta[k])])
+        b = beta[-1]
+        T = np.eye(4)
+        T[:3, 0] = [math.cos(b), 0.0, -math.sin(b)]
+        T[:3, 1] = [0.0, 1.0, 0.0]
+        T[:3, 2] = [math.sin(b), 0.0, math.cos(b)]
+        T[:3, 3] = P[-1] + geo.link_lengths[-1] * T[:3, 2]
+        pos[-1] = T[:3, 3]
+        joint = np.diff(np.concatenate([[0.0], beta]))[:, None]
+        return PhysicsResult(
+            model="spring_link", stations=stations, positions=pos, tip_frame=T, length_change=0.0,
+            tendon_tensions=self.tensions(), tip_twist=0.0, solver=solver, joint_angles=joint,
+            time=time_, series=series or {},
+            extras={"n_links": float(geo.n_links), "dimension": 2.0},
+        )
+
+
+# ---------------------------------------------------------------------------------------------
+# solvers
+# ---------------------------------------------------------------------------------------------
+def _static_ramp(model: _Planar, options: SolverOptions, params: SpringLinkParams,
+                 apply: Callable[[float], None]) -> tuple[int, int]:
+    """Ramp ``apply(lam)`` from 0 to 1 with repeated static solves; returns (steps, newton its)."""
+    from ._exudyn import static_settings
+
+    exu = model.exu
+    mbs = model.mbs
+    settings = static_settings(options, 1)
+    settings.staticSolver.adaptiveStep = False
+    # Exudyn's Jacobians of rope connectors (constant-force spring-dampers, reeving) omit the
+    # geometric stiffness of the turning rope direction: Newton converges only linearly there
+    # (measured 28-33 iterations at N = 16 vs 3 for continuum tendons), so allow more iterations.
+    eyelet_ropes = model.model == "eyelets" and model.mode is not None
+    settings.staticSolver.newton.maxIterations = 250 if eyelet_ropes else 40
+    lam, inc = 0.0, 1.0
+    attempts, newton_its = 0, 0
+    while lam < 1.0:
+        target = min(1.0, lam + inc)
+        attempts += 1
+        if attempts > options.max_load_steps:
+            raise ModelFailure(
+                f"spring_link: static load ramp exceeded options.max_load_steps={options.max_load_steps} "
+                f"(reached load factor {lam:.4g})"
+            )
+        q_save = mbs.systemData.GetODE2Coordinates(configuration=exu.ConfigurationType.Initial)
+        active_save = list(model.tendon_active)
+        ok = True
+        try:
+            apply(target)
+            for _ in range(params.max_active_set_iterations):
+                solver = exu.MainSolverStatic()
+                if not solver.SolveSystem(mbs, settings):
+                    raise exu.SolverError("static Newton did not converge")
+                newton_its += int(solver.it.newtonStepsCount)
+                q = mbs.systemData.GetODE2Coordinates()
+                if not np.all(np.isfinite(q)):
+                    raise exu.SolverError("non-finite state")
+                mbs.systemData.SetODE2Coordinates(q, configuration=exu.ConfigurationType.Initial)
+                if not model.update_active_set():
+                    break
+                apply(target)
+            else:
+                raise ModelFailure("spring_link: tendon slack/taut switching did not settle")
+        except (exu.SolverError, RuntimeError) as err:  # ModelFailure is a RuntimeError too
+            if isinstance(err, ModelFailure) and "rest length" in str(err):
+                raise
+            ok = False
+        if ok:
+            lam = target
+            inc = min(1.0, inc * 2.0)
+        else:
+            mbs.systemData.SetODE2Coordinates(q_save, configuration=exu.ConfigurationType.Initial)
+            mbs.systemData.SetODE2Coordinates(q_save, configuration=exu.ConfigurationType.Current)
+            model.tendon_active = active_save
+            inc *= 0.5
+            if inc < 1e-6:
+                raise ModelFailure(f"spring_link: static solve failed near load factor {lam:.4g}")
+    return attempts, newton_its
+
+
+def solve(robot: Robot, load: LoadCase, options: SolverOptions,
+          params: SpringLinkParams = SpringLinkParams()) -> PhysicsResult:
+    """Static or dynamic solve of the spring-link chain (see the module docstring).
+
+    Parameters
+    ----------
+    robot : Robot
+    load : LoadCase
+    options : SolverOptions
+        ``n_elements`` is the number of links ``N`` (multiple of the number of sections).
+    params : SpringLinkParams
+        Model-specific settings.
+
+    Returns
+    -------
+    PhysicsResult
+        ``joint_angles`` shape ``(N, 1)``; for dynamics ``time`` (k,) and series
+        ``tip_position`` (k, 3), ``tendon_tensions`` (k, n_tendons).
+
+    Raises
+    ------
+    ModelFailure
+        Non-planar case, failed load ramp, non-positive tendon rest length.
+    ValueError
+        ``n_elements`` not a multiple of the number of sections.
+    """
+    from ._exudyn import dynamic_settings, quiet_exudyn
+
+    planar, why = is_planar(robot, load)
+    if not planar:
+        raise ModelFailure(f"spring_link: only the planar (x-z) chain is implemented; {why}")
+    geo = chain_geometry_from_robot(robot, options.n_elements)
+    t0 = time.perf_counter()
+    with quiet_exudyn():
+        model = _Planar(robot, load, options, geo)
+        act = load.actuation
+        n_t = len(model.tendons)
+        final = np.zeros(n_t) if act is None else np.asarray(act.values)
+        if load.analysis == "static":
+
+            def apply(lam: float) -> None:
+                model.set_external(lam)
+                model.set_tendons(lam * final, lam)
+
+            steps, its = _static_ramp(model, options, params, apply)
+            info = SolverInfo(converged=True, iterations=its, wall_time=time.perf_counter() - t0,
+                              message=f"{steps} load steps")
+            return model.result(info)
+
+        # dynamic: equilibrium under external loads with commands at t = 0, then integrate
+        start = np.zeros(n_t) if act is None else act.command_at(0.0, load.ramp_time)
+
+        def apply0(lam: float) -> None:
+            model.set_external(lam)
+            model.set_tendons(lam * start, lam)
+
+        steps, its = _static_ramp(model, options, params, apply0)
+        exu = model.exu
+        rec_t, rec_tip, rec_T = [], [], []
+
+        def pre_step(mbs, t):  # noqa: ANN001 - Exudyn callback signature
+            cmd = start if act is None else act.command_at(t, load.ramp_time)
+            if model.mode == "length":
+                model._L0 = model.rest_lengths(np.asarray(cmd), 1.0)
+                model.update_active_set()
+            model.set_tendons(np.asarray(cmd), 1.0)
+            r = model.result(SolverInfo(True))
+            rec_t.append(t)
+            rec_tip.append(r.tip_position.copy())
+            rec_T.append(r.tendon_tensions.copy())
+            return True
+
+        model.mbs.SetPreStepUserFunction(pre_step)
+        settings = dynamic_settings(options, load.duration)
+        solver = exu.MainSolverImplicitSecondOrder()
+        try:
+            solver.SolveSystem(model.mbs, settings)
+        except exu.SolverError as err:
+            raise ModelFailure(f"spring_link: dynamic solve failed: {err}") from err
+        res = model.result(SolverInfo(True))
+        rec_t.append(load.duration)
+        rec_tip.append(res.tip_position.copy())
+        rec_T.append(res.tendon_tensions.copy())
+        info = SolverInfo(converged=True, iterations=int(solver.it.newtonStepsCount),
+                          wall_time=time.perf_counter() - t0, message=f"{len(rec_t) - 1} time steps")
+        return model.result(
+            info, time_=np.asarray(rec_t),
+            series={"tip_position": np.asarray(rec_tip), "tendon_tensions": np.asarray(rec_T)},
+        )
+
+
+def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
+    """Registered model ``"spring_link"``: :func:`solve` with default :class:`SpringLinkParams`."""
+    return solve(robot, load, options, SpringLinkParams())
