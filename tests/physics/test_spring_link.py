@@ -1,0 +1,173 @@
+"""Spring-link chain: convergence to the rod, CC kinematic limit, tendon models, bad input."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from workbench.models import get_model
+from workbench.models.result import ModelFailure, SolverOptions
+from workbench.physics.spring_link import run
+from workbench.robot import LoadCase, TendonActuation
+from workbench.robot.presets.steel_rod import steel_rod
+
+L = 0.8
+
+
+def _EI(robot):
+    return robot.sections[0].cross_section.EI
+
+
+def _orders(errors):
+    e = np.abs(np.asarray(errors))
+    return np.log2(e[:-1] / e[1:])
+
+
+def test_registered_name():
+    assert get_model("spring_link") is run
+
+
+def test_pure_moment_converges_to_arc_second_order():
+    """Tip moment M = theta EI / L bends the rod into an arc of angle theta (exact)."""
+    robot = steel_rod()
+    theta = math.pi / 2
+    M = theta * _EI(robot) / L
+    R = L / theta
+    exact = np.array([R * (1 - math.cos(theta)), 0.0, R * math.sin(theta)])
+    errs = []
+    for n in (8, 16, 32):
+        res = run(robot, LoadCase(tip_torque=(0.0, M, 0.0)), SolverOptions(n_elements=n))
+        errs.append(np.linalg.norm(res.tip_position - exact))
+        # tip orientation is exact in the half-link layout: tangent at angle theta
+        assert res.tip_frame[:3, 2] == pytest.approx([math.sin(theta), 0.0, math.cos(theta)], abs=1e-9)
+        assert res.joint_angles.shape == (n, 1)
+        assert np.sum(res.joint_angles) == pytest.approx(theta, rel=1e-9)
+    orders = _orders(errs)
+    # observed: errors 2.3e-3 / 5.8e-4 / 1.4e-4 m, order 2.00
+    assert np.all(orders > 1.9), (errs, orders)
+    assert errs[1] < 1e-3
+
+
+def test_self_weight_sag_converges_to_heavy_elastica():
+    """Horizontal cantilever under self-weight, gamma = q L^3 / EI = 1: tip deflection/L = 0.123471."""
+    EI = _EI(steel_rod())
+    area = math.pi * 0.006**2 / 4
+    rho = 1.0 * EI / L**3 / (area * 9.81)
+    robot = steel_rod(gravity=9.81, base_orientation="horizontal", density=rho)
+    errs = []
+    for n in (8, 16, 32):
+        res = run(robot, LoadCase(), SolverOptions(n_elements=n))
+        # base x is world up: deflection is along base -x
+        errs.append(res.tip_position[0] / L + 0.123471)
+    orders = _orders(errs)
+    # observed: 9.7e-4 / 2.4e-4 / 6.0e-5 (relative), order 2.00
+    assert np.all(orders > 1.9), (errs, orders)
+    assert abs(errs[-1]) < 1e-4
+
+
+def test_continuum_tendons_reproduce_constant_curvature_per_section():
+    """Kinematic limit: pure tendon moments give equal joint angles per section (a CC shape)."""
+    robot = steel_rod(n_sections=2, tendon_count=2)
+    EI, d = _EI(robot), 0.02
+    T = (40.0, 0.0, 0.0, 25.0)  # section 1 pulled towards +x, section 2 towards -x
+    res = run(robot, LoadCase(actuation=TendonActuation("tension", T)),
+              SolverOptions(n_elements=16, tendon_model="continuum"))
+    q = res.joint_angles[:, 0]
+    # moment in section 1: (T0 - T1 + T2 - T3) d; in section 2: (T2 - T3) d
+    m1 = (T[0] - T[1] + T[2] - T[3]) * d
+    m2 = (T[2] - T[3]) * d
+    l = L / 2
+    assert np.allclose(q[:8], q[0], atol=1e-10) and np.allclose(q[8:], q[8], atol=1e-10)
+    assert np.sum(q[:8]) == pytest.approx(m1 * l / EI, rel=1e-9)
+    assert np.sum(q[8:]) == pytest.approx(m2 * l / EI, rel=1e-9)
+    # the chain is the tangent polygon of the CC curve: compare the eyelet points with the arcs
+    k1, k2 = m1 / EI, m2 / EI
+    s = res.stations
+    beta = np.where(s <= l, k1 * s, k1 * l + k2 * (s - l))
+    # CC positions by integrating the tangent analytically per arc
+    def arc(s0, b0, k, u):
+        return np.array([(math.cos(b0) - math.cos(b0 + k * u)) / k, 0.0, (math.sin(b0 + k * u) - math.sin(b0)) / k])
+    cc_tip = arc(0, 0, k1, l) + arc(l, k1 * l, k2, l)
+    assert res.tip_frame[:3, 2] == pytest.approx([math.sin(beta[-1]), 0, math.cos(beta[-1])], abs=1e-10)
+    assert np.linalg.norm(res.tip_position - cc_tip) < 2e-3  # O(1/N^2) polygon error at N = 16
+
+
+def test_reeving_length_control_equals_constant_force_rope():
+    """Eyelet tendons: a length-controlled reeving rope and a constant-force rope chain with the
+    resulting tension give the same equilibrium (justifies using both)."""
+    robot = steel_rod()
+    opts = SolverOptions(n_elements=8, tendon_model="eyelets")
+    res_l = run(robot, LoadCase(actuation=TendonActuation("length", (-0.01, 0.0), pretension=10.0)), opts)
+    assert np.all(res_l.tendon_tensions > 0)
+    res_t = run(robot, LoadCase(actuation=TendonActuation("tension", tuple(res_l.tendon_tensions))), opts)
+    assert np.abs(res_t.positions - res_l.positions).max() < 1e-7
+
+
+def test_eyelet_and_continuum_close_for_dense_eyelets():
+    """Discrete eyelets bend less (chord lever arm); the gap shrinks as eyelets get denser."""
+    robot = steel_rod()
+    gaps = []
+    for n in (8, 16):
+        a = run(robot, LoadCase(actuation=TendonActuation("tension", (100.0, 0.0))), SolverOptions(n_elements=n, tendon_model="eyelets"))
+        b = run(robot, LoadCase(actuation=TendonActuation("tension", (100.0, 0.0))), SolverOptions(n_elements=n, tendon_model="continuum"))
+        gaps.append(np.linalg.norm(a.tip_position - b.tip_position))
+    assert gaps[1] < 0.5 * gaps[0]
+
+
+@pytest.mark.parametrize("model", ["continuum", "eyelets"])
+def test_released_tendon_goes_slack(model):
+    robot = steel_rod()
+    res = run(robot, LoadCase(actuation=TendonActuation("length", (-0.02, 0.05))),
+              SolverOptions(n_elements=8, tendon_model=model))
+    assert res.tendon_tensions[0] > 0
+    assert res.tendon_tensions[1] == 0.0
+    assert res.tip_position[0] > 0
+
+
+def test_continuum_length_mode_tension_consistent():
+    """Length control: tension equals EA_t * stretch / L_0 of the continuum tendon path."""
+    robot = steel_rod()
+    dl = -0.005
+    res = run(robot, LoadCase(actuation=TendonActuation("length", (dl, 0.0))),
+              SolverOptions(n_elements=16, tendon_model="continuum"))
+    beta = np.sum(res.joint_angles)
+    L0 = L + dl
+    T_expected = 4.0e4 * ((L - 0.02 * beta) - L0) / L0
+    assert res.tendon_tensions[0] == pytest.approx(T_expected, rel=1e-9)
+    # the antagonist (dl = 0, no pretension) is stretched by the bend and pulls back
+    T_anta = 4.0e4 * ((L + 0.02 * beta) - L) / L
+    assert res.tendon_tensions[1] == pytest.approx(T_anta, rel=1e-9)
+    # moment balance at the base: (T0 - T1) d = EI * beta / L
+    net = (res.tendon_tensions[0] - res.tendon_tensions[1]) * 0.02
+    assert net == pytest.approx(_EI(robot) * beta / L, rel=1e-6)
+
+
+def test_dynamic_settles_to_static():
+    robot = steel_rod(gravity=9.81, base_orientation="horizontal")
+    opts = SolverOptions(n_elements=8, damping=0.05, time_step=5e-3)
+    stat = run(robot, LoadCase(actuation=TendonActuation("tension", (30.0, 0.0))), opts)
+    dyn = run(robot, LoadCase(actuation=TendonActuation("tension", (30.0, 0.0)), analysis="dynamic",
+                              duration=3.0, ramp_time=0.5), opts)
+    assert dyn.time is not None and dyn.series["tip_position"].shape == (dyn.time.size, 3)
+    assert np.linalg.norm(dyn.tip_position - stat.tip_position) < 1e-4
+
+
+def test_bad_inputs():
+    robot = steel_rod(n_sections=2)
+    with pytest.raises(ValueError, match="multiple of the number of sections"):
+        run(robot, LoadCase(), SolverOptions(n_elements=5))
+    r3 = steel_rod(tendon_count=3)
+    with pytest.raises(ModelFailure, match="planar"):
+        run(r3, LoadCase(actuation=TendonActuation("tension", (1.0, 0.0, 0.0))), SolverOptions(n_elements=4))
+    with pytest.raises(ModelFailure, match="planar"):
+        run(steel_rod(), LoadCase(tip_force=(0.0, 1.0, 0.0)), SolverOptions(n_elements=4))
+
+
+def test_max_load_steps_is_a_failure():
+    robot = steel_rod()
+    # a huge tension in an eyelet tendon: buckling-like snap that cannot be reached in 1 step
+    with pytest.raises(ModelFailure):
+        run(robot, LoadCase(actuation=TendonActuation("length", (-0.5, 0.0))),
+            SolverOptions(n_elements=8, tendon_model="eyelets", max_load_steps=1))
