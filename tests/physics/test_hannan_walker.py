@@ -1,0 +1,101 @@
+"""Hannan & Walker preset, Eq. (1) cable geometry and the CC -> spring-link replay."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from workbench.models.result import SolverOptions
+from workbench.physics.hannan_walker_trajectory import (
+    cable_changes_from_joint_angles,
+    cable_length_from_joint_angle,
+    joint_angle_from_cable_length,
+    joint_angles_from_cable_changes,
+    replay_hannan_walker,
+)
+from workbench.physics.spring_link import run
+from workbench.robot import LoadCase, TendonActuation
+from workbench.robot.presets import build_preset, get_preset
+from workbench.robot.presets.hannan_walker import hannan_walker
+
+
+def test_preset_geometry_matches_paper():
+    r = build_preset("hannan_walker")
+    assert get_preset("hannan_walker") is hannan_walker
+    assert r.length == pytest.approx(0.8382)
+    assert r.n_sections == 4
+    assert [s.cross_section.diameter for s in r.sections] == pytest.approx([0.1016, 0.0889, 0.0762, 0.0635])
+    assert [s.tendons.offset for s in r.sections] == pytest.approx([0.0508, 0.04445, 0.0381, 0.03175])
+    assert r.n_tendons == 8 and hannan_walker(planar=False).n_tendons == 16
+    # joint spring k = EI / ds with ds = l / 4: the chain of 16 links has the preset's springs
+    from workbench.physics._spring_link_geometry import chain_geometry_from_robot
+
+    geo = chain_geometry_from_robot(r, 16)
+    assert geo.stiffness == pytest.approx(np.repeat([120.0, 80.0, 50.0, 25.0], 4))
+    assert np.sum(geo.mass) + 0.0 == pytest.approx(2.15 - 0.8 / 8)  # base plate carries half a link
+    with pytest.raises(ValueError, match="4 values"):
+        hannan_walker(diameters=(0.1, 0.1))
+
+
+def test_eq1_round_trip_and_small_angle():
+    w, h = 0.05, 0.0262
+    theta = np.linspace(-0.5, 0.5, 11)
+    c = cable_length_from_joint_angle(theta, w, h)
+    assert c[5] == pytest.approx(2 * h)
+    assert joint_angle_from_cable_length(c, w, h) == pytest.approx(theta, abs=1e-12)
+    # small angles: dl = -w theta
+    assert (cable_length_from_joint_angle(1e-6, w, h) - 2 * h) == pytest.approx(-w * 1e-6, rel=1e-4)
+    # the atan2 erratum: h > w puts alpha beyond pi/2 at theta = 0; the printed arctan form fails
+    w2, h2 = 0.02, 0.05
+    c0 = cable_length_from_joint_angle(0.1, w2, h2)
+    assert joint_angle_from_cable_length(c0, w2, h2) == pytest.approx(0.1, abs=1e-12)
+    r2 = w2**2 + h2**2
+    printed = math.pi - 2 * math.atan(w2 / h2) - math.atan(math.sqrt(4 * r2**2 - (2 * r2 - c0**2) ** 2) / (2 * r2 - c0**2))
+    assert abs(printed - 0.1) > 0.5
+
+
+def test_cable_map_equals_chain_geometry():
+    """Eq. (1) summed over joints equals the rope length measured on the Exudyn chain's eyelets."""
+    from workbench.physics import spring_link as sl
+    from workbench.physics._spring_link_geometry import chain_geometry_from_robot
+
+    robot = hannan_walker(gravity=0.0)
+    T = np.array([300.0, 0, 0, 100.0, 200.0, 0, 0, 50.0])
+    load = LoadCase(actuation=TendonActuation("tension", tuple(T)))
+    opts = SolverOptions(n_elements=16, tendon_model="eyelets")
+    model = sl._Planar(robot, load, opts, chain_geometry_from_robot(robot, 16))
+
+    def apply(lam):
+        model.set_external(lam)
+        model.set_tendons(lam * T, lam)
+
+    sl._static_ramp(model, opts, sl.SpringLinkParams(), apply)
+    q = model.result(sl.SolverInfo(True)).joint_angles[:, 0]
+    assert np.abs(q).max() > 0.02  # a real bend, both directions
+    measured = model.tendon_lengths() - np.array([t.reference_length for t in model.tendons])
+    assert cable_changes_from_joint_angles(q, robot) == pytest.approx(measured, abs=1e-12)
+    # and the sequential inverse recovers equal-per-section angles
+    qeq = np.repeat([0.05, -0.02, 0.08, 0.03], 4)
+    th = joint_angles_from_cable_changes(cable_changes_from_joint_angles(qeq, robot), robot, 16)
+    assert th == pytest.approx([0.05, -0.02, 0.08, 0.03], abs=1e-12)
+
+
+def test_replay_short_line_without_and_with_gravity():
+    line = ((0.25, 0.70), (0.35, 0.60))
+    rep0 = replay_hannan_walker(hannan_walker(gravity=0.0), *line, 2, pretension=20.0)
+    # the controller tracks the line in CC
+    assert np.abs(rep0.cc_tip - rep0.target).max() < 1e-8
+    assert rep0.cable_changes.shape == (2, 8) and rep0.joint_angles.shape == (2, 16)
+    # no gravity: the stiff length-controlled cables hold (almost) the CC shape; the residual is
+    # the joint springs stretching the cables (EA_t finite) - observed 1.9-2.6 mm
+    assert np.all(rep0.tip_error < 5e-3)
+    assert np.all(rep0.tensions >= 0)
+    # every section keeps (nearly) the CC bending angle
+    cc_sec = rep0.cc_joint_angles.reshape(2, 4, 4).sum(axis=2)
+    ph_sec = rep0.joint_angles.reshape(2, 4, 4).sum(axis=2)
+    assert np.abs(ph_sec - cc_sec).max() < 0.05
+    repg = replay_hannan_walker(hannan_walker(gravity=9.81, base_orientation="horizontal"), *line, 2, pretension=20.0)
+    # gravity across the bending plane of a horizontal trunk changes the error
+    assert np.all(np.abs(repg.tip_error - rep0.tip_error) > 1e-4)
