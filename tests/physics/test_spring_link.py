@@ -159,10 +159,14 @@ def test_bad_inputs():
     with pytest.raises(ValueError, match="multiple of the number of sections"):
         run(robot, LoadCase(), SolverOptions(n_elements=5))
     r3 = steel_rod(tendon_count=3)
-    with pytest.raises(ModelFailure, match="planar"):
-        run(r3, LoadCase(actuation=TendonActuation("tension", (1.0, 0.0, 0.0))), SolverOptions(n_elements=4))
-    with pytest.raises(ModelFailure, match="planar"):
-        run(steel_rod(), LoadCase(tip_force=(0.0, 1.0, 0.0)), SolverOptions(n_elements=4))
+    with pytest.raises(ModelFailure, match="not planar"):
+        solve(r3, LoadCase(actuation=TendonActuation("tension", (1.0, 0.0, 0.0))), SolverOptions(n_elements=4),
+              SpringLinkParams(dimension="2d"))
+    with pytest.raises(ModelFailure, match="length mode"):
+        run(r3, LoadCase(actuation=TendonActuation("length", (-0.01, 0.0, 0.0))),
+            SolverOptions(n_elements=4, tendon_model="continuum"))
+    with pytest.raises(ValueError, match="dimension"):
+        SpringLinkParams(dimension="4d")
 
 
 def test_max_load_steps_is_a_failure():
@@ -171,3 +175,79 @@ def test_max_load_steps_is_a_failure():
     with pytest.raises(ModelFailure):
         run(robot, LoadCase(actuation=TendonActuation("length", (-0.5, 0.0))),
             SolverOptions(n_elements=8, tendon_model="eyelets", max_load_steps=1))
+
+
+# --------------------------------------------------------------------------------------------
+# 3-D chain
+# --------------------------------------------------------------------------------------------
+from workbench.physics.spring_link import SpringLinkParams, solve  # noqa: E402
+
+
+@pytest.mark.parametrize("tendon_model", ["continuum", "eyelets"])
+def test_spatial_chain_equals_planar_chain_on_planar_case(tendon_model):
+    robot = steel_rod(gravity=9.81, base_orientation="horizontal")
+    load = LoadCase(actuation=TendonActuation("tension", (300.0, 0.0)))
+    opts = SolverOptions(n_elements=8, tendon_model=tendon_model)
+    r2 = solve(robot, load, opts, SpringLinkParams(dimension="2d"))
+    r3 = solve(robot, load, opts, SpringLinkParams(dimension="3d"))
+    assert np.abs(r2.positions - r3.positions).max() < 1e-9
+    assert np.abs(r2.joint_angles[:, 0] - r3.joint_angles[:, 1]).max() < 1e-9
+    assert np.abs(r3.joint_angles[:, 0]).max() < 1e-12
+    assert abs(r3.tip_twist) < 1e-12
+
+
+def test_spatial_out_of_plane_bend_is_rotated_planar_bend():
+    """A tendon at sigma = pi/2 bends towards +y exactly like sigma = 0 bends towards +x."""
+    base = steel_rod(tendon_count=2)
+    rot = steel_rod(tendon_count=2, first_tendon_angle=math.pi / 2)
+    load = LoadCase(actuation=TendonActuation("tension", (200.0, 0.0)))
+    opts = SolverOptions(n_elements=8, tendon_model="continuum")
+    a = run(base, load, opts)
+    b = run(rot, load, opts)  # auto -> 3-D
+    assert b.extras["dimension"] == 3.0 and a.extras["dimension"] == 2.0
+    assert b.positions[:, 1] == pytest.approx(a.positions[:, 0], abs=1e-10)
+    assert b.positions[:, 2] == pytest.approx(a.positions[:, 2], abs=1e-10)
+    assert np.abs(b.positions[:, 0]).max() < 1e-10
+
+
+def test_spatial_pure_moment_in_oblique_plane_converges():
+    robot = steel_rod()
+    theta, phi = 1.2, 0.7
+    M = theta * _EI(robot) / L
+    # a moment about the axis (-sin phi, cos phi, 0) bends towards phi
+    torque = (-M * math.sin(phi), M * math.cos(phi), 0.0)
+    R = L / theta
+    exact = np.array([R * (1 - math.cos(theta)) * math.cos(phi), R * (1 - math.cos(theta)) * math.sin(phi),
+                      R * math.sin(theta)])
+    errs = []
+    for n in (8, 16):
+        res = run(robot, LoadCase(tip_torque=torque), SolverOptions(n_elements=n))
+        errs.append(np.linalg.norm(res.tip_position - exact))
+        assert abs(res.tip_twist) < 1e-9  # a bend in a fixed plane has no twist
+    assert _orders(errs)[0] > 1.9
+
+
+def test_spatial_equal_tensions_three_tendons_do_not_bend():
+    robot = steel_rod(tendon_count=3)
+    res = run(robot, LoadCase(actuation=TendonActuation("tension", (50.0, 50.0, 50.0))),
+              SolverOptions(n_elements=8, tendon_model="continuum"))
+    assert np.abs(res.tip_position - [0, 0, L]).max() < 1e-12
+
+
+def test_spatial_torsion_spring_and_locked_cardan_twist():
+    robot = steel_rod()
+    GJ = robot.sections[0].cross_section.GJ
+    Mt = 2.0
+    res = run(robot, LoadCase(tip_torque=(0.0, 0.0, Mt)), SolverOptions(n_elements=8))
+    assert res.joint_angles.shape == (8, 3)
+    assert res.tip_twist == pytest.approx(Mt * L / GJ, rel=1e-9)
+    # locked torsion: no twist under a torsional moment ...
+    lk = solve(robot, LoadCase(tip_torque=(0.0, 0.0, Mt)), SolverOptions(n_elements=8),
+               SpringLinkParams(dimension="3d", torsion="locked"))
+    assert lk.joint_angles.shape == (8, 2) and abs(lk.tip_twist) < 1e-12
+    # ... but an oblique bend through Cardan joints twists the tip frame (Hooke-joint kinematics)
+    theta, phi = 1.2, 0.7
+    M = theta * _EI(robot) / L
+    ob = solve(robot, LoadCase(tip_torque=(-M * math.sin(phi), M * math.cos(phi), 0.0)),
+               SolverOptions(n_elements=8), SpringLinkParams(dimension="3d", torsion="locked"))
+    assert abs(ob.tip_twist) > 1e-3
