@@ -90,6 +90,7 @@ from ._spring_link_geometry import ChainGeometry, chain_geometry_from_robot
 __all__ = ["SpringLinkParams", "run", "solve", "is_planar", "chain_geometry_from_robot"]
 
 _PLANE_TOL = 1e-12
+_SPARSE_FROM = 16
 
 
 @dataclass(frozen=True)
@@ -643,6 +644,14 @@ def _twist_vs_parallel_transport(R: np.ndarray) -> float:
 # ---------------------------------------------------------------------------------------------
 # solvers
 # ---------------------------------------------------------------------------------------------
+def _use_sparse(settings, model) -> None:  # noqa: ANN001
+    """Sparse LU for larger chains (dense LU dominated the 3-D solve time from N ~ 32)."""
+    import exudyn as exu
+
+    if model.geo.n_links >= _SPARSE_FROM:
+        settings.linearSolver.solverType = exu.LinearSolverType.EigenSparse
+
+
 def _static_ramp(model: "_Planar", options: SolverOptions, params: SpringLinkParams,
                  apply: Callable[[float], None]) -> tuple[int, int]:
     """Ramp ``apply(lam)`` from 0 to 1 with repeated static solves; returns (steps, newton its)."""
@@ -651,6 +660,7 @@ def _static_ramp(model: "_Planar", options: SolverOptions, params: SpringLinkPar
     exu = model.exu
     mbs = model.mbs
     settings = static_settings(options, 1)
+    _use_sparse(settings, model)
     settings.staticSolver.adaptiveStep = False
     # Exudyn's Jacobians of rope connectors (constant-force spring-dampers, reeving) omit the
     # geometric stiffness of the turning rope direction: Newton converges only linearly there
@@ -778,6 +788,7 @@ def solve(robot: Robot, load: LoadCase, options: SolverOptions,
 
         model.mbs.SetPreStepUserFunction(pre_step)
         settings = dynamic_settings(options, load.duration)
+        _use_sparse(settings, model)
         solver = exu.MainSolverImplicitSecondOrder()
         try:
             solver.SolveSystem(model.mbs, settings)
