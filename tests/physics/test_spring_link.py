@@ -251,3 +251,27 @@ def test_spatial_torsion_spring_and_locked_cardan_twist():
     ob = solve(robot, LoadCase(tip_torque=(-M * math.sin(phi), M * math.cos(phi), 0.0)),
                SolverOptions(n_elements=8), SpringLinkParams(dimension="3d", torsion="locked"))
     assert abs(ob.tip_twist) > 1e-3
+
+
+@pytest.mark.parametrize("dimension", ["2d", "3d"])
+@pytest.mark.parametrize("tendon_model", ["continuum", "eyelets"])
+def test_axial_springs_compress_exactly(dimension, tendon_model):
+    """Equal antagonistic tensions on a straight rod: pure compression sum(T) L / EA."""
+    robot = steel_rod()
+    EA = robot.sections[0].cross_section.EA
+    res = solve(robot, LoadCase(actuation=TendonActuation("tension", (100.0, 100.0))),
+                SolverOptions(n_elements=8, tendon_model=tendon_model),
+                SpringLinkParams(dimension=dimension, axial=True))
+    assert res.length_change == pytest.approx(-200.0 * L / EA, rel=1e-9)
+    assert res.tip_position == pytest.approx([0.0, 0.0, L - 200.0 * L / EA], abs=1e-12)
+
+
+def test_axial_springs_do_not_change_pure_bending():
+    robot = steel_rod()
+    load = LoadCase(tip_torque=(0.0, 20.0, 0.0))
+    a = solve(robot, load, SolverOptions(n_elements=8), SpringLinkParams(axial=True))
+    b = solve(robot, load, SolverOptions(n_elements=8))
+    assert np.abs(a.positions - b.positions).max() < 1e-10
+    assert abs(a.length_change) < 1e-12 and b.length_change == 0.0
+    with pytest.raises(ValueError, match="axial"):
+        SpringLinkParams(axial=True, torsion="locked")

@@ -46,6 +46,8 @@ class ChainGeometry:
         Torsional stiffness of joint ``k`` [N m / rad], ``GJ(s_k) / ds_k``.
     axial_stiffness : ndarray, shape (N,)
         Axial stiffness of joint ``k`` [N/m], ``EA(s_k) / ds_k``.
+    shear_stiffness : ndarray, shape (N,)
+        Shear stiffness of joint ``k`` [N/m], ``GA(s_k) / ds_k`` (``EA`` where ``GA`` is None).
     mass : ndarray, shape (N,)
         Link masses [kg] (rod material of the link span plus lumped disk masses).
     com : ndarray, shape (N,)
@@ -64,6 +66,7 @@ class ChainGeometry:
     stiffness: np.ndarray
     torsion_stiffness: np.ndarray
     axial_stiffness: np.ndarray
+    shear_stiffness: np.ndarray
     mass: np.ndarray
     com: np.ndarray
     inertia_bending: np.ndarray
@@ -121,12 +124,13 @@ def chain_geometry_from_robot(robot: Robot, n_links: int, n_quad: int = 8) -> Ch
 
     def props(s: np.ndarray) -> dict[str, np.ndarray]:
         idx, frac = _section_of(robot, s)
-        out: dict[str, list[float]] = {"EI": [], "GJ": [], "EA": [], "mu": [], "d": []}
+        out: dict[str, list[float]] = {"EI": [], "GJ": [], "EA": [], "GA": [], "mu": [], "d": []}
         for i, f in zip(idx, frac):
             cs = robot.sections[i].cross_section_at(f)
             out["EI"].append(cs.EI)
             out["GJ"].append(cs.GJ)
             out["EA"].append(cs.EA)
+            out["GA"].append(cs.EA if cs.GA is None else cs.GA)
             out["mu"].append(cs.mass_per_length)
             out["d"].append(0.0 if cs.diameter is None else cs.diameter)
         return {k: np.asarray(v) for k, v in out.items()}
@@ -135,6 +139,7 @@ def chain_geometry_from_robot(robot: Robot, n_links: int, n_quad: int = 8) -> Ch
     stiffness = pj["EI"] / ds
     torsion = pj["GJ"] / ds
     axial = pj["EA"] / ds
+    shear = pj["GA"] / ds
 
     # rod mass over each link span (Gauss-Legendre), centre of mass and inertia
     xg, wg = np.polynomial.legendre.leggauss(n_quad)
@@ -177,6 +182,7 @@ def chain_geometry_from_robot(robot: Robot, n_links: int, n_quad: int = 8) -> Ch
         stiffness=stiffness,
         torsion_stiffness=torsion,
         axial_stiffness=axial,
+        shear_stiffness=shear,
         mass=m_tot,
         com=com,
         inertia_bending=inertia_b,

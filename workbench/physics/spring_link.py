@@ -55,6 +55,15 @@ static equilibrium under gravity and tip loads with the tendon commands at ``t =
 implicit generalised-alpha with the commands of :meth:`TendonActuation.command_at` updated every
 step; joint damping ``options.damping * k_k`` (``options.damping`` in seconds).
 
+Axial compliance
+----------------
+``SpringLinkParams(axial=True)`` replaces every pin/spherical joint by a rigid-body spring with
+axial ``EA/ds`` and shear ``GA/ds`` stiffness (a discrete Timoshenko rod), so tendon compression
+shortens the backbone: equal continuum or eyelet tensions ``T`` on a straight rod give exactly
+``length_change = -sum(T) L / EA`` (tested).  A continuum tendon's compression enters as a
+rest-length offset ``-T / (EA/ds)`` of the axial springs it passes (the exact internal force of a
+continuously routed tendon); eyelet ropes compress the chain through their eyelet forces.
+
 Results
 -------
 Positions at ``options.n_stations`` reference stations interpolated along the straight links, tip
@@ -67,9 +76,10 @@ the tangent relative to the frame parallel-transported along the links.
 
 Limitations
 -----------
-No axial (prismatic) spring: the links are inextensible and ``length_change`` is 0, so
-wire-delay compression is not represented.  Continuum tendons in length mode exist only in the
-planar chain.  Exudyn's rope connectors converge only linearly in Newton (their Jacobian omits
+Without ``SpringLinkParams(axial=True)`` the joints are inextensible and ``length_change`` is 0.
+With it, ``length_change`` is the sum of the axial joint gaps (shear gaps are not counted).
+Continuum tendons in length mode exist only in the planar inextensible chain (their length is
+taken as ``L_ref - d cos(sigma) beta_m``, which ignores backbone strain).  Exudyn's rope connectors converge only linearly in Newton (their Jacobian omits
 part of the rope's geometric stiffness), so eyelet tendons cost ~100-250 iterations per static
 solve (measured) instead of 3-6.
 """
@@ -112,15 +122,25 @@ class SpringLinkParams:
         relative rotation about the link axis in the joint's x-y-z Tait-Bryan sequence is
         constrained (Hannan & Walker's 2-DOF joints; an oblique bend then carries the Cardan
         twist, reported as ``tip_twist``).
+    axial : bool
+        ``False`` (default): inextensible pin (2-D) / spherical or Cardan (3-D) joints.  ``True``:
+        every joint becomes a rigid-body spring (``RigidBodySpringDamper``, intrinsic) with axial
+        stiffness ``EA/ds`` and shear stiffness ``GA/ds`` (``CrossSection.GA``, or ``EA`` when it
+        is ``None``) besides the bending (and torsion) springs, so the backbone can compress
+        (wire-delay compression, continuum-tendon compression ``T``) and ``length_change`` is
+        reported.  Not combined with ``torsion="locked"`` or with continuum tendons in length mode.
     """
 
     dimension: Literal["auto", "2d", "3d"] = "auto"
     max_active_set_iterations: int = 20
     torsion: Literal["spring", "locked"] = "spring"
+    axial: bool = False
 
     def __post_init__(self) -> None:
         if self.dimension not in ("auto", "2d", "3d"):
             raise ValueError(f"SpringLinkParams.dimension must be 'auto', '2d' or '3d', got {self.dimension!r}")
+        if self.axial and self.torsion == "locked":
+            raise ValueError("SpringLinkParams: axial=True needs torsion='spring'")
         if self.torsion not in ("spring", "locked"):
             raise ValueError(f"SpringLinkParams.torsion must be 'spring' or 'locked', got {self.torsion!r}")
         if int(self.max_active_set_iterations) < 1:
@@ -183,7 +203,8 @@ def _tendons(robot: Robot, geo: ChainGeometry) -> list[_Tendon]:
 class _Planar:
     """Builds and drives the planar chain; holds Exudyn handles for one solve (not module state)."""
 
-    def __init__(self, robot: Robot, load: LoadCase, options: SolverOptions, geo: ChainGeometry) -> None:
+    def __init__(self, robot: Robot, load: LoadCase, options: SolverOptions, geo: ChainGeometry,
+                 axial: bool = False) -> None:
         import exudyn as exu
         import exudyn.itemInterface as eii
 
@@ -195,6 +216,10 @@ class _Planar:
             act.check_against(robot)
         self.mode = None if act is None else act.mode
         self.model = options.tendon_model
+        self.axial = bool(axial)
+        if self.axial and self.mode == "length" and self.model == "continuum":
+            raise ModelFailure("spring_link: axial=True with continuum tendons in length mode is not supported; "
+                               "use tendon_model='eyelets'")
         if self.mode == "length" and self.model == "continuum" and any(t.tapered for t in self.tendons):
             raise ModelFailure(
                 "spring_link: continuum tendons with tapered offsets (offset_tip) are not supported in "
@@ -240,7 +265,7 @@ class _Planar:
             self.coord_markers.append(mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=n, coordinate=2)))
 
         # joints and rotational springs
-        self.joint_springs = []
+        self.joint_springs, self.joint_markers = [], []
         for k in range(N):
             if k == 0:
                 m0 = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0.0, float(geo.joints[0]), 0.0]))
@@ -250,6 +275,14 @@ class _Planar:
                                                        localPosition=[0.0, float(geo.link_lengths[k - 1]), 0.0]))
                 c0 = self.coord_markers[k - 1]
             m1 = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=self.bodies[k], localPosition=[0.0, 0.0, 0.0]))
+            self.joint_markers.append((m0, m1))
+            if self.axial:
+                K = np.zeros((6, 6))
+                K[0, 0], K[1, 1], K[5, 5] = geo.shear_stiffness[k], geo.axial_stiffness[k], geo.stiffness[k]
+                self.joint_springs.append(mbs.AddObject(eii.ObjectConnectorRigidBodySpringDamper(
+                    markerNumbers=[m0, m1], stiffness=K.tolist(), damping=(options.damping * K).tolist(),
+                    useIntrinsicFormulation=True)))
+                continue
             mbs.AddObject(eii.RevoluteJoint2D(markerNumbers=[m0, m1]))
             self.joint_springs.append(mbs.AddObject(eii.ObjectConnectorCoordinateSpringDamper(
                 markerNumbers=[c0, self.coord_markers[k]], stiffness=float(geo.stiffness[k]),
@@ -356,6 +389,17 @@ class _Planar:
                 phi_star = (L0 - t.reference_length) / (d * c)
                 mbs.SetObjectParameter(items[0], "stiffness", K if self.tendon_active[i] else 0.0)
                 mbs.SetObjectParameter(items[0], "offset", float(phi_star))
+        if self.axial and self.model == "continuum" and self.mode == "tension":
+            # continuum tendon: axial compression sum(T) in every joint it passes (rest-length offset)
+            N = self.geo.n_links
+            comp = np.zeros(N)
+            for t, v in zip(self.tendons, self._values):
+                comp[: t.end_eyelet] += v
+            ax = 1 if isinstance(self, _Planar) and not isinstance(self, _Spatial) else 2
+            for k in range(N):
+                off = [0.0] * 6
+                off[ax] = float(-comp[k] / self.geo.axial_stiffness[k])
+                mbs.SetObjectParameter(self.joint_springs[k], "offset", off)
 
     def _continuum_torque(self, i: int, v: float) -> list[float]:
         # planar: torque about Exudyn Z = -base y
@@ -395,6 +439,18 @@ class _Planar:
         T = EA * (L - self._L0) / self._L0
         return np.where(np.asarray(self.tendon_active), np.maximum(T, 0.0), 0.0)
 
+    def _length_change(self, axes: np.ndarray, conv) -> float:  # noqa: ANN001
+        """Sum of the axial joint gaps (projected on each distal link axis); 0 without axial springs."""
+        if not self.axial:
+            return 0.0
+        exu = self.exu
+        total = 0.0
+        for k, (m0, m1) in enumerate(self.joint_markers):
+            p0 = conv(self.mbs.GetMarkerOutput(m0, exu.OutputVariableType.Position))
+            p1 = conv(self.mbs.GetMarkerOutput(m1, exu.OutputVariableType.Position))
+            total += float(np.dot(p1 - p0, axes[k]))
+        return total
+
     def update_active_set(self) -> bool:
         """Switch tendons slack/taut from the current state; True if anything changed."""
         if self.mode != "length":
@@ -429,8 +485,10 @@ class _Planar:
         T[:3, 3] = P[-1] + geo.link_lengths[-1] * T[:3, 2]
         pos[-1] = T[:3, 3]
         joint = np.diff(np.concatenate([[0.0], beta]))[:, None]
+        axes = np.stack([np.sin(beta), np.cos(beta)], axis=1)
         return PhysicsResult(
-            model="spring_link", stations=stations, positions=pos, tip_frame=T, length_change=0.0,
+            model="spring_link", stations=stations, positions=pos, tip_frame=T,
+            length_change=self._length_change(axes, lambda p: np.array([p[0], p[1]])),
             tendon_tensions=self.tensions(), tip_twist=0.0, solver=solver, joint_angles=joint,
             time=time_, series=series or {},
             extras={"n_links": float(geo.n_links), "dimension": 2.0},
@@ -442,7 +500,7 @@ class _Spatial(_Planar):
     rotational springs (``RigidBodySpringDamper``, ``useIntrinsicFormulation=True``)."""
 
     def __init__(self, robot: Robot, load: LoadCase, options: SolverOptions, geo: ChainGeometry,
-                 torsion: str = "spring") -> None:  # noqa: D107
+                 torsion: str = "spring", axial: bool = False) -> None:  # noqa: D107
         import exudyn as exu
         import exudyn.itemInterface as eii
 
@@ -454,6 +512,7 @@ class _Spatial(_Planar):
             act.check_against(robot)
         self.mode = None if act is None else act.mode
         self.model = options.tendon_model
+        self.axial = bool(axial)
         if self.mode == "length" and self.model == "continuum":
             raise ModelFailure(
                 "spring_link: continuum tendons in length mode are only implemented for the planar chain; "
@@ -492,7 +551,7 @@ class _Spatial(_Planar):
             self.nodes.append(n)
             self.bodies.append(b)
 
-        self.joint_springs = []
+        self.joint_springs, self.joint_markers = [], []
         for k in range(N):
             if k == 0:
                 m0 = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0.0, 0.0, float(geo.joints[0])]))
@@ -500,12 +559,17 @@ class _Spatial(_Planar):
                 m0 = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=self.bodies[k - 1],
                                                        localPosition=[0.0, 0.0, float(geo.link_lengths[k - 1])]))
             m1 = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=self.bodies[k], localPosition=[0.0, 0.0, 0.0]))
+            self.joint_markers.append((m0, m1))
             locked = 1 if torsion == "locked" else 0
-            mbs.AddObject(eii.GenericJoint(markerNumbers=[m0, m1], constrainedAxes=[1, 1, 1, 0, 0, locked]))
+            if not self.axial:
+                mbs.AddObject(eii.GenericJoint(markerNumbers=[m0, m1], constrainedAxes=[1, 1, 1, 0, 0, locked]))
             kk = float(geo.stiffness[k])
             K = np.zeros((6, 6))
             K[3, 3] = K[4, 4] = kk
             K[5, 5] = 0.0 if locked else float(geo.torsion_stiffness[k])
+            if self.axial:
+                K[0, 0] = K[1, 1] = geo.shear_stiffness[k]
+                K[2, 2] = geo.axial_stiffness[k]
             D = options.damping * K
             self.joint_springs.append(mbs.AddObject(eii.ObjectConnectorRigidBodySpringDamper(
                 markerNumbers=[m0, m1], stiffness=K.tolist(), damping=D.tolist(), useIntrinsicFormulation=True)))
@@ -605,7 +669,8 @@ class _Spatial(_Planar):
         else:
             joint = _rotation_vectors(Rrel)
         return PhysicsResult(
-            model="spring_link", stations=stations, positions=pos, tip_frame=T, length_change=0.0,
+            model="spring_link", stations=stations, positions=pos, tip_frame=T,
+            length_change=self._length_change(R[:, :, 2], lambda p: np.asarray(p, dtype=float)),
             tendon_tensions=self.tensions(), tip_twist=_twist_vs_parallel_transport(R), solver=solver,
             joint_angles=joint, time=time_, series=series or {},
             extras={"n_links": float(geo.n_links), "dimension": 3.0},
@@ -748,7 +813,8 @@ def solve(robot: Robot, load: LoadCase, options: SolverOptions,
     geo = chain_geometry_from_robot(robot, options.n_elements)
     t0 = time.perf_counter()
     with quiet_exudyn():
-        model = _Planar(robot, load, options, geo) if use_2d else _Spatial(robot, load, options, geo, params.torsion)
+        model = (_Planar(robot, load, options, geo, params.axial) if use_2d
+                 else _Spatial(robot, load, options, geo, params.torsion, params.axial))
         act = load.actuation
         n_t = len(model.tendons)
         final = np.zeros(n_t) if act is None else np.asarray(act.values)
