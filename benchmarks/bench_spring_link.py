@@ -14,7 +14,8 @@ Two reference cases on the 0.8 m / 6 mm steel rod (EI = 13.36 N m^2):
   scaled): reference = the clamped inextensible elastica BVP (:mod:`workbench.reference.elastica`).
 
 For every spring-link N (4..64) it prints wall time (best of ``--repeats``) and tip error for the
-planar and the spatial chain; then, for each N, the cheapest ANCF mesh (1..64 elements) that is at
+planar and the spatial chain, built from rigid bodies (the registered model) and as an
+``ObjectKinematicTree`` (:mod:`workbench.physics._spring_link_tree`); then, for each N, the cheapest ANCF mesh (1..64 elements) that is at
 least as accurate, and the time ratio spring-link / ANCF measured in this run.  A further block
 times the eyelet tendon variants (constant-force rope chain and length-controlled reeving) at N =
 16.
@@ -30,6 +31,7 @@ import numpy as np
 
 from workbench.models import get_model
 from workbench.models.result import SolverOptions
+from workbench.physics._spring_link_tree import tree_tip_position
 from workbench.physics.spring_link import SpringLinkParams, solve
 from workbench.reference.elastica import clamped_elastica
 from workbench.robot import LoadCase, TendonActuation
@@ -82,6 +84,12 @@ def main() -> None:
                 opts = SolverOptions(n_elements=n, tendon_model="continuum")
                 t, res = _best(lambda: solve(robot, load, opts, SpringLinkParams(dimension=dim)), args.repeats)
                 sl[dim, n] = (t, float(np.linalg.norm(res.tip_position - tip)))
+        kt = {}
+        for dim in ("2d", "3d"):
+            for n in Ns:
+                opts = SolverOptions(n_elements=n)
+                t, tp = _best(lambda: tree_tip_position(robot, load, opts, dim), args.repeats)
+                kt[dim, n] = (t, float(np.linalg.norm(tp - tip)))
         an = {}
         for n in ancf_ns:
             opts = SolverOptions(n_elements=n, tendon_model="continuum")
@@ -90,8 +98,13 @@ def main() -> None:
         print(f"{'model':>14} {'N':>4} {'time [ms]':>10} {'tip error [m]':>14}")
         for (dim, n), (t, e) in sl.items():
             print(f"{'spring_link ' + dim:>14} {n:>4} {1e3 * t:>10.2f} {e:>14.3e}")
+        for (dim, n), (t, e) in kt.items():
+            print(f"{'tree ' + dim:>14} {n:>4} {1e3 * t:>10.2f} {e:>14.3e}")
         for n, (t, e) in an.items():
             print(f"{'ancf':>14} {n:>4} {1e3 * t:>10.2f} {e:>14.3e}")
+        print("rigid bodies vs ObjectKinematicTree (same chain, same answer): time ratio bodies/tree")
+        for dim in ("2d", "3d"):
+            print(f"  {dim}: " + "  ".join(f"N={n}: {sl[dim, n][0] / kt[dim, n][0]:.2f}" for n in Ns))
         errs = np.array([sl["2d", n][1] for n in Ns])
         order = np.log2(errs[:-1] / errs[1:])
         print("spring_link 2d observed order per doubling:", " ".join(f"{o:.2f}" for o in order))

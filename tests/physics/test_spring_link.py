@@ -275,3 +275,16 @@ def test_axial_springs_do_not_change_pure_bending():
     assert abs(a.length_change) < 1e-12 and b.length_change == 0.0
     with pytest.raises(ValueError, match="axial"):
         SpringLinkParams(axial=True, torsion="locked")
+
+
+@pytest.mark.parametrize("dimension", ["2d", "3d"])
+def test_kinematic_tree_variant_matches_rigid_body_chain(dimension):
+    """The ObjectKinematicTree chain timed in the benchmark solves the same model."""
+    from workbench.physics._spring_link_tree import tree_tip_position
+
+    robot = steel_rod(n_sections=2, gravity=9.81, base_orientation="horizontal")
+    load = LoadCase(actuation=TendonActuation("tension", (100.0, 0.0, 0.0, 50.0)))
+    opts = SolverOptions(n_elements=8, tendon_model="continuum")
+    a = tree_tip_position(robot, load, opts, dimension)
+    b = solve(robot, load, opts, SpringLinkParams(dimension=dimension)).tip_position
+    assert np.abs(a - b).max() < 1e-12
