@@ -99,3 +99,17 @@ def test_replay_short_line_without_and_with_gravity():
     repg = replay_hannan_walker(hannan_walker(gravity=9.81, base_orientation="horizontal"), *line, 2, pretension=20.0)
     # gravity across the bending plane of a horizontal trunk changes the error
     assert np.all(np.abs(repg.tip_error - rep0.tip_error) > 1e-4)
+
+
+def test_spatial_preset_bends_out_of_plane_with_cardan_joints():
+    from workbench.physics.spring_link import SpringLinkParams, solve
+
+    robot = hannan_walker(planar=False, gravity=0.0)
+    T = np.zeros(16)
+    T[1] = 40.0  # section 1, sigma = pi/2: bends towards +y
+    res = solve(robot, LoadCase(actuation=TendonActuation("tension", tuple(T))),
+                SolverOptions(n_elements=16, tendon_model="continuum"), SpringLinkParams(torsion="locked"))
+    assert res.extras["dimension"] == 3.0 and res.joint_angles.shape == (16, 2)
+    assert res.tip_position[1] > 0.01 and abs(res.tip_position[0]) < 1e-12
+    # section 1 joints all turn by T d / k about -x (towards +y)
+    assert res.joint_angles[:4, 0] == pytest.approx(-40.0 * 0.0508 / 120.0, rel=1e-9)

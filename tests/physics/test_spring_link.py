@@ -288,3 +288,19 @@ def test_kinematic_tree_variant_matches_rigid_body_chain(dimension):
     a = tree_tip_position(robot, load, opts, dimension)
     b = solve(robot, load, opts, SpringLinkParams(dimension=dimension)).tip_position
     assert np.abs(a - b).max() < 1e-12
+
+
+def test_dynamic_wire_delay_with_axial_springs_settles_to_static():
+    """Length-controlled eyelet ropes, one motor starting 0.3 s late (Cojocaru's wire delay)."""
+    robot = steel_rod(gravity=9.81, base_orientation="horizontal")
+    act = TendonActuation("length", (-0.01, 0.005), start_times=(0.0, 0.3), pretension=20.0)
+    opts = SolverOptions(n_elements=8, tendon_model="eyelets", damping=0.02, time_step=5e-3)
+    p = SpringLinkParams(axial=True)
+    dyn = solve(robot, LoadCase(actuation=act, analysis="dynamic", duration=1.5, ramp_time=0.5), opts, p)
+    sta = solve(robot, LoadCase(actuation=act), opts, p)
+    T = dyn.series["tendon_tensions"]
+    assert T.shape == (dyn.time.size, 2) and np.all(T >= 0)
+    # while only the first motor reels in, the backbone is compressed more than at the end
+    assert dyn.length_change < 0
+    assert np.linalg.norm(dyn.tip_position - sta.tip_position) < 1e-6
+    assert dyn.tendon_tensions == pytest.approx(sta.tendon_tensions, rel=1e-5)

@@ -25,7 +25,17 @@ torque is about base y; otherwise the spatial model: Euler-parameter rigid bodie
 constrained (spherical joint, or Cardan joint with ``torsion="locked"``) and
 ``RigidBodySpringDamper`` with ``useIntrinsicFormulation=True`` carrying ``diag(k, k, GJ/ds)``.  The
 planar model bends in the base x-z plane; Exudyn's plane (X, Y) is mapped to base (x, z).  On a
-planar case both give the same result to ~1e-11 (tested); the planar one is 3-10x faster.
+planar case both give the same result to ~1e-11 (tested); the planar one is about 1.5-3x faster
+(``benchmarks/bench_spring_link.py``).
+
+Backend choice (measured, ``benchmarks/bench_spring_link.py``)
+-------------------------------------------------------------
+An ``ObjectKinematicTree`` version of the same chain (:mod:`._spring_link_tree`, identical results
+to 1e-12) was 1.1-8x faster for gravity / tip-moment / continuum-tendon statics on this machine
+(the facts note had measured it slower), but the registered model keeps rigid bodies because it
+needs what the tree variant here does not provide: eyelet ropes and reeving through rigid eyelet
+markers, axial/shear joint springs, a rotation-vector (intrinsic) torsion/bending spring and
+follower tendon torques in 3-D.  Porting those to tree markers is a possible speed-up.
 
 Tendons
 -------
