@@ -26,7 +26,7 @@ def _random_config(rng, n, batch=()):
 
 # ------------------------------------------------------------------ series helpers
 def test_series_helpers_match_closed_forms_and_are_continuous():
-    x = np.concatenate([np.linspace(-3, 3, 601), [0.0995, 0.1005, -0.1, 0.1]])
+    x = np.concatenate([np.linspace(-3, 3, 601), [0.2995, 0.3005, -0.3, 0.3]])
     x = x[np.abs(x) > 0.02]  # closed forms are accurate here
     np.testing.assert_allclose(_series.sinc(x), np.sin(x) / x, rtol=1e-13)
     np.testing.assert_allclose(_series.dsinc(x), (x * np.cos(x) - np.sin(x)) / x**2, rtol=2e-10, atol=1e-13)
@@ -39,11 +39,36 @@ def test_series_helpers_match_closed_forms_and_are_continuous():
     assert _series.dsinc(np.array(0.0)) == 0.0
     assert _series.dversinc(np.array(0.0)) == 0.5
     for f in (_series.sinc, _series.dsinc, _series.versinc, _series.dversinc):
-        for t in (1e-4, 0.1):
+        for t in (1e-4, 0.3):
             # jump across the branch switch, after removing the smooth slope (from outside)
             lo, hi = f(np.array(t * (1 - 1e-12))), f(np.array(t * (1 + 1e-12)))
             slope = (f(np.array(t * 1.01)) - f(np.array(t * 0.99))) / (0.02 * t)
             assert abs((hi - lo) - slope * 2e-12 * t) < 2e-15
+
+
+def test_series_helpers_accurate_near_zero():
+    """Against 25-term Taylor sums (math.fsum) for |x| <= 1: covers both sides of every branch."""
+    from math import factorial, fsum
+
+    def ref(x, kind):
+        terms = []
+        for k in range(25):
+            if kind == "sinc":
+                terms.append((-1) ** k * x ** (2 * k) / factorial(2 * k + 1))
+            elif kind == "dsinc" and k >= 1:
+                terms.append((-1) ** k * 2 * k * x ** (2 * k - 1) / factorial(2 * k + 1))
+            elif kind == "versinc" and k >= 1:
+                terms.append((-1) ** (k + 1) * x ** (2 * k - 1) / factorial(2 * k))
+            elif kind == "dversinc" and k >= 1:
+                terms.append((-1) ** (k + 1) * (2 * k - 1) * x ** (2 * k - 2) / factorial(2 * k))
+        return fsum(terms)
+
+    xs = np.concatenate([np.geomspace(1e-8, 1.0, 200), -np.geomspace(1e-8, 1.0, 50)])
+    for kind in ("sinc", "dsinc", "versinc", "dversinc"):
+        f = getattr(_series, kind)
+        got = f(xs)
+        want = np.array([ref(float(x), kind) for x in xs])
+        np.testing.assert_allclose(got, want, rtol=2e-14, err_msg=kind)
 
 
 # ------------------------------------------------------------------ section transform
@@ -59,6 +84,17 @@ def test_section_transform_equals_webster_jones_product():
         A[:3, :3] = _rot_z(f)
         B[:3, :3] = _rot_z(-f)
         np.testing.assert_allclose(section_transform(k, f, l), A @ inner @ B, atol=1e-13)
+
+
+def test_section_transform_broadcasts():
+    k = np.linspace(-3, 3, 5)[:, None]
+    f = np.array([0.0, 1.0, 2.0])
+    T = section_transform(k, f, 0.2)
+    assert T.shape == (5, 3, 4, 4)
+    np.testing.assert_allclose(T[4, 2], section_transform(3.0, 2.0, 0.2), atol=1e-15)
+    # forward_kinematics broadcasts per-section arrays too: (2, 1, n) with (n,)
+    F = forward_kinematics(np.ones((2, 1, 3)), np.zeros(3), np.full(3, 0.1))
+    assert F.shape == (2, 1, 4, 4)
 
 
 def test_section_transform_is_rigid_and_tip_on_circle():
@@ -175,7 +211,7 @@ def test_jacobian_matches_central_differences(seed, n):
 def test_jacobian_near_and_at_zero_curvature():
     rng = np.random.default_rng(13)
     k, f, l = _random_config(rng, 3)
-    for k0 in (0.0, 1e-9, -1e-9, 1e-3, 0.0999 / 0.4):
+    for k0 in (0.0, 1e-9, -1e-9, 1e-3, 0.2999 / 0.4, 0.3001 / 0.4):
         kk = k.copy()
         kk[1] = k0
         kk[2] = -k0

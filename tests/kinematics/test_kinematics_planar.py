@@ -5,6 +5,7 @@ import pytest
 
 from workbench.kinematics import (
     forward_kinematics,
+    jacobian,
     planar_forward_kinematics,
     planar_from_spatial_transform,
     planar_jacobian,
@@ -126,6 +127,15 @@ def test_planar_equals_spatial_with_phi_in_0_pi():
     np.testing.assert_allclose(planar_from_spatial_transform(T), A, atol=1e-12)
     # the spatial motion stays in the spatial x-z plane
     assert np.allclose(T[..., 1, 3], 0.0, atol=1e-14)
+
+
+def test_planar_jacobian_equals_spatial_curvature_columns():
+    """Planar J = rows (x_p, y_p) = (x_s, z_s) of the spatial kappa-columns at phi = pi."""
+    rng = np.random.default_rng(28)
+    k = rng.uniform(-6, 6, (20, 4))
+    Js = jacobian(*spatial_from_planar(k, np.broadcast_to(ELL_HW, k.shape)))
+    Jp = planar_jacobian(k, ELL_HW)
+    np.testing.assert_allclose(Jp, Js[:, [0, 2]][:, :, 0::3], atol=1e-12)
 
 
 def test_validation():

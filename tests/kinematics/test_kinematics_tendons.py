@@ -84,6 +84,14 @@ def test_round_trip_general_angles_and_straight():
     assert r > 1e-4
 
 
+def test_nearly_equally_spaced_angles_use_general_least_squares():
+    # 120 deg rounded to 4 decimals in rad: not equally spaced -> the closed form would be
+    # wrong by ~1e-5 relative; the general solver must still be exact
+    sigma = [0.0, 2.0944, 4.1888]
+    L = tendon_lengths_from_arc(5.0, 0.4, 0.2, sigma, 0.01)
+    np.testing.assert_allclose(arc_from_tendon_lengths(L, sigma, 0.01), [5.0, 0.4, 0.2], rtol=1e-10)
+
+
 def test_multisection_round_trip():
     rng = np.random.default_rng(35)
     kappa = rng.uniform(0.1, 10, (20, 4))

@@ -23,7 +23,7 @@ from math import factorial
 import numpy as np
 
 _SINC_SMALL = 1e-4  # series to x^4: truncation x^6/5040 < 2e-28
-_DERIV_SMALL = 0.1  # closed forms lose ~eps/x^2 relative accuracy; series to x^9 below
+_DERIV_SMALL = 0.3  # closed forms lose ~3 eps/x^2 relative accuracy; 6-term series below (< 1e-16)
 
 
 def sinc(x: np.ndarray) -> np.ndarray:

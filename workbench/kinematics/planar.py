@@ -73,6 +73,11 @@ def planar_forward_kinematics(kappa, ell) -> np.ndarray:
         ``w_j = kappa_j l_j`` (evaluated without dividing by ``kappa``).
     """
     k, ll = _check(kappa, ell)
+    return _planar_fk(k, ll)
+
+
+def _planar_fk(k, ll):
+    """:func:`planar_forward_kinematics` without input checks."""
     ends, Om, _, _ = _planar_chain(k, ll)
     W = Om[..., -1]
     out = np.zeros(k.shape[:-1] + (4, 4))
@@ -123,6 +128,11 @@ def planar_jacobian(kappa, ell) -> np.ndarray:
     identical for ``kappa != 0`` and smooth through ``kappa = 0``.
     """
     k, ll = _check(kappa, ell)
+    return _planar_jac(k, ll)
+
+
+def _planar_jac(k, ll):
+    """:func:`planar_jacobian` without input checks."""
     ends, Om, Om_prev, w = _planar_chain(k, ll)
     tip = ends[..., -1:, :]
     l2 = ll * ll

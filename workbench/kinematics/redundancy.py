@@ -27,8 +27,8 @@ from typing import Callable
 import numpy as np
 
 from ._checks import as_float, require_positive, section_arrays
-from .arc import _check_sections, forward_kinematics, jacobian
-from .planar import planar_forward_kinematics, planar_jacobian
+from .arc import _chain_tip, _check_sections, _jacobian, forward_kinematics
+from .planar import _planar_fk, _planar_jac, planar_forward_kinematics
 
 __all__ = [
     "IKResult",
@@ -99,7 +99,9 @@ def _dls_step(J, e, tol_rel, null_vec):
     smax = S[0] if S.size else 0.0
     eps = tol_rel * smax
     smin = S[-1]
-    lam2 = 0.0 if smin >= eps else (1.0 - (smin / eps) ** 2) * eps**2 if eps > 0 else 0.0
+    lam2 = 0.0
+    if eps > 0 and smin < eps:  # smooth switch-on of the damping near a singularity
+        lam2 = (1.0 - (smin / eps) ** 2) * eps**2
     denom = S * S + lam2
     inv = np.where(denom > 0, S / np.where(denom > 0, denom, 1.0), 0.0)
     dq_task = Vt.T @ (inv * (U.T @ e))
@@ -155,7 +157,9 @@ def _resolved_rate(
             if since_best >= stall_iter:
                 return q, False, it, r, "stalled"
     ok = r <= tol
-    return q, ok, max_iter, r, ("converged (null-space task not settled)" if ok else "max_iterations")
+    if not ok:
+        return q, False, max_iter, r, "max_iterations"
+    return q, True, max_iter, r, ("converged" if q_d is None else "converged (null-space task not settled)")
 
 
 def _check_solver_opts(gain, null_gain, singular_threshold, tol, max_iter, max_step):
@@ -235,8 +239,9 @@ def planar_inverse_kinematics(
     if q_d is not None and q_d.shape != k0.shape:
         raise ValueError(f"kappa_d must have shape {k0.shape}; got {q_d.shape}")
     _check_solver_opts(gain, null_gain, singular_threshold, tol, max_iter, max_step)
-    fk = lambda q: planar_forward_kinematics(q, ll)[:2, 3]  # noqa: E731
-    jac = lambda q: planar_jacobian(q, ll)  # noqa: E731
+    # inputs are checked above; the loop uses the unchecked kernels
+    fk = lambda q: _planar_fk(q, ll)[:2, 3]  # noqa: E731
+    jac = lambda q: _planar_jac(q, ll)  # noqa: E731
     q0 = k0.copy()
     if target_velocity is not None:
         v = _check_target(target_velocity, 2)
@@ -286,7 +291,7 @@ def spatial_inverse_kinematics(
     Returns
     -------
     IKResult
-        ``q`` has shape (2, n): ``q[0]`` curvatures, ``q[1]`` angles.
+        ``q`` has shape (2, n): ``q[0]`` curvatures, ``q[1]`` angles wrapped to ``(-pi, pi]``.
     """
     k0, p0, ll = _check_sections(kappa0, phi0, ell)
     if k0.ndim != 1:
@@ -305,10 +310,10 @@ def spatial_inverse_kinematics(
     cols = np.concatenate([3 * np.arange(n), 3 * np.arange(n) + 1])  # kappa_i, then phi_i
 
     def fk(q):
-        return forward_kinematics(q[:n], q[n:], ll)[:3, 3]
+        return _chain_tip(q[:n], q[n:], ll)[:3, 3]
 
     def jac(q):
-        return jacobian(q[:n], q[n:], ll)[:3, cols]
+        return _jacobian(q[:n], q[n:], ll)[:3, cols]
 
     select = np.concatenate([np.ones(n), np.zeros(n)])
     q, ok, it, r, why = _resolved_rate(
@@ -317,7 +322,8 @@ def spatial_inverse_kinematics(
         singular_threshold=singular_threshold, tol=tol, null_tol=null_tol,
         max_iter=int(max_iter), max_step=max_step,
     )
-    return IKResult(q=np.stack([q[:n], q[n:]]), success=ok, iterations=it, residual=r, reason=why)
+    phi = np.angle(np.exp(1j * q[n:]))  # wrap to (-pi, pi]
+    return IKResult(q=np.stack([q[:n], phi]), success=ok, iterations=it, residual=r, reason=why)
 
 
 def line_path(start, end, n_samples: int) -> np.ndarray:

@@ -7,7 +7,8 @@ tendon keeps its angle ``sigma`` in every section it passes through.
 
 For a constant-curvature arc bending towards ``phi`` (centre of curvature at
 ``(cos phi, sin phi, 0)/kappa``), a tendon is an arc of radius ``1/kappa - d cos(sigma - phi)``
-through the same angle ``kappa ell``, hence (Webster & Jones 2010, Sec. 3.1.1)
+through the same angle ``kappa ell``, hence (Webster & Jones 2010, robot-specific mapping of
+tendon-driven robots)
 
 ``l = ell (1 - kappa d cos(sigma - phi))``:
 
@@ -55,7 +56,8 @@ def tendon_lengths_from_arc(kappa, phi, ell, sigma, d) -> np.ndarray:
     Returns
     -------
     lengths : ndarray, shape (..., m)
-        ``l_i = ell (1 - kappa d cos(sigma_i - phi))`` [m] (Webster & Jones 2010, Eq. 8).
+        ``l_i = ell (1 - kappa d cos(sigma_i - phi))`` [m] (Webster & Jones 2010, robot-specific
+        mapping of tendon-driven robots).
 
     Raises
     ------
@@ -82,7 +84,7 @@ def _equally_spaced(sigma: np.ndarray) -> bool:
         return False
     rel = np.mod(sigma - sigma[0], 2 * np.pi)
     rel = np.sort(rel)
-    return bool(np.allclose(rel, 2 * np.pi * np.arange(m) / m, atol=1e-9))
+    return bool(np.allclose(rel, 2 * np.pi * np.arange(m) / m, rtol=0.0, atol=1e-12))
 
 
 def arc_from_tendon_lengths(lengths, sigma, d, *, return_residual: bool = False):
