@@ -459,7 +459,8 @@ def _static_tensions(sysm: _System, drv: _StaticDriver, actuation, commands, T_s
 
     try:
         info = solve_length_controlled(equilibrium, l0, EAt, C, initial_tensions=T_start,
-                                       tol=max(1e-10, drv.options.newton_tolerance))
+                                       tol=max(1e-10, drv.options.newton_tolerance),
+                                       length_tol=10.0 * drv.options.newton_tolerance)
     except RuntimeError as err:
         raise ModelFailure(f"ANCF length-controlled tendon solve failed: {err}") from err
     return info.tensions, info.iterations
@@ -470,7 +471,7 @@ def _compliance(sysm: _System) -> np.ndarray:
     sn = pb.s_nodes
     s = np.linspace(0.0, pb.L, 40 * (sn.size - 1) + 1)
     elem, _ = geo.locate(sn, s)
-    y = np.array([t.y(s) * (s <= t.end + 1e-12) for t in pb.tendons])
+    y = np.array([t.y(s) for t in pb.tendons])
     return tendon_path_compliance(s, pb.EI[elem], pb.EA[elem], y, [t.end for t in pb.tendons])
 
 
@@ -602,11 +603,12 @@ def _dynamic(sysm: _System, drv: _StaticDriver, load: LoadCase, options: SolverO
     rec_t, rec_q = [], []
 
     def pre_step(mbs_, t):
+        # Exudyn passes the time at the END of the coming step; the state is the one at its start
         q = np.asarray(mbs_.systemData.GetODE2Coordinates())
-        rec_t.append(float(t))
+        rec_t.append(float(t) - h)
         rec_q.append(q.copy())
         if nt:
-            t_end = t + h
+            t_end = float(t)
             if length_mode:
                 T = tension_from_stretch(sysm.path_lengths(sysm.node_coords(q)), rest(t_end), EAt)
             else:
