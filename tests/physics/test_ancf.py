@@ -324,3 +324,52 @@ def test_dynamic_length_control_settles_to_static(model):
     assert np.max(np.abs(dy.tip_position - st.tip_position)) <= 1e-4 * L
     assert np.allclose(dy.tendon_tensions, st.tendon_tensions, rtol=1e-3, atol=1e-2)
     assert dy.series["tendon_tensions"].shape == (dy.time.size, 2)
+
+
+# --------------------------------------------------------------------------- sections, tapered tendons
+def test_two_sections_continuum_gives_composed_arcs():
+    # tendons of section 0 act on [0, L/2]; tendons of section 1 on [0, L]:
+    # kappa_0 = (T_a d - T_b d) / EI on section 0 ... here T(section0, sigma=0) = 100, T(section1, sigma=pi) = 50
+    d = 0.02
+    g = TendonGroup(angles=(0.0, math.pi), offset=d)
+    robot = Robot(sections=(Section(length=L / 2, cross_section=STIFF, tendons=g),
+                            Section(length=L / 2, cross_section=STIFF, tendons=g)))
+    res = run(robot, LoadCase(actuation=TendonActuation("tension", (100.0, 0.0, 0.0, 50.0))), opts(16))
+    k0 = (100.0 * d - 50.0 * d) / EI
+    k1 = (-50.0 * d) / EI
+    h = L / 2
+    p1 = np.array([(1 - math.cos(k0 * h)) / k0, math.sin(k0 * h) / k0])  # (x, z)
+    th = k0 * h
+    # second arc in the local frame, rotated by th about y
+    loc = np.array([(1 - math.cos(k1 * h)) / k1, math.sin(k1 * h) / k1])
+    R = np.array([[math.cos(th), math.sin(th)], [-math.sin(th), math.cos(th)]])
+    tip = p1 + R @ loc
+    assert np.max(np.abs(res.tip_position[[0, 2]] - tip)) <= 1e-6 * L
+    mid = res.positions[np.argmin(np.abs(res.stations - h))]
+    assert np.max(np.abs(mid[[0, 2]] - p1)) <= 1e-6 * L
+
+
+def test_tapered_tendon_offset_continuum_and_eyelets_agree():
+    g = TendonGroup(angles=(0.0, math.pi), offset=0.03, offset_tip=0.01)
+    act = LoadCase(actuation=TendonActuation("tension", (200.0, 0.0)))
+    cont = [run(rod(tendons=g, n_disks=8), act, opts(n)).tip_position for n in (16, 32)]
+    eye = run(rod(tendons=g, n_disks=64), act, opts(64, tendon_model="eyelets")).tip_position
+    assert np.linalg.norm(cont[1] - cont[0]) < 1e-4 * L  # midpoint-sampled offset converges
+    assert np.linalg.norm(eye - cont[1]) < 3e-3 * L  # eyelet chords: O(1/n_disks^2)
+    # curvature varies linearly with the offset: not an arc (bends less than the base-offset arc)
+    k_base = 200.0 * 0.03 / EI
+    assert res_bend(cont[1]) < np.arctan2(*_arc_tip(k_base, L)[[0, 2]])
+
+
+def res_bend(tip):
+    return np.arctan2(tip[0], tip[2])
+
+
+def test_tapered_tendon_length_control_continuum():
+    # general (tapered) path-length integral in the length-controlled solve: equal commands on a
+    # symmetric pair keep the rod straight and both tensions equal
+    g = TendonGroup(angles=(0.0, math.pi), offset=0.03, offset_tip=0.01)
+    res = run(rod(tendons=g), LoadCase(actuation=TendonActuation("length", (-0.002, -0.002))), opts(16))
+    assert np.max(np.abs(res.positions[:, 0])) <= 1e-9 * L
+    assert res.tendon_tensions[0] == pytest.approx(res.tendon_tensions[1], rel=1e-9)
+    assert res.tendon_tensions[0] > 10

@@ -362,7 +362,13 @@ class _System:
         pb = self.pb
         out = []
         for td in pb.tendons:
-            if self.tendon_model == "continuum":
+            if self.tendon_model == "continuum" and td.d0 == td.d1:
+                # constant offset: (r + y n)' = (|r'| - y theta') t, so l = int |r'| - y (theta_e - theta_0)
+                k = int(np.argmin(np.abs(pb.s_nodes - td.end)))
+                arc = geo.arc_length(qn[..., : k + 1, :], pb.s_nodes[: k + 1])
+                th = np.unwrap(np.arctan2(qn[..., : k + 1, 3], qn[..., : k + 1, 2]), axis=-1)
+                out.append(arc - float(td.y(0.0)) * (th[..., -1] - th[..., 0]))
+            elif self.tendon_model == "continuum":
                 out.append(geo.offset_curve_length(qn, pb.s_nodes, td.end, td.y, td.dy))
             else:
                 st = np.array(td.eyelets)
