@@ -83,9 +83,9 @@ def test_convergence_order_under_refinement():
     cs = CrossSection(EI=EI, EA=STIFF.EA, GJ=STEEL.GJ, mass_per_length=q / 9.81)
     ref = _elastica_tip(distributed_load=(0.0, -q))
     err_q = [np.linalg.norm(tip_xz(run(rod(cs, gravity=9.81), LoadCase(), opts(n))) - ref) for n in (4, 8, 16)]
-    # observed (see report): tip load ~4th order, self-weight ~2nd-4th order
-    assert np.all(_order(err_p) >= 1.8), err_p
-    assert np.all(_order(err_q) >= 1.8), err_q
+    # observed (4/8/16 el.): tip load alpha=3 orders 3.87, 3.97; self-weight gamma=4: 3.85, 3.96
+    assert np.all(_order(err_p) >= 3.5), err_p
+    assert np.all(_order(err_q) >= 3.5), err_q
 
 
 def test_pure_end_moment_is_arc():
@@ -315,9 +315,13 @@ def test_first_natural_frequency():
 
 @pytest.mark.slow
 @pytest.mark.parametrize("model", ["continuum", "eyelets"])
-def test_dynamic_length_control_settles_to_static(model):
+@pytest.mark.parametrize("mode", ["length", "tension"])
+def test_dynamic_settles_to_static(model, mode):
     robot = rod(gravity=9.81, tendons=TWO)
-    act = TendonActuation("length", (-0.01, 0.002), pretension=5.0)
+    if mode == "length":
+        act = TendonActuation("length", (-0.01, 0.002), pretension=5.0)
+    else:
+        act = TendonActuation("tension", (300.0, 20.0), start_times=(0.0, 0.5))
     o = opts(16, tendon_model=model, damping=2e-3)
     st = run(robot, LoadCase(actuation=act), o)
     dy = run(robot, LoadCase(actuation=act, analysis="dynamic", duration=4.0, ramp_time=1.0), o)
@@ -373,3 +377,20 @@ def test_tapered_tendon_length_control_continuum():
     assert np.max(np.abs(res.positions[:, 0])) <= 1e-9 * L
     assert res.tendon_tensions[0] == pytest.approx(res.tendon_tensions[1], rel=1e-9)
     assert res.tendon_tensions[0] > 10
+
+
+def test_quiet_and_file_free(capfd, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    run(rod(gravity=9.81, tendons=TWO), LoadCase(actuation=TendonActuation("length", (-0.01, 0.0))),
+        opts(8, tendon_model="eyelets"))
+    run(rod(), LoadCase(tip_force=(1.0, 0, 0), analysis="dynamic", duration=0.01), opts(4))
+    out, err = capfd.readouterr()
+    assert out == "" and err == ""
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_wrong_number_of_commands_rejected():
+    from workbench.robot import RobotDescriptionError
+
+    with pytest.raises(RobotDescriptionError, match="tendons"):
+        run(rod(tendons=TWO), LoadCase(actuation=TendonActuation("tension", (1.0, 2.0, 3.0))), opts(4))
