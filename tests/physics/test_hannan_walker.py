@@ -2,16 +2,12 @@
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import pytest
 
 from workbench.models.result import SolverOptions
 from workbench.physics.hannan_walker_trajectory import (
     cable_changes_from_joint_angles,
-    cable_length_from_joint_angle,
-    joint_angle_from_cable_length,
     joint_angles_from_cable_changes,
     replay_hannan_walker,
 )
@@ -39,21 +35,17 @@ def test_preset_geometry_matches_paper():
         hannan_walker(diameters=(0.1, 0.1))
 
 
-def test_eq1_round_trip_and_small_angle():
-    w, h = 0.05, 0.0262
-    theta = np.linspace(-0.5, 0.5, 11)
-    c = cable_length_from_joint_angle(theta, w, h)
-    assert c[5] == pytest.approx(2 * h)
-    assert joint_angle_from_cable_length(c, w, h) == pytest.approx(theta, abs=1e-12)
-    # small angles: dl = -w theta
-    assert (cable_length_from_joint_angle(1e-6, w, h) - 2 * h) == pytest.approx(-w * 1e-6, rel=1e-4)
-    # the atan2 erratum: h > w puts alpha beyond pi/2 at theta = 0; the printed arctan form fails
-    w2, h2 = 0.02, 0.05
-    c0 = cable_length_from_joint_angle(0.1, w2, h2)
-    assert joint_angle_from_cable_length(c0, w2, h2) == pytest.approx(0.1, abs=1e-12)
-    r2 = w2**2 + h2**2
-    printed = math.pi - 2 * math.atan(w2 / h2) - math.atan(math.sqrt(4 * r2**2 - (2 * r2 - c0**2) ** 2) / (2 * r2 - c0**2))
-    assert abs(printed - 0.1) > 0.5
+def test_cable_map_small_angle_and_round_trip():
+    robot = hannan_walker()
+    q = np.full(16, 1e-7)
+    dl = cable_changes_from_joint_angles(q, robot)
+    # small angles: dl = -/+ w * (sum of the joint angles the cable passes)
+    w = np.repeat([0.0508, 0.04445, 0.0381, 0.03175], 2)
+    n_joints = np.repeat([4, 8, 12, 16], 2)
+    sign = np.tile([-1.0, 1.0], 4)
+    assert dl == pytest.approx(sign * w * 1e-7 * n_joints, rel=1e-5)
+    with pytest.raises(ValueError, match="shape"):
+        cable_changes_from_joint_angles(np.zeros(5), robot, 16)
 
 
 def test_cable_map_equals_chain_geometry():

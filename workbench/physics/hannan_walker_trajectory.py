@@ -19,15 +19,13 @@ planar ``-x`` for ``kappa > 0``.  The robot's base frame has the backbone along 
 the x-z plane; the map is ``x_base = -x_planar``, ``z_base = y_planar``, so a planar ``kappa > 0``
 bends towards base ``+x`` (the side of the sigma = 0 cable, which then shortens).
 
-Eq. (1) per joint: a joint between two segments whose mid-planes are ``h`` either side of it, a
-cable at radius ``w``: the cable piece between the two mid-planes has length ``l = 2h`` when
-straight and ``c = 2 r sin(alpha / 2)`` with ``r = sqrt(w^2 + h^2)`` and ``alpha = 2 arctan(h/w) -
-theta`` when the joint turns by ``theta`` towards the cable.  **Erratum/remark**: the printed
-``pi - 2 arctan(w/h)`` equals ``2 arctan(h/w)``; the printed ``arctan(sqrt(4r^4 - (2r^2 -
-c^2)^2) / (2r^2 - c^2))`` returns ``alpha`` only while ``alpha < pi/2`` (positive denominator), so
-it is evaluated with ``atan2`` here (otherwise ``h > w`` or a cable on the outside of a large bend
-gives a wrong branch).  In the spring-link chain the eyelets sit exactly ``h = ds/2`` either side of
-each joint, so these formulas are the chain's exact cable geometry (tested).
+Eq. (1) per joint comes from :mod:`workbench.kinematics.hannan_walker`
+(:func:`~workbench.kinematics.hannan_walker.cable_change_from_joint_angle` and its inverse, with
+the quadrant-safe ``atan2`` erratum documented there): a joint between two segments whose cable
+holes are ``h`` either side of it, a cable at radius ``w``.  In the spring-link chain the eyelets
+sit exactly ``h = ds/2`` either side of each joint, so summing Eq. (1) over the joints a cable
+passes is the chain's exact cable geometry (tested against the rope lengths measured on the
+Exudyn eyelet markers).
 """
 
 from __future__ import annotations
@@ -38,80 +36,20 @@ import numpy as np
 
 from ..models.result import SolverOptions
 from ..robot import LoadCase, Robot, TendonActuation
+from ..kinematics.hannan_walker import (
+    cable_change_from_joint_angle,
+    joint_angle_from_cable_change,
+    joint_angle_from_curvature,
+)
 from .spring_link import SpringLinkParams, solve
 from ._spring_link_geometry import chain_geometry_from_robot
 
 __all__ = [
-    "joint_angle_from_cable_length",
-    "cable_length_from_joint_angle",
     "cable_changes_from_joint_angles",
     "joint_angles_from_cable_changes",
     "HannanWalkerReplay",
     "replay_hannan_walker",
 ]
-
-
-def _wh(w, h):
-    w = np.asarray(w, dtype=float)
-    h = np.asarray(h, dtype=float)
-    if np.any(~np.isfinite(w)) or np.any(w <= 0) or np.any(~np.isfinite(h)) or np.any(h <= 0):
-        raise ValueError("segment radius w and half-spacing h must be finite and > 0")
-    return w, h
-
-
-def cable_length_from_joint_angle(theta, w, h):
-    """Cable piece across one joint (inverse of Eq. 1).
-
-    Parameters
-    ----------
-    theta : array_like
-        Joint angle [rad], positive when the joint bends towards the cable.
-    w : array_like
-        Cable radius (segment radius) [m].
-    h : array_like
-        Distance from the segment mid-plane (eyelet) to the joint centre [m].
-
-    Returns
-    -------
-    c : ndarray
-        Cable length between the two mid-planes [m] (``2h`` at ``theta = 0``), broadcast shape.
-    """
-    w, h = _wh(w, h)
-    t = np.asarray(theta, dtype=float)
-    r = np.hypot(w, h)
-    alpha = 2.0 * np.arctan2(h, w) - t
-    if np.any(alpha <= 0) or np.any(alpha >= 2 * np.pi):
-        raise ValueError("joint angle out of range: the cable would pass through the joint centre")
-    return 2.0 * r * np.sin(0.5 * alpha)
-
-
-def joint_angle_from_cable_length(c, w, h):
-    """Joint angle from the cable piece length across one joint (Hannan & Walker Eq. 1).
-
-    ``theta = pi - 2 arctan(w/h) - atan2(sqrt(4 r^4 - (2 r^2 - c^2)^2), 2 r^2 - c^2)`` with
-    ``r^2 = w^2 + h^2`` and ``c = l - dl`` (``l = 2h`` the straight length).  See the module
-    docstring for the ``atan2`` erratum.
-
-    Parameters
-    ----------
-    c : array_like
-        Current cable piece length [m], ``0 < c < 2r``.
-    w, h : array_like
-        See :func:`cable_length_from_joint_angle`.
-
-    Returns
-    -------
-    theta : ndarray
-        Joint angle [rad], positive towards the cable.
-    """
-    w, h = _wh(w, h)
-    c = np.asarray(c, dtype=float)
-    r2 = w**2 + h**2
-    if np.any(c <= 0) or np.any(c >= 2.0 * np.sqrt(r2)):
-        raise ValueError("cable length must lie in (0, 2 sqrt(w^2 + h^2))")
-    den = 2.0 * r2 - c**2
-    num = np.sqrt(np.maximum(4.0 * r2**2 - den**2, 0.0))
-    return np.pi - 2.0 * np.arctan(w / h) - np.arctan2(num, den)
 
 
 def _routing(robot: Robot, n_links: int):
@@ -154,7 +92,8 @@ def cable_changes_from_joint_angles(joint_angles, robot: Robot, n_links: int | N
     for j, sigma, grp in table:
         m = int(geo.section_end_eyelet[j])
         c = 1.0 if np.cos(sigma) > 0 else -1.0
-        pieces = cable_length_from_joint_angle(c * q[..., :m], grp.offset, h[:m]) - 2.0 * h[:m]
+        # Eq. (1) inverse per joint (kinematics returns the shortening, hence the minus sign)
+        pieces = -cable_change_from_joint_angle(c * q[..., :m], grp.offset, h[:m])
         out.append(np.sum(pieces, axis=-1))
     return np.stack(out, axis=-1)
 
@@ -190,10 +129,9 @@ def joint_angles_from_cable_changes(cable_changes, robot: Robot, n_links: int):
         before = 0.0
         if start:
             qb = np.repeat(theta[:j], per)
-            before = float(np.sum(cable_length_from_joint_angle(qb, grp.offset, h[:start]) - 2.0 * h[:start]))
+            before = float(np.sum(-cable_change_from_joint_angle(qb, grp.offset, h[:start])))
         per_joint = (dl[i] - before) / per
-        hj = h[start]
-        theta[j] = float(joint_angle_from_cable_length(2.0 * hj + per_joint, grp.offset, hj))
+        theta[j] = float(joint_angle_from_cable_change(-per_joint, grp.offset, h[start]))
     if np.any(np.isnan(theta)):
         raise ValueError("every section needs a cable at sigma = 0")
     return theta
@@ -292,7 +230,7 @@ def replay_hannan_walker(
         raise ValueError(f"CC resolved-rate controller did not track the line (max error {pr.error.max():.3g} m)")
     kappa = pr.q
     per = n_links // n_sec
-    qcc = np.repeat(kappa * ell / per, per, axis=-1)
+    qcc = np.repeat(joint_angle_from_curvature(kappa, ell, per), per, axis=-1)  # Eq. (2-3)
     dl = cable_changes_from_joint_angles(qcc, robot, n_links)
     A = planar_forward_kinematics(kappa, ell)
     cc_tip = np.stack([-A[:, 0, 3], np.zeros(len(A)), A[:, 1, 3]], axis=-1)
