@@ -304,3 +304,15 @@ def test_dynamic_wire_delay_with_axial_springs_settles_to_static():
     assert dyn.length_change < 0
     assert np.linalg.norm(dyn.tip_position - sta.tip_position) < 1e-6
     assert dyn.tendon_tensions == pytest.approx(sta.tendon_tensions, rel=1e-5)
+
+
+def test_quiet_and_file_free(tmp_path, monkeypatch, capfd):
+    monkeypatch.chdir(tmp_path)
+    robot = steel_rod(gravity=9.81, base_orientation="horizontal")
+    run(robot, LoadCase(actuation=TendonActuation("length", (-0.01, 0.0), pretension=5.0)),
+        SolverOptions(n_elements=4, tendon_model="eyelets"))
+    solve(steel_rod(tendon_count=3), LoadCase(actuation=TendonActuation("tension", (5.0, 0.0, 0.0)), analysis="dynamic",
+                                              duration=0.02), SolverOptions(n_elements=4))
+    out, err = capfd.readouterr()
+    assert out == "" and err == ""
+    assert list(tmp_path.iterdir()) == []

@@ -555,9 +555,9 @@ class _Spatial(_Planar):
             n = mbs.AddNode(eii.NodeRigidBodyEP(referenceCoordinates=[0.0, 0.0, float(geo.joints[k]), 1.0, 0.0, 0.0, 0.0]))
             J = inertias[k]
             b = mbs.AddObject(eii.ObjectRigidBody(
-                nodeNumber=n, physicsMass=float(mass[k]),
-                physicsInertia=[J[0, 0], J[1, 1], J[2, 2], J[1, 2], J[0, 2], J[0, 1]],
-                physicsCenterOfMass=[float(x) for x in coms[k]]))
+                nodeNumber=n, mass=float(mass[k]),
+                inertia=[J[0, 0], J[1, 1], J[2, 2], J[1, 2], J[0, 2], J[0, 1]],
+                centerOfMass=[float(x) for x in coms[k]]))
             self.nodes.append(n)
             self.bodies.append(b)
 
