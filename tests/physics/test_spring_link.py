@@ -316,3 +316,25 @@ def test_quiet_and_file_free(tmp_path, monkeypatch, capfd):
     out, err = capfd.readouterr()
     assert out == "" and err == ""
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("offset_tip", [None, 0.01])
+def test_continuum_tendon_with_axial_springs_converges_to_ancf(offset_tip):
+    """Independent model check: the planar ANCF beam (64 el.) with the same continuum tendon,
+    constant or tapered offset, compression included (axial springs)."""
+    ancf = pytest.importorskip("workbench.physics.ancf")
+    from workbench.robot import CrossSection, Robot, Section, TendonGroup
+
+    cs = CrossSection.circular(6e-3)
+    robot = Robot(sections=(Section(length=L, cross_section=cs,
+                                    tendons=TendonGroup(angles=(0.0, math.pi), offset=0.03, offset_tip=offset_tip)),))
+    load = LoadCase(actuation=TendonActuation("tension", (300.0, 0.0)))
+    ref = ancf.run(robot, load, SolverOptions(n_elements=64))
+    errs = []
+    for n in (8, 16, 32):
+        res = solve(robot, load, SolverOptions(n_elements=n), SpringLinkParams(axial=True))
+        errs.append(np.linalg.norm(res.tip_position - ref.tip_position))
+    # observed 3.0e-4 / 7.5e-5 / 1.9e-5 (constant), 3.9e-4 / 9.3e-5 / 1.9e-5 (tapered)
+    assert np.all(_orders(errs) > 1.8), errs
+    assert errs[-1] < 3e-5
+    assert res.length_change == pytest.approx(ref.length_change, rel=1e-3)

@@ -193,6 +193,8 @@ class _Tendon:
     axial_stiffness: float
     reference_length: float  # straight reference path length (eyelet 0 to m)
     tapered: bool
+    moment_arm: np.ndarray   # (m,) d cos(alpha) at joints 1..m (continuum: internal moment / T)
+    cos_alpha: np.ndarray    # (m,) cos of the tendon's reference slope angle at joints 1..m
 
 
 def _tendons(robot: Robot, geo: ChainGeometry) -> list[_Tendon]:
@@ -203,7 +205,9 @@ def _tendons(robot: Robot, geo: ChainGeometry) -> list[_Tendon]:
         d = np.array([grp.offset_at(x / e[-1]) for x in e])
         # straight reference: eyelets on a straight line, offsets may vary (taper)
         L_ref = float(np.sum(np.hypot(np.diff(e), np.diff(d))))
-        out.append(_Tendon(j, float(sigma), m, d, grp.axial_stiffness, L_ref, grp.offset_tip is not None))
+        cos_a = 1.0 / np.hypot(1.0, np.diff(d) / np.diff(e))
+        arm = 0.5 * (d[:-1] + d[1:]) * cos_a
+        out.append(_Tendon(j, float(sigma), m, d, grp.axial_stiffness, L_ref, grp.offset_tip is not None, arm, cos_a))
     return out
 
 
@@ -345,9 +349,12 @@ class _Planar:
                     referenceLength=float(t.reference_length), regularizationForce=-1.0,
                     sheavesRadii=[0.0] * n, sheavesAxes=exu.Vector3DList([[0.0, 0.0, 1.0]] * n))))
             elif self.model == "continuum" and self.mode == "tension":
-                # the reaction torque on the base plate acts on ground and is omitted
-                mt = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=self.bodies[t.end_eyelet - 1]))
-                items.append(mbs.AddLoad(eii.LoadTorqueVector(markerNumber=mt, loadVector=[0.0, 0.0, 0.0])))
+                # internal moment T a_k at joint k = torque pairs; link k carries T (a_k - a_{k+1})
+                # (only the terminating link for a constant offset); the base reaction acts on ground
+                links = range(t.end_eyelet) if t.tapered else [t.end_eyelet - 1]
+                for k in links:
+                    mt = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=self.bodies[k]))
+                    items.append(mbs.AddLoad(eii.LoadTorqueVector(markerNumber=mt, loadVector=[0.0, 0.0, 0.0])))
             else:  # continuum, length
                 items.append(mbs.AddObject(eii.ObjectConnectorCoordinateSpringDamper(
                     markerNumbers=[self.m_ground_coord, self.coord_markers[t.end_eyelet - 1]],
@@ -392,7 +399,8 @@ class _Planar:
                 mbs.SetObjectParameter(items[0], "referenceLength", float(self._L0[i]))
                 mbs.SetObjectParameter(items[0], "activeConnector", bool(self.tendon_active[i]))
             elif self.mode == "tension":
-                mbs.SetLoadParameter(items[0], "loadVector", self._continuum_torque(i, v))
+                for it, tau in zip(items, self._continuum_torques(i, v)):
+                    mbs.SetLoadParameter(it, "loadVector", tau)
             else:
                 d, c, L0 = t.offsets[-1], self.sign[i], float(self._L0[i])
                 K = t.axial_stiffness * d * d / L0
@@ -404,16 +412,19 @@ class _Planar:
             N = self.geo.n_links
             comp = np.zeros(N)
             for t, v in zip(self.tendons, self._values):
-                comp[: t.end_eyelet] += v
+                comp[: t.end_eyelet] += v * t.cos_alpha
             ax = 1 if isinstance(self, _Planar) and not isinstance(self, _Spatial) else 2
             for k in range(N):
                 off = [0.0] * 6
                 off[ax] = float(-comp[k] / self.geo.axial_stiffness[k])
                 mbs.SetObjectParameter(self.joint_springs[k], "offset", off)
 
-    def _continuum_torque(self, i: int, v: float) -> list[float]:
-        # planar: torque about Exudyn Z = -base y
-        return [0.0, 0.0, float(-v * self.tendons[i].offsets[-1] * self.sign[i])]
+    def _continuum_torques(self, i: int, v: float) -> list[list[float]]:
+        # planar: torques about Exudyn Z = -base y, one per loaded link
+        t = self.tendons[i]
+        a = t.moment_arm
+        w = (a - np.append(a[1:], 0.0)) if t.tapered else a[-1:]
+        return [[0.0, 0.0, float(-v * wk * self.sign[i])] for wk in w]
 
     # -- state access ----------------------------------------------------------------------
     def link_states(self) -> tuple[np.ndarray, np.ndarray]:
@@ -528,6 +539,11 @@ class _Spatial(_Planar):
                 "spring_link: continuum tendons in length mode are only implemented for the planar chain; "
                 "use tendon_model='eyelets' (or a planar case)"
             )
+        if self.model == "continuum" and self.mode is not None and any(t.tapered for t in self.tendons):
+            raise ModelFailure(
+                "spring_link: continuum tendons with tapered offsets are only implemented for the planar "
+                "chain; use tendon_model='eyelets'"
+            )
         N = geo.n_links
         self.SC = exu.SystemContainer()
         mbs = self.SC.AddSystem()
@@ -632,10 +648,10 @@ class _Spatial(_Planar):
         self.sign = [1.0] * len(self.tendons)
         self.torsion = torsion
 
-    def _continuum_torque(self, i: int, v: float) -> list[float]:
+    def _continuum_torques(self, i: int, v: float) -> list[list[float]]:
         t = self.tendons[i]
-        d = float(t.offsets[-1])
-        return [-v * d * math.sin(t.sigma), v * d * math.cos(t.sigma), 0.0]
+        d = float(t.moment_arm[-1])
+        return [[-v * d * math.sin(t.sigma), v * d * math.cos(t.sigma), 0.0]]
 
     def link_frames(self) -> tuple[np.ndarray, np.ndarray]:
         """Joint positions (N, 3) and link rotation matrices (N, 3, 3), base frame."""
