@@ -49,9 +49,11 @@ Tendons
   compression is switched off (slack) and re-activated once taut again (active-set loop in
   statics, per time step in dynamics).  The equivalence of both (reeving tension fed back as a
   tension command gives the same shape) is a test.
-* ``tendon_model = "continuum"``: the tendon follows the centreline at constant offset, so it acts
-  as a torque ``T d`` on its terminating link and the opposite torque on the base (the chain is
-  axially rigid, so the compression ``T`` has no effect).  Tension control applies the torque;
+* ``tendon_model = "continuum"``: the tendon follows the centreline at offset ``d``, so the
+  internal moment at every joint it passes is ``T d cos(alpha)`` (``alpha`` its reference slope):
+  a torque ``T d`` on its terminating link (reaction on the base) for a constant offset, torque
+  differences on every link it passes for a tapered one (planar only).  Its compression ``T``
+  matters only with axial springs (see *Axial compliance*).  Tension control applies the torque;
   length control uses that the tendon length is ``L_ref - d cos(sigma) beta_m`` with ``beta_m``
   the rotation of the terminating link: a rotational spring ``EA_t d^2 / L_0`` to ground on that
   link, switched off when slack.  Tapered offsets are not supported in continuum length mode.
@@ -89,9 +91,12 @@ Limitations
 Without ``SpringLinkParams(axial=True)`` the joints are inextensible and ``length_change`` is 0.
 With it, ``length_change`` is the sum of the axial joint gaps (shear gaps are not counted).
 Continuum tendons in length mode exist only in the planar inextensible chain (their length is
-taken as ``L_ref - d cos(sigma) beta_m``, which ignores backbone strain).  Exudyn's rope connectors converge only linearly in Newton (their Jacobian omits
-part of the rope's geometric stiffness), so eyelet tendons cost ~100-250 iterations per static
-solve (measured) instead of 3-6.
+taken as ``L_ref - d cos(sigma) beta_m``, which ignores backbone strain).  Eyelet tendons on the inextensible chain converge only linearly in Newton
+(constant contraction ~0.47 per iteration; ~100-125 iterations per static solve at N = 16
+against 3-6 for continuum tendons, measured).  Numerical differentiation of connectors / AEs
+does not change that, while the same ropes on the constraint-free chain (``axial=True``) need
+12-19 iterations: the missing term is in the joint constraints loaded by the rope forces.  Use
+``axial=True`` when eyelet solves are too slow (it also adds the physical compression).
 """
 
 from __future__ import annotations
@@ -753,9 +758,8 @@ def _static_ramp(model: "_Planar", options: SolverOptions, params: SpringLinkPar
     settings = static_settings(options, 1)
     _use_sparse(settings, model)
     settings.staticSolver.adaptiveStep = False
-    # Exudyn's Jacobians of rope connectors (constant-force spring-dampers, reeving) omit the
-    # geometric stiffness of the turning rope direction: Newton converges only linearly there
-    # (measured 28-33 iterations at N = 16 vs 3 for continuum tendons), so allow more iterations.
+    # eyelet ropes loading the joint constraints make Newton converge only linearly (measured
+    # ~100-125 iterations at N = 16 vs 3-6 for continuum tendons; see Limitations): allow more.
     eyelet_ropes = model.model == "eyelets" and model.mode is not None
     settings.staticSolver.newton.maxIterations = 250 if eyelet_ropes else 40
     lam, inc = 0.0, 1.0
