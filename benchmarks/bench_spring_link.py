@@ -18,7 +18,7 @@ planar and the spatial chain, built from rigid bodies (the registered model) and
 ``ObjectKinematicTree`` (:mod:`workbench.physics._spring_link_tree`); then, for each N, the cheapest ANCF mesh (1..64 elements) that is at
 least as accurate, and the time ratio spring-link / ANCF measured in this run.  A further block
 times the eyelet tendon variants (constant-force rope chain and length-controlled reeving) at N =
-16.
+16, for the rigid-body and (2-D) the kinematic-tree backend.
 """
 
 from __future__ import annotations
@@ -82,7 +82,8 @@ def main() -> None:
         for dim in ("2d", "3d"):
             for n in Ns:
                 opts = SolverOptions(n_elements=n, tendon_model="continuum")
-                t, res = _best(lambda: solve(robot, load, opts, SpringLinkParams(dimension=dim)), args.repeats)
+                t, res = _best(lambda: solve(robot, load, opts, SpringLinkParams(dimension=dim, backend="bodies")),
+                               args.repeats)
                 sl[dim, n] = (t, float(np.linalg.norm(res.tip_position - tip)))
         kt = {}
         for dim in ("2d", "3d"):
@@ -129,14 +130,16 @@ def main() -> None:
     base = {}
     for dim in ("2d", "3d"):
         t, _ = _best(lambda: solve(rod, cases["tension, rope chain"], SolverOptions(n_elements=16, tendon_model="continuum"),
-                                   SpringLinkParams(dimension=dim)), args.repeats)
+                                   SpringLinkParams(dimension=dim, backend="bodies")), args.repeats)
         base[dim] = t
         print(f"  {dim} continuum tension (reference): {1e3 * t:8.2f} ms")
         for label, ld in cases.items():
-            t, res = _best(lambda: solve(rod, ld, SolverOptions(n_elements=16, tendon_model="eyelets"),
-                                         SpringLinkParams(dimension=dim)), args.repeats)
-            print(f"  {dim} eyelets {label:<20}: {1e3 * t:8.2f} ms, {res.solver.iterations:4d} Newton its, "
-                  f"ratio to continuum {t / base[dim]:.1f}")
+            backends = ("bodies", "tree") if dim == "2d" else ("bodies",)
+            for be in backends:
+                t, res = _best(lambda: solve(rod, ld, SolverOptions(n_elements=16, tendon_model="eyelets"),
+                                             SpringLinkParams(dimension=dim, backend=be)), args.repeats)
+                print(f"  {dim} {be:<6} eyelets {label:<20}: {1e3 * t:8.2f} ms, {res.solver.iterations:4d} Newton its, "
+                      f"ratio to continuum {t / base[dim]:.1f}")
     for label, ld in cases.items():
         t, _ = _best(lambda: ancf(rod, ld, SolverOptions(n_elements=16, tendon_model="eyelets")), args.repeats)
         # the ANCF model controls length by its own outer tension iteration, not by reeving

@@ -170,11 +170,13 @@ def test_bad_inputs():
 
 
 def test_max_load_steps_is_a_failure():
+    from workbench.physics.spring_link import SpringLinkParams, solve
+
     robot = steel_rod()
     # a huge tension in an eyelet tendon: buckling-like snap that cannot be reached in 1 step
-    with pytest.raises(ModelFailure):
-        run(robot, LoadCase(actuation=TendonActuation("length", (-0.5, 0.0))),
-            SolverOptions(n_elements=8, tendon_model="eyelets", max_load_steps=1))
+    with pytest.raises(ModelFailure, match="max_load_steps"):
+        solve(robot, LoadCase(actuation=TendonActuation("length", (-0.5, 0.0))),
+              SolverOptions(n_elements=8, tendon_model="eyelets", max_load_steps=1), SpringLinkParams(backend="bodies"))
 
 
 # --------------------------------------------------------------------------------------------
@@ -338,3 +340,33 @@ def test_continuum_tendon_with_axial_springs_converges_to_ancf(offset_tip):
     assert np.all(_orders(errs) > 1.8), errs
     assert errs[-1] < 3e-5
     assert res.length_change == pytest.approx(ref.length_change, rel=1e-3)
+
+
+_TREE_CASES = {
+    "tip loads + gravity + payload": ("continuum", LoadCase(tip_force=(1.0, 0.0, 0.5), tip_torque=(0.0, 0.3, 0.0))),
+    "continuum tension": ("continuum", LoadCase(actuation=TendonActuation("tension", (100.0, 0.0, 0.0, 50.0)))),
+    "continuum length": ("continuum", LoadCase(actuation=TendonActuation("length", (-0.01, 0.0, -0.005, 0.01), pretension=5.0))),
+    "eyelet tension": ("eyelets", LoadCase(actuation=TendonActuation("tension", (100.0, 0.0, 0.0, 50.0)))),
+    "eyelet length (reeving), one slack": ("eyelets", LoadCase(actuation=TendonActuation("length", (-0.01, 0.0, -0.005, 0.01), pretension=5.0))),
+}
+
+
+@pytest.mark.parametrize("case", sorted(_TREE_CASES))
+def test_kinematic_tree_backend_equals_rigid_bodies(case):
+    robot = steel_rod(gravity=9.81, base_orientation="horizontal", n_sections=2, payload_mass=0.05)
+    model, load = _TREE_CASES[case]
+    opts = SolverOptions(n_elements=16, tendon_model=model)
+    a = solve(robot, load, opts, SpringLinkParams(backend="bodies"))
+    b = solve(robot, load, opts, SpringLinkParams(backend="tree"))
+    assert np.abs(a.positions - b.positions).max() < 1e-9
+    assert np.abs(a.joint_angles - b.joint_angles).max() < 1e-9
+    assert a.tendon_tensions == pytest.approx(b.tendon_tensions, rel=1e-6, abs=1e-9)
+    if "slack" in case:
+        assert b.tendon_tensions[3] == 0.0 and np.all(b.tendon_tensions[:3] > 0)
+
+
+def test_tree_backend_rejects_what_it_cannot_do():
+    with pytest.raises(ModelFailure, match="tree"):
+        solve(steel_rod(), LoadCase(), SolverOptions(n_elements=4), SpringLinkParams(backend="tree", axial=True))
+    with pytest.raises(ModelFailure, match="tree"):
+        solve(steel_rod(tendon_count=3), LoadCase(), SolverOptions(n_elements=4), SpringLinkParams(backend="tree"))

@@ -30,12 +30,15 @@ planar case both give the same result to ~1e-11 (tested); the planar one is abou
 
 Backend choice (measured, ``benchmarks/bench_spring_link.py``)
 -------------------------------------------------------------
-An ``ObjectKinematicTree`` version of the same chain (:mod:`._spring_link_tree`, identical results
-to 1e-12) was 1.1-8x faster for gravity / tip-moment / continuum-tendon statics on this machine
-(the facts note had measured it slower), but the registered model keeps rigid bodies because it
-needs what the tree variant here does not provide: eyelet ropes and reeving through rigid eyelet
-markers, axial/shear joint springs, a rotation-vector (intrinsic) torsion/bending spring and
-follower tendon torques in 3-D.  Porting those to tree markers is a possible speed-up.
+The planar inextensible chain also exists as one ``ObjectKinematicTree`` (minimal coordinates,
+``RevoluteY`` joints, springs as ``jointPControlVector``, eyelets as ``MarkerKinematicTreeRigid``;
+``SpringLinkParams.backend``).  Both give the same statics to ~1e-10 (tested).  With eyelet ropes
+in length mode (reeving) the tree keeps Newton quadratic (3-4 iterations instead of ~100: the
+rigid-body chain's joint constraints, loaded by the rope forces, make it converge linearly) and
+is 2-4x faster, so ``backend="auto"`` uses it there; with constant-force rope chains it is much
+slower (each segment re-evaluates the tree), with continuum tendons / gravity the two are within
+a factor ~2 either way on this machine, so the rigid bodies stay the default elsewhere.  The
+benchmark also times a stripped tree chain (:mod:`._spring_link_tree`).
 
 Tendons
 -------
@@ -144,16 +147,30 @@ class SpringLinkParams:
         is ``None``) besides the bending (and torsion) springs, so the backbone can compress
         (wire-delay compression, continuum-tendon compression ``T``) and ``length_change`` is
         reported.  Not combined with ``torsion="locked"`` or with continuum tendons in length mode.
+    backend : {"auto", "bodies", "tree"}
+        Exudyn representation of the planar inextensible chain.  ``"tree"``: one
+        ``ObjectKinematicTree`` (minimal coordinates, no joint constraints); ``"bodies"``: rigid
+        bodies + revolute joints.  Both give the same statics (tested to ~1e-10).  Measured at
+        N = 16 / 64 (steel rod): with length-controlled eyelet ropes (reeving) the tree needs 3-4
+        Newton iterations instead of ~100 and is 2-4x faster (36 vs 155 ms, 1.1 vs 2.4 s), and it
+        solved a heavily loaded Hannan & Walker case on which the bodies' ramp gave up; with
+        constant-force rope chains (eyelets, tension control) it is 5-70x *slower* (every rope
+        segment on tree markers evaluates the tree's kinematics); with continuum tendons both are
+        within noise.  ``"auto"`` (default) therefore uses the tree for planar eyelet tendons in
+        length mode and bodies otherwise; 3-D and ``axial=True`` always use bodies.
     """
 
     dimension: Literal["auto", "2d", "3d"] = "auto"
     max_active_set_iterations: int = 20
     torsion: Literal["spring", "locked"] = "spring"
     axial: bool = False
+    backend: Literal["auto", "bodies", "tree"] = "auto"
 
     def __post_init__(self) -> None:
         if self.dimension not in ("auto", "2d", "3d"):
             raise ValueError(f"SpringLinkParams.dimension must be 'auto', '2d' or '3d', got {self.dimension!r}")
+        if self.backend not in ("auto", "bodies", "tree"):
+            raise ValueError(f"SpringLinkParams.backend must be 'auto', 'bodies' or 'tree', got {self.backend!r}")
         if self.axial and self.torsion == "locked":
             raise ValueError("SpringLinkParams: axial=True needs torsion='spring'")
         if self.torsion not in ("spring", "locked"):
@@ -521,6 +538,150 @@ class _Planar:
         )
 
 
+class _PlanarTree(_Planar):
+    """Planar chain in minimal coordinates: one ``ObjectKinematicTree`` with a ``RevoluteY`` joint
+    per link (rotation about base +y = bending towards +x), joint springs as the tree's
+    ``jointPControlVector``; eyelets are ``MarkerKinematicTreeRigid`` markers.  Works directly in
+    the base frame (no 2-D mapping)."""
+
+    def __init__(self, robot: Robot, load: LoadCase, options: SolverOptions, geo: ChainGeometry) -> None:  # noqa: D107
+        import exudyn as exu
+        import exudyn.itemInterface as eii
+
+        self.exu = exu
+        self.robot, self.load, self.options, self.geo = robot, load, options, geo
+        self.tendons = _tendons(robot, geo)
+        act = load.actuation
+        if act is not None:
+            act.check_against(robot)
+        self.mode = None if act is None else act.mode
+        self.model = options.tendon_model
+        self.axial = False
+        if self.mode == "length" and self.model == "continuum" and any(t.tapered for t in self.tendons):
+            raise ModelFailure(
+                "spring_link: continuum tendons with tapered offsets (offset_tip) are not supported in "
+                "length mode; use tendon_model='eyelets'"
+            )
+        N = geo.n_links
+        self.SC = exu.SystemContainer()
+        mbs = self.SC.AddSystem()
+        self.mbs = mbs
+        self.g2 = np.asarray(robot.gravity_in_base(), dtype=float)
+        mass, com = geo.mass.copy(), geo.com.copy()
+        coms = [np.array([0.0, 0.0, c]) for c in com]
+        inertias = [np.diag([geo.inertia_bending[k], geo.inertia_bending[k], geo.inertia_axial[k]]) for k in range(N)]
+        pm = robot.payload.mass
+        if pm > 0:
+            pp = np.array(robot.payload.offset) + np.array([0.0, 0.0, geo.link_lengths[-1]])
+            c_new = (mass[-1] * coms[-1] + pm * pp) / (mass[-1] + pm)
+            dc, dp = coms[-1] - c_new, pp - c_new
+            inertias[-1] = (inertias[-1] + mass[-1] * (dc @ dc * np.eye(3) - np.outer(dc, dc))
+                            + pm * (dp @ dp * np.eye(3) - np.outer(dp, dp)))
+            mass[-1] += pm
+            coms[-1] = c_new
+        offs = [[0.0, 0.0, float(geo.joints[0])]] + [[0.0, 0.0, float(geo.link_lengths[k - 1])] for k in range(1, N)]
+        self.node = mbs.AddNode(eii.NodeGenericODE2(
+            referenceCoordinates=[0.0] * N, initialCoordinates=[0.0] * N, initialCoordinates_t=[0.0] * N,
+            numberOfODE2Coordinates=N))
+        self.tree = mbs.AddObject(eii.ObjectKinematicTree(
+            nodeNumber=self.node, jointTypes=[exu.JointType.RevoluteY] * N, linkParents=list(range(-1, N - 1)),
+            jointTransformations=exu.Matrix3DList([np.eye(3)] * N), jointOffsets=exu.Vector3DList(offs),
+            linkInertiasCOM=exu.Matrix3DList(inertias), linkCOMs=exu.Vector3DList([c.tolist() for c in coms]),
+            linkMasses=[float(m) for m in mass], baseOffset=[0.0, 0.0, 0.0], gravity=[0.0, 0.0, 0.0],
+            jointForceVector=[0.0] * N, jointPositionOffsetVector=[0.0] * N, jointVelocityOffsetVector=[0.0] * N,
+            jointPControlVector=[float(k) for k in geo.stiffness],
+            jointDControlVector=[float(options.damping * k) for k in geo.stiffness]))
+        ground = mbs.AddObject(eii.ObjectGround(referencePosition=[0.0, 0.0, 0.0]))
+        self.ground = ground
+        m_tip = mbs.AddMarker(eii.MarkerKinematicTreeRigid(objectNumber=self.tree, linkNumber=N - 1,
+                                                           localPosition=[0.0, 0.0, float(geo.link_lengths[-1])]))
+        self.tip_force_full = np.asarray(load.tip_force, dtype=float)
+        self.tip_torque_full = np.asarray(load.tip_torque, dtype=float)
+        self.tip_force_load = mbs.AddLoad(eii.LoadForceVector(markerNumber=m_tip, loadVector=[0.0, 0.0, 0.0]))
+        self.tip_torque_load = mbs.AddLoad(eii.LoadTorqueVector(markerNumber=m_tip, loadVector=[0.0, 0.0, 0.0]))
+        self.gravity_loads = []
+
+        self.eyelet_markers, self.tendon_items = [], []
+        self.tendon_active = [True] * len(self.tendons)
+        self.sign = [1.0 if math.cos(t.sigma) > 0 else -1.0 for t in self.tendons]
+        for i, t in enumerate(self.tendons):
+            c = self.sign[i]
+            marks = []
+            for k in range(t.end_eyelet + 1):
+                x = float(c * t.offsets[k])
+                if k == 0:
+                    marks.append(mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[x, 0.0, 0.0])))
+                else:
+                    z = float(geo.eyelets[k] - geo.joints[k - 1])
+                    marks.append(mbs.AddMarker(eii.MarkerKinematicTreeRigid(
+                        objectNumber=self.tree, linkNumber=k - 1, localPosition=[x, 0.0, z])))
+            self.eyelet_markers.append(marks)
+            items = []
+            if self.mode is None:
+                pass
+            elif self.model == "eyelets" and self.mode == "tension":
+                for a, b in zip(marks[:-1], marks[1:]):
+                    items.append(mbs.AddObject(eii.ObjectConnectorSpringDamper(
+                        markerNumbers=[a, b], referenceLength=0.0, stiffness=0.0, force=0.0)))
+            elif self.model == "eyelets":
+                n = len(marks)
+                items.append(mbs.AddObject(eii.ObjectConnectorReevingSystemSprings(
+                    markerNumbers=marks, stiffnessPerLength=float(t.axial_stiffness),
+                    dampingPerLength=float(options.damping * t.axial_stiffness),
+                    referenceLength=float(t.reference_length), regularizationForce=-1.0,
+                    sheavesRadii=[0.0] * n, sheavesAxes=exu.Vector3DList([[0.0, 0.0, 1.0]] * n))))
+            elif self.mode == "length":  # continuum: rotational spring on the terminating link's angle
+                mg = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0.0, 0.0, 0.0]))
+                mt = mbs.AddMarker(eii.MarkerKinematicTreeRigid(objectNumber=self.tree, linkNumber=t.end_eyelet - 1,
+                                                                localPosition=[0.0, 0.0, 0.0]))
+                items.append(mbs.AddObject(eii.ObjectConnectorRigidBodySpringDamper(
+                    markerNumbers=[mg, mt], useIntrinsicFormulation=True)))
+            # continuum tension: generalised joint forces (jointForceVector), no items
+            self.tendon_items.append(items)
+        mbs.Assemble()
+
+    def set_external(self, lam: float) -> None:
+        mbs = self.mbs
+        mbs.SetObjectParameter(self.tree, "gravity", (lam * self.g2).tolist())
+        mbs.SetLoadParameter(self.tip_force_load, "loadVector", (lam * self.tip_force_full).tolist())
+        mbs.SetLoadParameter(self.tip_torque_load, "loadVector", (lam * self.tip_torque_full).tolist())
+
+    def set_tendons(self, values: np.ndarray, pretension_factor: float) -> None:
+        """Apply tendon commands; continuum tendons act as generalised joint moments."""
+        if self.mode is None:
+            return
+        if self.model == "eyelets":
+            _Planar.set_tendons(self, values, pretension_factor)
+            return
+        mbs = self.mbs
+        self._values = np.asarray(values, dtype=float)
+        if self.mode == "tension":
+            Q = np.zeros(self.geo.n_links)
+            for i, (t, v) in enumerate(zip(self.tendons, self._values)):
+                Q[: t.end_eyelet] += v * t.moment_arm * self.sign[i]
+            mbs.SetObjectParameter(self.tree, "jointForceVector", Q.tolist())
+            return
+        self._L0 = self.rest_lengths(self._values, pretension_factor)
+        for i, (t, items) in enumerate(zip(self.tendons, self.tendon_items)):
+            d, c, L0 = t.offsets[-1], self.sign[i], float(self._L0[i])
+            K = np.zeros((6, 6))
+            K[4, 4] = t.axial_stiffness * d * d / L0 if self.tendon_active[i] else 0.0
+            off = [0.0] * 6
+            off[4] = float((t.reference_length - L0) / (d * c))
+            mbs.SetObjectParameter(items[0], "stiffness", K.tolist())
+            mbs.SetObjectParameter(items[0], "offset", off)
+
+    def link_states(self) -> tuple[np.ndarray, np.ndarray]:
+        q = np.asarray(self.mbs.systemData.GetODE2Coordinates(), dtype=float)
+        beta = np.cumsum(q)
+        geo = self.geo
+        P = np.zeros((geo.n_links, 3))
+        P[0] = [0.0, 0.0, geo.joints[0]]
+        for k in range(1, geo.n_links):
+            P[k] = P[k - 1] + geo.link_lengths[k - 1] * np.array([math.sin(beta[k - 1]), 0.0, math.cos(beta[k - 1])])
+        return P, beta
+
+
 class _Spatial(_Planar):
     """3-D chain: Euler-parameter rigid bodies, Cardan joints (``GenericJoint``, torsion locked),
     rotational springs (``RigidBodySpringDamper``, ``useIntrinsicFormulation=True``)."""
@@ -840,11 +1001,20 @@ def solve(robot: Robot, load: LoadCase, options: SolverOptions,
     if params.dimension == "2d" and not planar:
         raise ModelFailure(f"spring_link: dimension='2d' requested but the case is not planar: {why}")
     use_2d = params.dimension == "2d" or (params.dimension == "auto" and planar)
+    act_mode = None if load.actuation is None else load.actuation.mode
     geo = chain_geometry_from_robot(robot, options.n_elements)
     t0 = time.perf_counter()
     with quiet_exudyn():
-        model = (_Planar(robot, load, options, geo, params.axial) if use_2d
-                 else _Spatial(robot, load, options, geo, params.torsion, params.axial))
+        if params.backend == "tree" and (not use_2d or params.axial):
+            raise ModelFailure("spring_link: backend='tree' supports the planar inextensible chain only")
+        reeving = options.tendon_model == "eyelets" and act_mode == "length"
+        auto_tree = params.backend == "auto" and reeving
+        if use_2d and not params.axial and (params.backend == "tree" or auto_tree):
+            model = _PlanarTree(robot, load, options, geo)
+        elif use_2d:
+            model = _Planar(robot, load, options, geo, params.axial)
+        else:
+            model = _Spatial(robot, load, options, geo, params.torsion, params.axial)
         act = load.actuation
         n_t = len(model.tendons)
         final = np.zeros(n_t) if act is None else np.asarray(act.values)
