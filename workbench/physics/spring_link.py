@@ -82,7 +82,7 @@ continuously routed tendon); eyelet ropes compress the chain through their eyele
 Results
 -------
 Positions at ``options.n_stations`` reference stations interpolated along the straight links, tip
-frame at the end of the last link, ``length_change = 0`` (inextensible links), tensions,
+frame at the end of the last link, ``length_change`` (0 for inextensible joints), tensions,
 ``joint_angles`` [rad]: planar ``(N, 1)``, the bending angle of each joint towards base +x
 (rotation about base +y); 3-D with sprung torsion ``(N, 3)``, the relative rotation vector of each
 joint in the proximal link's frame; 3-D with locked torsion ``(N, 2)``, the Cardan angles
@@ -94,12 +94,14 @@ Limitations
 Without ``SpringLinkParams(axial=True)`` the joints are inextensible and ``length_change`` is 0.
 With it, ``length_change`` is the sum of the axial joint gaps (shear gaps are not counted).
 Continuum tendons in length mode exist only in the planar inextensible chain (their length is
-taken as ``L_ref - d cos(sigma) beta_m``, which ignores backbone strain).  Eyelet tendons on the inextensible chain converge only linearly in Newton
-(constant contraction ~0.47 per iteration; ~100-125 iterations per static solve at N = 16
-against 3-6 for continuum tendons, measured).  Numerical differentiation of connectors / AEs
-does not change that, while the same ropes on the constraint-free chain (``axial=True``) need
-12-19 iterations: the missing term is in the joint constraints loaded by the rope forces.  Use
-``axial=True`` when eyelet solves are too slow (it also adds the physical compression).
+taken as ``L_ref - d cos(sigma) beta_m``, which ignores backbone strain).  Eyelet tendons on the
+rigid-body chains converge only linearly in Newton (constant contraction ~0.47 per iteration;
+~100-125 iterations per static solve at N = 16 against 3-6 for continuum tendons, measured);
+numerical differentiation of connectors / AEs does not change that, while the same ropes on the
+constraint-free chains (kinematic tree, or ``axial=True``) need 3-19 iterations: the missing term
+is in the joint constraints loaded by the rope forces.  3-D eyelet solves are therefore slow
+(0.1-0.4 s at N = 16); ``axial=True`` makes them 6-10x faster.  Link masses come from the robot
+description (mass per length, disk masses, payload); per-link masses cannot be given directly.
 """
 
 from __future__ import annotations
