@@ -370,3 +370,17 @@ def test_tree_backend_rejects_what_it_cannot_do():
         solve(steel_rod(), LoadCase(), SolverOptions(n_elements=4), SpringLinkParams(backend="tree", axial=True))
     with pytest.raises(ModelFailure, match="tree"):
         solve(steel_rod(tendon_count=3), LoadCase(), SolverOptions(n_elements=4), SpringLinkParams(backend="tree"))
+
+
+def test_dynamic_reeving_on_tree_backend_settles_to_static():
+    robot = steel_rod(gravity=9.81, base_orientation="horizontal")
+    act = TendonActuation("length", (-0.01, 0.005), start_times=(0.0, 0.3), pretension=20.0)
+    opts = SolverOptions(n_elements=8, tendon_model="eyelets", damping=0.02, time_step=5e-3)
+    dyn = run(robot, LoadCase(actuation=act, analysis="dynamic", duration=1.5, ramp_time=0.5), opts)
+    sta = run(robot, LoadCase(actuation=act), opts)
+    assert dyn.series["tip_position"].shape == (dyn.time.size, 3)
+    assert np.linalg.norm(dyn.tip_position - sta.tip_position) < 1e-6
+    # the delayed motor: its tension stays at the pretension-plus-gravity level before 0.3 s
+    T = dyn.series["tendon_tensions"]
+    early = dyn.time < 0.25
+    assert np.ptp(T[early, 1]) < np.ptp(T[:, 1])
