@@ -18,7 +18,7 @@ planar and the spatial chain, built from rigid bodies (the registered model) and
 ``ObjectKinematicTree`` (:mod:`workbench.physics._spring_link_tree`); then, for each N, the cheapest ANCF mesh (1..64 elements) that is at
 least as accurate, and the time ratio spring-link / ANCF measured in this run.  A further block
 times the eyelet tendon variants (constant-force rope chain and length-controlled reeving) at N =
-16, for the rigid-body and (2-D) the kinematic-tree backend.
+16, for the rigid-body and the kinematic-tree backend (3-D: Cardan joints, torsion locked).
 """
 
 from __future__ import annotations
@@ -134,11 +134,13 @@ def main() -> None:
         base[dim] = t
         print(f"  {dim} continuum tension (reference): {1e3 * t:8.2f} ms")
         for label, ld in cases.items():
-            backends = ("bodies", "tree") if dim == "2d" else ("bodies",)
-            for be in backends:
+            variants = [("bodies", "spring"), ("tree", "locked")] if dim == "2d" else [
+                ("bodies", "spring"), ("bodies", "locked"), ("tree", "locked")]
+            for be, tors in variants:
                 t, res = _best(lambda: solve(rod, ld, SolverOptions(n_elements=16, tendon_model="eyelets"),
-                                             SpringLinkParams(dimension=dim, backend=be)), args.repeats)
-                print(f"  {dim} {be:<6} eyelets {label:<20}: {1e3 * t:8.2f} ms, {res.solver.iterations:4d} Newton its, "
+                                             SpringLinkParams(dimension=dim, backend=be, torsion=tors)), args.repeats)
+                be = be if dim == "2d" else f"{be}/{tors}"
+                print(f"  {dim} {be:<14} eyelets {label:<20}: {1e3 * t:8.2f} ms, {res.solver.iterations:4d} Newton its, "
                       f"ratio to continuum {t / base[dim]:.1f}")
     for label, ld in cases.items():
         t, _ = _best(lambda: ancf(rod, ld, SolverOptions(n_elements=16, tendon_model="eyelets")), args.repeats)
