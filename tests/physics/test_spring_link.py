@@ -412,3 +412,30 @@ def test_spatial_tree_backend_matches_cardan_bodies(tendon_model, mode):
     a, b = solve(single, LoadCase(actuation=only_y), opts, p_b), solve(single, LoadCase(actuation=only_y), opts, p_t)
     assert np.abs(a.positions - b.positions).max() < 1e-9
     assert a.tip_position[1] > 0.01
+
+
+def test_equal_joint_angles_put_every_disk_exactly_on_a_cc_arc():
+    """Kinematic limit, exact: with equal joint angles theta in a section, the chain is a regular
+    polygon whose edge midpoints (the disks/eyelets, every ds) lie on a circle of radius
+    ds / (2 tan(theta/2)) tangent to the links, so each section is exactly a CC arc of curvature
+    kappa' = 2 tan(theta/2) / ds through its disks (kappa' -> theta/ds as N grows)."""
+    from workbench.kinematics import forward_kinematics
+
+    robot = steel_rod(n_sections=2, tendon_count=2)
+    N = 16
+    res = run(robot, LoadCase(actuation=TendonActuation("tension", (60.0, 0.0, 0.0, 45.0))),
+              SolverOptions(n_elements=N, tendon_model="continuum", n_stations=N + 1))
+    q = res.joint_angles[:, 0]
+    ds = L / N
+    theta = np.array([q[0], q[N // 2]])
+    kappa = 2.0 * np.tan(theta / 2.0) / ds
+    assert np.allclose(q[: N // 2], theta[0], atol=1e-12) and np.allclose(q[N // 2 :], theta[1], atol=1e-12)
+    assert theta[0] > 0 > theta[1]
+    per = N // 2
+    # CC with phi = 0 bends towards +x for kappa > 0, phi = pi for kappa < 0
+    kap, phi = np.abs(kappa), np.where(kappa >= 0, 0.0, np.pi)
+    for k in range(N + 1):  # disk k at s = k ds: arc angle theta per disk interval
+        n_in = np.clip(k - per * np.arange(2), 0, per)  # disk intervals covered in each section
+        T = forward_kinematics(kap, phi, n_in * np.abs(theta) / kap)
+        assert res.positions[k] == pytest.approx(T[:3, 3], abs=1e-12)
+    assert res.tip_frame == pytest.approx(T, abs=1e-12)
