@@ -225,7 +225,7 @@ def best_fit_curvature(points) -> float:
     Z = np.column_stack([z, xy[:, 0], xy[:, 1], np.ones_like(z)])
     # Pratt fit via SVD (Chernov, "Circular and linear regression", 2010, Sec. 5.5)
     _, S, Vt = np.linalg.svd(Z, full_matrices=False)
-    if S[-1] < 1e-12 * S[0]:
+    if S[-1] < 1e-10 * S[0]:
         # exact fit: the null vector of Z is the circle (or line, A = 0)
         coef = Vt[-1]
     else:
@@ -237,7 +237,7 @@ def best_fit_curvature(points) -> float:
         v = np.real(v)
         pos = np.where(w > 0)[0]
         k = pos[np.argmin(w[pos])]
-        coef = np.linalg.solve(Y, v[:, k])
+        coef = np.linalg.lstsq(Y, v[:, k], rcond=None)[0]
     A, B, C, D = coef
     norm = B * B + C * C - 4.0 * A * D
     if norm <= 0:
