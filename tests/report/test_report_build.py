@@ -57,7 +57,7 @@ def _parse(path: Path) -> tuple[_Collector, str]:
 
 
 EXPECTED = {
-    "1d": {"shapes", "error_vs_load_bend_angle"},
+    "1d": {"shapes", "error_vs_kappaL"},
     "2d": {"shapes", "error_vs_gamma", "error_vs_kappaL", "validity_map"},
     "none": {"shapes"},
     "single": {"shapes"},
@@ -132,14 +132,14 @@ def test_validity_map_summary_mentions_thresholds(reports):
 def test_one_d_summary_statement_matches_metrics(reports):
     path = reports["1d"]
     parsed, _ = _parse(path)
-    cap = parsed.captions[parsed.figures.index("error_vs_load_bend_angle")]
+    cap = parsed.captions[parsed.figures.index("error_vs_kappaL")]
     m = pd.read_csv(path.parent / "metrics.csv")
     sub = m[(m.reference == "cc") & (m.model == "ancf")].sort_values("p.load.bend_angle")
     below = sub[sub.tip_error_pct < 1.0]["p.load.bend_angle"]
-    # statement: "stays below 1 % of L for θ ≤ <largest bend angle before first exceedance>"
+    # statement: "stays below 1 % of L for κL ≤ <largest bend angle before first exceedance>"
     first_bad = sub[sub.tip_error_pct >= 1.0]["p.load.bend_angle"].min()
     expected = below[below < first_bad].max()
-    assert f"CC vs ANCF: tip error stays below 1 % of L for θ ≤ {expected:.3g}" in cap
+    assert f"CC vs ANCF: tip error stays below 1 % of L for κL ≤ {expected:.3g}" in cap
 
 
 def test_default_out_dir_uses_manifest_name(tmp_path, monkeypatch):
@@ -156,7 +156,7 @@ def test_load_study_axes_from_manifest_and_fallback(tmp_path):
     assert st.axes == ("gamma", "kappaL")  # report.axes names derived columns
     (data / "manifest.json").unlink()
     st = load_study(data)
-    assert set(st.axes) == {"p.load.bend_angle", "p.robot.gamma"}  # p.* columns that vary
+    assert set(st.axes) == {"kappaL", "p.robot.gamma"}  # p.* columns that vary; bend angle as kappa L
     assert st.name == "d2"
 
 

@@ -12,7 +12,8 @@ Derived (dimensionless) columns
     Total bending angle ``kappa L`` [rad] = ``p.load.bend_angle``, or
     ``p.load.curvature * robot_length``, or an existing ``p.*.kappaL`` parameter.
 ``gamma``
-    Gravity parameter ``q L^3 / EI`` from a ``p.*gamma`` parameter, or from columns whose
+    Gravity parameter ``q L^3 / EI`` from a ``p.*gamma`` or ``p.*gravity_parameter``
+    parameter (the study runner's ``derived.gravity_parameter``), or from columns whose
     names end in ``.q`` (weight per length [N/m]) and ``.EI`` [N m^2].
 ``d_over_L``
     Tendon offset over robot length from a column ending in ``tendon_offset`` or
@@ -162,7 +163,7 @@ def add_derived_columns(df: pd.DataFrame, derived: Mapping[str, str] | None = No
         elif "p.load.curvature" in cols and L is not None:
             out["kappaL"] = pd.to_numeric(out["p.load.curvature"], errors="coerce") * L
     if "gamma" not in cols:
-        c = _find_column(cols, ["gamma"])
+        c = _find_column(cols, ["gamma", "gravity_parameter"])
         if c is not None:
             out["gamma"] = pd.to_numeric(out[c], errors="coerce")
         else:
@@ -219,7 +220,8 @@ def _pair_metrics(ref: Mapping[str, Any], row: Mapping[str, Any], section_ends, 
     m["compression_backbone"] = np.nan
     m["compression_tendon_stretch"] = np.nan
     m["compression_shape"] = np.nan
-    if cc_reference and np.isfinite(dl_ref) and np.isfinite(dl):
+    length_mode = str(ref.get("p.load.mode", "length")) == "length"
+    if cc_reference and length_mode and np.isfinite(dl_ref) and np.isfinite(dl):
         stretch = _mean_tendon_stretch(row)
         if np.isfinite(stretch):
             sp = compression_split(dl_ref, dl, stretch)
@@ -235,14 +237,17 @@ def _pair_metrics(ref: Mapping[str, Any], row: Mapping[str, Any], section_ends, 
 
 
 def _mean_tendon_stretch(row: Mapping[str, Any]) -> float:
-    """Mean elastic tendon stretch [m]: ``x.tendon_stretch_mean``, else ``T L / EA_t``."""
+    """Mean elastic tendon stretch [m]: ``x.tendon_stretch_mean``, else ``mean_i T_i L / EA_t``
+    with ``EA_t`` from a ``p.*axial_stiffness`` / ``p.*tendon_stiffness`` column (loaded tendon
+    length approximated by L: first order in the strain)."""
     v = row.get("x.tendon_stretch_mean")
     if v is not None and pd.notna(v):
         return float(v)
     T = array_cell(row.get("tendon_tensions"))
     if T is None:
         return np.nan
-    ea_col = next((k for k in row.keys() if str(k).startswith(("p.", "x.")) and str(k).endswith("axial_stiffness")), None)
+    ea_col = next((k for k in row.keys() if str(k).startswith(("p.", "x."))
+                   and str(k).endswith(("axial_stiffness", "tendon_stiffness"))), None)
     if ea_col is None or pd.isna(row.get(ea_col)):
         return np.nan
     L = float(row.get("robot_length", np.nan))
@@ -309,7 +314,8 @@ def compare_table(
         ``length_change_ref``/``length_change`` [m], ``length_change_pct`` [% L],
         ``tip_twist_deg``, ``compression_virtual``/``_backbone``/``_tendon_stretch``/``_shape``
         [m] (see :func:`~workbench.compare.metrics.compression_split`; only for CC-reference
-        pairs with a known tendon stretch, else NaN), ``wall_time_ref``/``wall_time`` [s],
+        pairs with a known tendon stretch and, if ``p.load.mode`` exists, length-mode
+        actuation; else NaN), ``wall_time_ref``/``wall_time`` [s],
         ``tip_error_max_over_time`` [m] (dynamic cases with ``series.tip_position``).
         Empty (with the identifying columns) when nothing can be compared.
     """

@@ -65,13 +65,27 @@ def _all_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]:
     return figs
 
 
-def _wall_time(manifest: dict) -> str:
-    a, b = manifest.get("start_time"), manifest.get("end_time")
-    try:
-        dt = datetime.fromisoformat(str(b)) - datetime.fromisoformat(str(a))
-        return f"{dt.total_seconds():.1f} s"
-    except (TypeError, ValueError):
-        return "n/a"
+def _provenance(man: dict) -> dict[str, str]:
+    """Host, start, end, wall time and commit from either manifest convention (see load)."""
+    runs = [r for r in (man.get("runs") or []) if isinstance(r, dict)]
+    start = runs[0].get("start") if runs else man.get("start_time")
+    end = runs[-1].get("end") if runs else man.get("end_time")
+    hosts = sorted({str(r.get("host")) for r in runs if r.get("host")}) or [str(man.get("host", "n/a"))]
+    if runs and all(isinstance(r.get("wall_time"), (int, float)) for r in runs):
+        wall = f"{sum(r['wall_time'] for r in runs):.1f} s" + (f" over {len(runs)} runs" if len(runs) > 1 else "")
+    else:
+        try:
+            wall = f"{(datetime.fromisoformat(str(end)) - datetime.fromisoformat(str(start))).total_seconds():.1f} s"
+        except (TypeError, ValueError):
+            wall = "n/a"
+    git = man.get("git")
+    if isinstance(git, dict):
+        commit = str(git.get("commit") or "n/a (not a git checkout)")
+        if git.get("dirty"):
+            commit += " (uncommitted changes)"
+    else:
+        commit = str(man.get("git_commit", man.get("commit", "n/a")))
+    return {"host": ", ".join(hosts), "start": str(start or "n/a"), "end": str(end or "n/a"), "wall": wall, "commit": commit}
 
 
 def _table(df: pd.DataFrame, float_fmt=fmt, max_rows: int = 200) -> str:
@@ -201,22 +215,25 @@ def _page(study: Study, cmp, summary, failed, fcols, sections, fig_names) -> str
     else:
         swept = "nothing (single case)" if n_cases == 1 else "no numeric parameter varies"
     versions = man.get("versions") or {}
-    vtxt = ", ".join(f"{k} {v}" for k, v in versions.items()) if isinstance(versions, dict) else str(versions)
+    vtxt = ", ".join(f"{k} {v if v is not None else 'n/a'}" for k, v in versions.items()) if isinstance(versions, dict) else str(versions)
+    pv = _provenance(man)
+    desc = (study.spec.get("study") or {}).get("description") if isinstance(study.spec.get("study"), dict) else study.spec.get("description")
     model_time = float(np.nansum(numeric(study.results["wall_time"]))) if "wall_time" in study.results else np.nan
     prov = [
-        ("study", study.name),
+        ("study", study.name + (f" — {desc}" if desc else "")),
         ("swept", swept),
         ("models compared", models + (f" (reference: {model_label(study.reference)})" if study.reference in study.models else "")),
         ("cases", f"{n_cases} cases, {len(study.results)} model runs, {len(failed)} failed"),
         ("config hash", man.get("config_hash", "n/a")),
-        ("git commit", man.get("git_commit", man.get("commit", "n/a"))),
+        ("git commit", pv["commit"]),
         ("versions", vtxt or "n/a"),
-        ("host", man.get("host", "n/a")),
-        ("start / end", f"{man.get('start_time', 'n/a')} / {man.get('end_time', 'n/a')}"),
-        ("wall time", f"{_wall_time(man)} (time inside models, summed: {fmt(model_time)} s)"),
+        ("host", pv["host"]),
+        ("start / end", f"{pv['start']} / {pv['end']}"),
+        ("wall time", f"{pv['wall']} (time inside models, summed: {fmt(model_time)} s)"),
         ("data", str(study.path)),
     ]
-    known = {"spec", "config_hash", "git_commit", "commit", "versions", "host", "start_time", "end_time"}
+    known = {"spec", "study", "config_hash", "git", "git_commit", "commit", "versions", "host", "start_time",
+             "end_time", "runs"}
     for k, v in man.items():
         if k not in known and not isinstance(v, (dict, list)):
             prov.append((str(k), v))

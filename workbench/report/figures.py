@@ -148,7 +148,7 @@ def _is_geometric(values: np.ndarray) -> bool:
     if v.size < 3 or np.any(v <= 0):
         return False
     r = v[1:] / v[:-1]
-    return bool(np.allclose(r, r[0], rtol=0.05) and r[0] > 1.5)
+    return bool(np.allclose(r, r[0], rtol=0.05) and r[0] > 1.5 and v[-1] / v[0] >= 10)
 
 
 def _ref_pairs(cmp: pd.DataFrame, reference: str) -> list[tuple[str, str]]:
@@ -436,11 +436,10 @@ def validity_map_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]:
         if xs.size >= 2 and ys.size >= 2 and np.isfinite(E).sum() >= 4:
             levels = [t for t in THRESHOLDS if np.nanmin(E) < t < np.nanmax(E)]
             if levels:
-                halo = [patheffects.withStroke(linewidth=3.0, foreground="black")]
                 cs = ax.contour(xs, ys, Em, levels=levels, colors="white", linewidths=1.5)
-                cs.set(path_effects=halo)
-                for t in ax.clabel(cs, fmt=lambda v: f"{v:g} %", fontsize=8.5):
-                    t.set_path_effects(halo)
+                cs.set(path_effects=[patheffects.withStroke(linewidth=3.0, foreground="black")])
+                for t in ax.clabel(cs, fmt=lambda v: f"{v:g} %", fontsize=8.5, colors="black"):
+                    t.set_path_effects([patheffects.withStroke(linewidth=2.5, foreground="white")])
         ax.set_xscale("log" if _is_geometric(xs) else "linear")
         ax.set_yscale("log" if _is_geometric(ys) else "linear")
         ax.grid(False)
@@ -450,6 +449,9 @@ def validity_map_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]:
         if np.isnan(E).any():
             yy, xx = np.nonzero(np.isnan(E))
             ax.plot(xs[xx], ys[yy], "x", color="0.3", ms=7, mew=1.5)
+            for x_, y_ in zip(xs[xx], ys[yy]):
+                ax.annotate("failed", (x_, y_), xytext=(0, 7), textcoords="offset points", ha="center",
+                            va="bottom", fontsize=7.5, color="0.3")
             missing_note = True
         tot = np.isfinite(E).sum()
         frac = [100.0 * np.sum(E[np.isfinite(E)] < t) / tot for t in THRESHOLDS]
@@ -464,7 +466,7 @@ def validity_map_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]:
     cb = fig.colorbar(mesh, ax=list(axs), shrink=0.95)
     cb.set_label("CC tip position error [% L]")
     if missing_note:
-        fig.text(0.01, 0.005, "× : failed or missing case (excluded)", fontsize=8, color="0.3", va="bottom")
+        texts.append("Blank cells marked × are failed or missing cases (excluded).")
     extra = f" (maximum over {', '.join(short_label(a, study.labels) for a in axes[2:])})" if len(axes) > 2 else ""
     summary = "Validity map: heat map of the tip error, contour lines at 1 %, 5 % and 10 % of L" + extra + ". " + " ".join(texts)
     return [ReportFigure("validity_map", "Validity map of constant curvature", fig, summary)]

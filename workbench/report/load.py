@@ -1,19 +1,26 @@
 """Read a study folder (Parquet part files + ``manifest.json``) into a :class:`Study`.
 
-Manifest convention (written by the study runner; every key is optional here):
+The manifest is ``_manifest.json`` (the study runner's name, ignored by Parquet readers) or
+``manifest.json``.  Conventions (every key is optional here):
 
-- ``manifest["spec"]["name"]`` (or ``manifest["name"]``): study name; default: folder name.
-- ``manifest["spec"]["sweep"]``: the swept axes, either a mapping ``{"load.bend_angle":
-  [...], ...}`` or a list of mappings with a ``"key"``/``"name"``/``"parameter"`` entry.
-  Axis ``k`` is the result column ``p.<k>``.
-- ``manifest["spec"]["report"]`` (optional):
+- the resolved spec is ``manifest["study"]`` (study runner) or ``manifest["spec"]``;
+- study name: ``spec["study"]["name"]``, ``spec["name"]`` or ``manifest["name"]``; default:
+  the folder name;
+- ``spec["sweep"]``: the swept axes: blocks ``{"product": {key: values}, "zip": {...},
+  "cases": [{key: value}, ...], "random": {"n": 4, key: {...}}, ...}``, or directly a mapping
+  ``{key: values}``, or a list of mappings with a ``"key"``/``"name"``/``"parameter"`` entry.
+  Axis ``k`` is the result column ``p.<k>``.  Axes with a dimensionless counterpart are
+  plotted as that group (:data:`DIMENSIONLESS_AXES`): ``load.bend_angle`` -> ``kappaL``,
+  ``derived.gravity_parameter`` -> ``gamma``, ``robot.tendon_offset`` -> ``d_over_L``;
+- ``spec["report"]`` (optional):
   ``axes``: list of column names to plot against instead of the raw sweep axes (may name
   derived columns such as ``gamma``, ``kappaL``, ``d_over_L``);
   ``derived``: ``{name: pandas eval expression}`` extra derived columns;
   ``labels``: ``{column: axis label}``;
   ``reference``: reference model (default ``"cc"``).
-- ``config_hash``, ``versions`` (mapping), ``git_commit``, ``host``, ``start_time``,
-  ``end_time`` (ISO 8601): shown as provenance.
+- provenance: ``config_hash``, ``versions`` (mapping), ``git`` (``{"commit", "dirty"}``) or
+  ``git_commit``, ``runs`` (list of ``{"host", "start", "end", "wall_time"}``) or ``host``,
+  ``start_time``, ``end_time`` (ISO 8601).
 
 Without a usable sweep entry the axes are the numeric ``p.*`` columns that vary.
 """
@@ -30,7 +37,16 @@ import pandas as pd
 
 from ..compare.table import REQUIRED_COLUMNS, add_derived_columns
 
-__all__ = ["Study", "load_study", "sweep_keys"]
+__all__ = ["DIMENSIONLESS_AXES", "MANIFEST_NAMES", "Study", "load_study", "sweep_keys"]
+
+MANIFEST_NAMES = ("_manifest.json", "manifest.json")
+
+#: swept parameter column -> dimensionless column plotted instead (when it exists).
+DIMENSIONLESS_AXES = {
+    "p.load.bend_angle": "kappaL",
+    "p.derived.gravity_parameter": "gamma",
+    "p.robot.tendon_offset": "d_over_L",
+}
 
 
 @dataclass(frozen=True)
@@ -64,8 +80,7 @@ class Study:
 
     @property
     def spec(self) -> Mapping[str, Any]:
-        s = self.manifest.get("spec", {})
-        return s if isinstance(s, Mapping) else {}
+        return _spec_of(self.manifest)
 
     @property
     def failed(self) -> pd.DataFrame:
@@ -78,6 +93,14 @@ class Study:
     @property
     def is_dynamic(self) -> bool:
         return "time" in self.results.columns and self.ok["time"].map(_has_values).any()
+
+
+def _spec_of(manifest: Mapping[str, Any]) -> Mapping[str, Any]:
+    for key in ("study", "spec"):
+        s = manifest.get(key)
+        if isinstance(s, Mapping):
+            return s
+    return {}
 
 
 def _has_values(v: Any) -> bool:
@@ -95,9 +118,16 @@ def sweep_keys(spec: Mapping[str, Any]) -> list[str]:
     keys: list[str] = []
     if isinstance(sw, Mapping):
         for k, v in sw.items():
+            if k == "cases" and isinstance(v, (list, tuple)):
+                for case in v:
+                    if isinstance(case, Mapping):
+                        keys += [str(c) for c in case if str(c) not in keys]
+                continue
+            if k == "n" and not isinstance(v, (list, tuple, Mapping)):
+                continue
             if k in ("mode", "kind", "type", "product", "zip") and not isinstance(v, (list, tuple, Mapping)):
                 continue
-            if isinstance(v, Mapping) and not any(x in v for x in ("values", "start", "stop", "num", "min", "max")):
+            if isinstance(v, Mapping) and not any(x in v for x in ("values", "start", "stop", "num", "min", "max", "low", "high")):
                 # nested axes, e.g. {"axes": {...}} or {"grid": {...}}
                 keys += sweep_keys({"sweep": v})
             else:
@@ -142,20 +172,21 @@ def load_study(data_dir: str | Path) -> Study:
         raise ValueError(f"result table in {path} lacks required column(s) {missing}")
     if "error" not in df.columns:
         df["error"] = ""
-    mpath = path / "manifest.json"
+    mpath = next((path / n for n in MANIFEST_NAMES if (path / n).exists()), None)
     manifest: dict[str, Any] = {}
-    if mpath.exists():
+    if mpath is not None:
         try:
             manifest = json.loads(mpath.read_text())
         except json.JSONDecodeError as exc:
             raise ValueError(f"{mpath} is not valid JSON: {exc}") from exc
         if not isinstance(manifest, dict):
             raise ValueError(f"{mpath} must hold a JSON object, got {type(manifest).__name__}")
-    spec = manifest.get("spec") if isinstance(manifest.get("spec"), Mapping) else {}
+    spec = _spec_of(manifest)
     rep = spec.get("report") if isinstance(spec.get("report"), Mapping) else {}
     derived = dict(rep.get("derived") or {})
     df = add_derived_columns(df, derived)
-    name = str(spec.get("name") or manifest.get("name") or manifest.get("study") or path.name)
+    inner = spec.get("study") if isinstance(spec.get("study"), Mapping) else {}
+    name = str(inner.get("name") or spec.get("name") or manifest.get("name") or path.name)
     ok = df[df["status"].astype(str) == "ok"]
 
     def varies(col: str) -> bool:
@@ -177,6 +208,10 @@ def load_study(data_dir: str | Path) -> Study:
                 axes.append(col)
     if not axes:
         axes = [c for c in df.columns if str(c).startswith("p.") and varies(c)]
+        if len(axes) > 3:  # e.g. random sweeps varying many keys: keep the first three
+            axes = axes[:3]
+    if not rep.get("axes"):
+        axes = [DIMENSIONLESS_AXES[a] if varies(DIMENSIONLESS_AXES.get(a, "")) else a for a in axes]
     models = tuple(dict.fromkeys(df["model"].astype(str)))
     reference = str(rep.get("reference") or "cc")
     labels = {str(k): str(v) for k, v in (rep.get("labels") or {}).items()}
