@@ -163,6 +163,46 @@ def manifest(name, sweep, models, report=None):
     }
 
 
+def write_runner_study(folder: Path) -> Path:
+    """A study folder in the exact layout of the study runner (branch ``study``):
+    ``_manifest.json`` with the resolved spec under ``"study"``, sweep blocks, ``git`` and
+    ``runs``; a zero-row schema part; full ``p.robot.*`` preset parameters per row."""
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    thetas, gammas = [0.5, 1.0, 2.0], [0.0, 1.0, 4.0]
+    robot = {"preset": "steel_rod", "length": L, "n_sections": 2, "tendon_offset": 0.02, "tendon_stiffness": 4.0e4}
+    rows = []
+    for th in thetas:
+        for g in gammas:
+            params = {**{f"robot.{k}": v for k, v in robot.items()}, "load.bend_angle": th, "load.mode": "tension",
+                      "load.tip_force": "[0.0,0.0,0.0]", "derived.gravity_parameter": g}
+            rows += static_rows([params], models=("cc", "ancf"))
+    df = pd.DataFrame(rows)
+    df["robot_gravity"] = 9.81
+    df.iloc[:0].to_parquet(folder / "part-0000000000000000000-schema.parquet")
+    df.to_parquet(folder / "part-1795320381551990903-14418-000000.parquet")
+    man = {
+        "study": {
+            "study": {"name": "runner_layout", "description": "CC vs ANCF on a two-section rod", "seed": 1,
+                      "models": ["cc", "ancf"], "max_cases": 100},
+            "robot": robot, "load": {"mode": "tension", "bend_angle": 1.0}, "solver": {"n_stations": M},
+            "derived": {"gravity_parameter": 0.0},
+            "sweep": {"product": {"load.bend_angle": thetas, "derived.gravity_parameter": gammas}},
+        },
+        "study_file": "studies/runner_layout.toml",
+        "config_hash": "a4720eb391b3b514",
+        "n_cases": 9,
+        "versions": {"python": "3.11.7", "exudyn": "1.13.6", "dask": None},
+        "git": {"commit": "feedfacecafe", "dirty": True},
+        "runs": [
+            {"host": "hostA", "start": "2026-01-01T10:00:00+00:00", "end": "2026-01-01T10:01:00+00:00", "wall_time": 60.0},
+            {"host": "hostB", "start": "2026-01-02T10:00:00+00:00", "end": "2026-01-02T10:00:30+00:00", "wall_time": 30.5},
+        ],
+    }
+    (folder / "_manifest.json").write_text(json.dumps(man, indent=1))
+    return folder
+
+
 def write_study(folder: Path, kind: str) -> Path:
     """Write a synthetic study of ``kind`` in {"1d", "2d", "none", "dynamic", "single", "3d"}."""
     folder = Path(folder)

@@ -169,3 +169,46 @@ def test_missing_folder_and_columns_raise_clear_errors(tmp_path):
     pd.DataFrame({"case_id": ["a"], "status": ["ok"]}).to_parquet(tmp_path / "empty" / "p.parquet")
     with pytest.raises(ValueError, match="model"):
         build_report(tmp_path / "empty")
+
+
+def test_study_runner_layout(tmp_path):
+    from synth_study import write_runner_study
+
+    data = write_runner_study(tmp_path / "data" / "whatever")
+    st = load_study(data)
+    assert st.name == "runner_layout"
+    assert st.axes == ("kappaL", "gamma")  # bend angle and derived.gravity_parameter as groups
+    path = build_report(data, tmp_path / "out", formats=("png",))
+    parsed, text = _parse(path)
+    assert {"shapes", "error_vs_kappaL", "error_vs_gamma", "validity_map"} <= set(parsed.figures)
+    for needle in ("feedfacecafe (uncommitted changes)", "hostA, hostB", "90.5 s over 2 runs", "CC vs ANCF on a two-section rod"):
+        assert needle in text, needle
+    m = pd.read_csv(path.parent / "metrics.csv")
+    # two sections from the steel_rod preset: per-section curvatures, CC value = bend angle / L
+    assert {"kappa_ref_0", "kappa_ref_1"} <= set(m.columns)
+    assert (m["kappa_ref_0"] - m["p.load.bend_angle"] / 0.5).abs().max() < 1e-6
+    assert m["compression_shape"].isna().all()  # tension mode: no virtual-compression split
+
+
+def test_categorical_sweep_axis(tmp_path):
+    """A non-numeric swept parameter (e.g. solver.tendon_model) is plotted with category ticks."""
+    import json
+
+    data = write_study(tmp_path / "d", "1d")
+    df = pd.concat([pd.read_parquet(p) for p in sorted(data.glob("*.parquet"))])
+    other = df.copy()
+    other["case_id"] = other["case_id"] + "b"
+    df["p.solver.tendon_model"], other["p.solver.tendon_model"] = "continuum", "eyelets"
+    for p in data.glob("*.parquet"):
+        p.unlink()
+    pd.concat([df, other]).to_parquet(data / "part-0.parquet")
+    man = json.loads((data / "manifest.json").read_text())
+    man["spec"]["sweep"] = {"solver.tendon_model": ["continuum", "eyelets"], "load.bend_angle": [0.1]}
+    (data / "manifest.json").write_text(json.dumps(man))
+    st = load_study(data)
+    assert st.categories == {"p.solver.tendon_model": ("continuum", "eyelets")}
+    path = build_report(data, tmp_path / "out", formats=("png",))
+    parsed, text = _parse(path)
+    assert {"error_vs_solver_tendon_model", "error_vs_kappaL", "validity_map"} <= set(parsed.figures)
+    cap = parsed.captions[parsed.figures.index("error_vs_solver_tendon_model")]
+    assert "continuum" in cap and "eyelets" in cap

@@ -50,6 +50,7 @@ __all__ = [
     "ok_rows",
     "add_derived_columns",
     "compare_table",
+    "section_ends_from_row",
 ]
 
 REQUIRED_COLUMNS = ("case_id", "model", "status")
@@ -182,6 +183,41 @@ def add_derived_columns(df: pd.DataFrame, derived: Mapping[str, str] | None = No
     return out
 
 
+def section_ends_from_row(row: Mapping[str, Any]) -> np.ndarray | None:
+    """Reference section ends [m] of a result row, or ``None`` when unknown.
+
+    From a ``section_ends`` list column if present; else by rebuilding the robot preset named
+    in ``p.robot.preset`` with the row's ``p.robot.*`` parameters (JSON strings decoded;
+    parameters the preset does not take are ignored).  Any failure gives ``None``.
+    """
+    ends = array_cell(row.get("section_ends"))
+    if ends is not None:
+        return ends
+    name = row.get("p.robot.preset")
+    if not isinstance(name, str) or not name:
+        return None
+    try:
+        import json
+
+        from ..robot.presets import build_preset, preset_parameters
+
+        known = preset_parameters(name)
+        params = {}
+        for k, v in row.items():
+            key = str(k)
+            if key.startswith("p.robot.") and key[len("p.robot."):] in known:
+                if isinstance(v, str) and v[:1] in "[{":
+                    v = json.loads(v)
+                if v is None or (isinstance(v, float) and np.isnan(v)):
+                    continue
+                if isinstance(v, np.generic):
+                    v = v.item()
+                params[key[len("p.robot."):]] = v
+        return np.asarray(build_preset(name, **params).section_ends, dtype=float)
+    except Exception:  # unknown preset, changed signature, invalid values: fall back
+        return None
+
+
 def _pair_metrics(ref: Mapping[str, Any], row: Mapping[str, Any], section_ends, cc_reference: bool) -> dict[str, float]:
     L = float(ref.get("robot_length", np.nan))
     if not np.isfinite(L) or L <= 0:
@@ -199,8 +235,8 @@ def _pair_metrics(ref: Mapping[str, Any], row: Mapping[str, Any], section_ends, 
         m["shape_error_max_pct"], m["shape_error_rms_pct"] = 100 * mx / L, 100 * rms / L
         ends = section_ends
         if ends is None:
-            ends = array_cell(ref.get("section_ends"))
-        if ends is None:
+            ends = section_ends_from_row(ref)
+        if ends is None or abs(ends[-1] - ba[0][-1]) > 1e-6 * max(ba[0][-1], 1e-12):
             ends = np.array([ba[0][-1]])
         ka = section_curvatures(ba[0], ba[1], ends)
         kb = section_curvatures(bb[0], bb[1], ends)
@@ -298,8 +334,8 @@ def compare_table(
         of appearance as the reference of the pair.
     section_ends : sequence of float, optional
         Reference arc lengths of the section ends [m] for the per-section curvature fit;
-        default: the ``section_ends`` column of the reference row if present, else one
-        section spanning the robot.
+        default: :func:`section_ends_from_row` of the reference row, else one section
+        spanning the robot.
     derived : mapping, optional
         Extra derived columns (see :func:`add_derived_columns`).
 

@@ -18,6 +18,7 @@ from ..compare.table import compare_table
 from .figures import (
     STYLE,
     ReportFigure,
+    code_categories,
     compression_split_figures,
     error_vs_parameter_figures,
     fmt,
@@ -177,7 +178,7 @@ def build_report(data_dir: str | Path, out_dir: str | Path | None = None, *, for
 
     sections = []
     with matplotlib.rc_context(STYLE):
-        figs = _all_figures(study, cmp)
+        figs = _all_figures(study, code_categories(study, cmp))
         for f in figs:
             buf = io.BytesIO()
             f.figure.savefig(buf, format="png", metadata=_PNG_META)
@@ -208,6 +209,7 @@ def _page(study: Study, cmp, summary, failed, fcols, sections, fig_names) -> str
     models = ", ".join(model_label(m) for m in study.models) or "none"
     if study.axes:
         swept = ", ".join(
+            f"{short_label(a, study.labels)} ({', '.join(study.categories[a])})" if a in study.categories else
             f"{short_label(a, study.labels)} ({fmt(np.nanmin(numeric(ok[a])))} … {fmt(np.nanmax(numeric(ok[a])))}, "
             f"{pd.Series(numeric(ok[a])).nunique()} values)"
             for a in study.axes

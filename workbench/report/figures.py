@@ -128,6 +128,8 @@ def fmt(x: float) -> str:
         return "n/a"
     if x == 0:
         return "0"
+    if float(x).is_integer() and abs(x) < 1e4:
+        return str(int(x))
     a = abs(x)
     if a >= 1e4 or a < 1e-3:
         return f"{x:.2e}"
@@ -160,7 +162,8 @@ def _ref_pairs(cmp: pd.DataFrame, reference: str) -> list[tuple[str, str]]:
 
 
 def _case_title(row: Mapping[str, Any], axes: Sequence[str], labels) -> str:
-    parts = [f"{short_label(a, labels)} = {fmt(float(row[a]))}" for a in axes[:3] if a in row and _isnum(row[a])]
+    parts = [f"{short_label(a, labels)} = {fmt(float(row[a])) if _isnum(row[a]) else row[a]}"
+             for a in axes[:3] if a in row and row[a] is not None]
     return ", ".join(parts) if parts else f"case {str(row.get('case_id', ''))[:8]}"
 
 
@@ -279,10 +282,14 @@ def shape_overlay_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]
 # --------------------------------------------------------------------------------------
 # error vs swept parameter
 # --------------------------------------------------------------------------------------
-def _below_statement(x: np.ndarray, err: np.ndarray, xname: str, what: str) -> str:
-    """'stays below 1 % of L for x <= a' style statement (x sorted ascending)."""
+def _below_statement(x: np.ndarray, err: np.ndarray, xname: str, what: str, cats: Sequence[str] | None = None) -> str:
+    """'stays below 1 % of L for x <= a' style statement (x sorted ascending).
+
+    For a categorical axis (``cats``: names of the codes in ``x``) the errors are listed."""
     order = np.argsort(x)
     x, err = x[order], err[order]
+    if cats:
+        return f"{what}: " + ", ".join(f"{cats[int(c)]} {fmt(e)} % of L" for c, e in zip(x, err)) + "."
     parts = []
     for t in THRESHOLDS:
         below = err < t
@@ -330,7 +337,8 @@ def error_vs_parameter_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFi
                 allv.append(y)
                 if col == "tip_error_pct" and is_ref and np.isfinite(y).any():
                     good = np.isfinite(y)
-                    texts.append(_below_statement(x[good], y[good], short_label(a, study.labels), f"{pair_label(ref, m)}: tip error"))
+                    texts.append(_below_statement(x[good], y[good], short_label(a, study.labels), f"{pair_label(ref, m)}: tip error",
+                                                  study.categories.get(a)))
             v = np.concatenate(allv) if allv else np.array([])
             if _log_worthy(v):
                 ax.set_yscale("log")
@@ -339,6 +347,7 @@ def error_vs_parameter_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFi
             if _is_geometric(numeric(cmp[a])):
                 ax.set_xscale("log")
             ax.set_xlabel(axis_label(a, study.labels))
+            _category_ticks(ax, study, a, "x")
             ax.set_ylabel(lab)
         axs[0].legend(frameon=False)
         out.append(ReportFigure(f"error_vs_{_slug(a)}", f"Errors vs {short_label(a, study.labels)}", fig,
@@ -367,6 +376,7 @@ def error_vs_parameter_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFi
                 allv.append(gg["_e"].to_numpy())
             ax.set_title(pair_label(ref, m))
             ax.set_xlabel(axis_label(x_ax, study.labels))
+            _category_ticks(ax, study, x_ax, "x")
             if _is_geometric(numeric(cmp[x_ax])):
                 ax.set_xscale("log")
         v = np.concatenate(allv) if allv else np.array([])
@@ -382,6 +392,8 @@ def error_vs_parameter_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFi
 
         cb = fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=list(axs), shrink=0.9)
         cb.set_label(axis_label(c_ax, study.labels))
+        if c_ax in study.categories:
+            cb.set_ticks(range(len(study.categories[c_ax])), labels=study.categories[c_ax])
         texts = []
         for ref, m in main:
             sub = cmp[(cmp["reference"] == ref) & (cmp["model"] == m)]
@@ -390,11 +402,37 @@ def error_vs_parameter_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFi
             x, y = numeric(s2[x_ax]), numeric(s2["tip_error_pct"])
             good = np.isfinite(x) & np.isfinite(y)
             if good.any():
+                lo_txt = study.categories[c_ax][int(lo_c)] if c_ax in study.categories else fmt(lo_c)
                 texts.append(_below_statement(x[good], y[good], short_label(x_ax, study.labels),
-                                              f"{pair_label(ref, m)} at the smallest {short_label(c_ax, study.labels)} = {fmt(lo_c)}: tip error"))
+                                              f"{pair_label(ref, m)} at {short_label(c_ax, study.labels)} = {lo_txt}: tip error",
+                                              study.categories.get(x_ax)))
         summary = (f"Tip error vs {short_label(x_ax, study.labels)}, one line per value of "
                    f"{short_label(c_ax, study.labels)} (colour); dotted lines at 1, 5, 10 % of L. " + " ".join(texts))
         out.append(ReportFigure(f"error_vs_{_slug(x_ax)}", f"Tip error vs {short_label(x_ax, study.labels)}", fig, summary))
+    return out
+
+
+def _val(study: Study, col: str, v: float) -> str:
+    """A plotted axis value as text (category name for categorical axes)."""
+    cats = study.categories.get(col)
+    if cats and np.isfinite(v) and 0 <= int(v) < len(cats):
+        return cats[int(v)]
+    return fmt(v)
+
+
+def _category_ticks(ax, study: Study, col: str, which: str) -> None:
+    """Label a categorical axis (values coded 0..n-1 by :func:`code_categories`)."""
+    cats = study.categories.get(col)
+    if cats:
+        getattr(ax, f"set_{which}ticks")(range(len(cats)), cats)
+
+
+def code_categories(study: Study, table: pd.DataFrame) -> pd.DataFrame:
+    """Copy of ``table`` with the categorical axes replaced by their codes 0..n-1."""
+    out = table.copy()
+    for col, cats in study.categories.items():
+        if col in out:
+            out[col] = out[col].astype(str).map({c: i for i, c in enumerate(cats)}).astype(float)
     return out
 
 
@@ -444,6 +482,8 @@ def validity_map_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]:
         ax.set_yscale("log" if _is_geometric(ys) else "linear")
         ax.grid(False)
         ax.set_xlabel(axis_label(a0, study.labels))
+        _category_ticks(ax, study, a0, "x")
+        _category_ticks(ax, study, a1, "y")
         ax.set_title(pair_label(ref, m))
         # failed / missing grid cells
         if np.isnan(E).any():
@@ -459,8 +499,8 @@ def validity_map_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]:
         texts.append(
             f"{pair_label(ref, m)}: CC tip error is below 1 % of L in {fmt(frac[0])} % of the {tot} swept points, "
             f"below 5 % in {fmt(frac[1])} %, below 10 % in {fmt(frac[2])} %; worst {fmt(E[iy, ix])} % at "
-            f"{short_label(a0, study.labels)} = {fmt(xs[ix])}, {short_label(a1, study.labels)} = {fmt(ys[iy])}."
-            + _region_statement(xs, ys, E, a0, a1, study.labels)
+            f"{short_label(a0, study.labels)} = {_val(study, a0, xs[ix])}, {short_label(a1, study.labels)} = {_val(study, a1, ys[iy])}."
+            + _region_statement(xs, ys, E, a0, a1, study)
         )
     axs[0].set_ylabel(axis_label(a1, study.labels))
     cb = fig.colorbar(mesh, ax=list(axs), shrink=0.95)
@@ -472,8 +512,11 @@ def validity_map_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]:
     return [ReportFigure("validity_map", "Validity map of constant curvature", fig, summary)]
 
 
-def _region_statement(xs, ys, E, a0, a1, labels) -> str:
+def _region_statement(xs, ys, E, a0, a1, study: Study) -> str:
     """'below 1 % for all y when x <= ...' from the full-column criterion."""
+    labels = study.labels
+    if a0 in study.categories or a1 in study.categories:
+        return ""
     col_ok = np.all(np.where(np.isfinite(E), E < THRESHOLDS[0], True), axis=0)
     if col_ok.any() and not col_ok.all() and col_ok[0]:
         k = int(np.argmin(col_ok))

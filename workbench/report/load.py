@@ -77,6 +77,8 @@ class Study:
     models: tuple[str, ...]
     derived: Mapping[str, str] = field(default_factory=dict)
     labels: Mapping[str, str] = field(default_factory=dict)
+    categories: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
+    """Non-numeric swept axes (e.g. ``solver.tendon_model``) -> their values, in plot order."""
 
     @property
     def spec(self) -> Mapping[str, Any]:
@@ -195,6 +197,11 @@ def load_study(data_dir: str | Path) -> Study:
         v = pd.to_numeric(ok[col], errors="coerce").dropna()
         return v.nunique() > 1
 
+    def varies_categorical(col: str) -> bool:
+        if col not in df.columns or not pd.to_numeric(ok[col], errors="coerce").isna().all():
+            return False
+        return ok[col].dropna().astype(str).nunique() > 1
+
     axes: list[str] = []
     for a in rep.get("axes") or []:
         if str(a) in df.columns and varies(str(a)):
@@ -204,7 +211,7 @@ def load_study(data_dir: str | Path) -> Study:
     if not axes:
         for k in sweep_keys(spec):
             col = k if k in df.columns else f"p.{k}"
-            if varies(col):
+            if varies(col) or varies_categorical(col):
                 axes.append(col)
     if not axes:
         axes = [c for c in df.columns if str(c).startswith("p.") and varies(c)]
@@ -212,6 +219,7 @@ def load_study(data_dir: str | Path) -> Study:
             axes = axes[:3]
     if not rep.get("axes"):
         axes = [DIMENSIONLESS_AXES[a] if varies(DIMENSIONLESS_AXES.get(a, "")) else a for a in axes]
+    categories = {a: tuple(sorted(ok[a].dropna().astype(str).unique())) for a in axes if varies_categorical(a)}
     models = tuple(dict.fromkeys(df["model"].astype(str)))
     reference = str(rep.get("reference") or "cc")
     labels = {str(k): str(v) for k, v in (rep.get("labels") or {}).items()}
@@ -225,6 +233,7 @@ def load_study(data_dir: str | Path) -> Study:
         models=models,
         derived=derived,
         labels=labels,
+        categories=categories,
     )
 
 
