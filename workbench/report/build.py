@@ -116,7 +116,7 @@ def _summary_table(cmp: pd.DataFrame) -> pd.DataFrame:
             "max tip error [mm]": 1e3 * float(np.nanmax(numeric(g["tip_error"]))) if np.isfinite(e).any() else np.nan,
             "max orientation error [deg]": float(np.nanmax(numeric(g["orientation_error_deg"]))) if g["orientation_error_deg"].notna().any() else np.nan,
             "max RMS shape error [% L]": float(np.nanmax(numeric(g["shape_error_rms_pct"]))) if "shape_error_rms_pct" in g and g["shape_error_rms_pct"].notna().any() else np.nan,
-            "median wall time ratio": float(np.nanmedian(numeric(g["wall_time"]) / numeric(g["wall_time_ref"]))) if g["wall_time_ref"].notna().any() else np.nan,
+            "median wall-time ratio (model / reference)": float(np.nanmedian(numeric(g["wall_time"]) / numeric(g["wall_time_ref"]))) if g["wall_time_ref"].notna().any() else np.nan,
         })
     return pd.DataFrame(rows)
 

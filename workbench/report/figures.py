@@ -232,16 +232,20 @@ def shape_overlay_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]
     for j, (cid, row0, per) in enumerate(data):
         for i, (a, b, la, lb) in enumerate(views):
             ax = axs[i, j]
+            phys = [x for x in models if x != study.reference]
             for m in models:
                 if m not in per:
                     continue
                 p = per[m]
                 ref = m == study.reference
+                # physics models drawn thick-to-thin so coinciding backbones stay visible
+                lw = 2.2 if ref else max(3.2 - 1.0 * phys.index(m), 1.0)
                 ax.plot(
                     p[:, a], p[:, b],
                     color=model_color(m, models),
                     ls="--" if ref else "-",
-                    lw=2.2 if ref else 1.6,
+                    lw=lw,
+                    alpha=1.0 if ref else 0.85,
                     marker=None if p.shape[0] > 12 else "o",
                     ms=3,
                     label=model_label(m),
