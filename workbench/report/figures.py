@@ -613,7 +613,8 @@ def time_series_figures(study: Study, cmp: pd.DataFrame, max_cases: int = 2) -> 
                 ax.set_ylabel(_SERIES_LABELS.get(name, name))
                 ax.set_title(_SERIES_TITLES.get(name, name.replace("_", " ")))
             ax.set_xlabel("time [s]")
-            ax.legend(frameon=False, fontsize=7.5)
+            if ax.get_legend_handles_labels()[0]:
+                ax.legend(frameon=False, fontsize=7.5)
         for ax in axs[len(panels):]:
             ax.set_visible(False)
         row0 = next(iter(rows.values()))
