@@ -539,10 +539,11 @@ def _region_statement(xs, ys, E, a0, a1, study: Study) -> str:
 # --------------------------------------------------------------------------------------
 _SERIES_LABELS = {
     "tip_position": "tip position [m]",
-    "tendon_lengths": "tendon length change [m]",
+    "tendon_lengths": "tendon length change [mm]",
     "tendon_tensions": "tendon tension [N]",
-    "length_change": "backbone length change [m]",
+    "length_change": "backbone length change [mm]",
 }
+_MM_SERIES = {"tendon_lengths", "length_change"}
 
 
 _SERIES_TITLES = {"length_change": "backbone length change (compression < 0)"}
@@ -561,17 +562,19 @@ def time_series_figures(study: Study, cmp: pd.DataFrame, max_cases: int = 2) -> 
         return []
     ok = study.ok
     dyn = ok[ok["time"].map(lambda v: array_cell(v) is not None)]
-    names = [c[len("series."):] for c in dyn.columns if str(c).startswith("series.")]
+    names = [c[len("series."):] for c in dyn.columns
+             if str(c).startswith("series.") and dyn[c].map(lambda v: array_cell(v) is not None).any()]
     order = ["tendon_lengths", "tendon_tensions", "length_change"]
+    has_tip = "tip_position" in names
     names = [n for n in order if n in names] + [n for n in names if n not in order and n != "tip_position"]
-    has_tip = "series.tip_position" in dyn.columns
     case_ids = list(dict.fromkeys(dyn.sort_values(list(study.axes)) ["case_id"])) if study.axes else list(dict.fromkeys(dyn["case_id"]))
     if len(case_ids) > max_cases:
         case_ids = [case_ids[0], case_ids[-1]]
     out = []
     for cid in case_ids:
         rows = {str(r["model"]): r.to_dict() for _, r in dyn[dyn["case_id"] == cid].iterrows()}
-        panels = list(names) + (["tip_error"] if has_tip and study.reference in rows and len(rows) > 1 else [])
+        tip_err = has_tip and study.reference in rows and len(rows) > 1
+        panels = [n for n in names if n != "tip_position"] + (["tip_error"] if tip_err else ["tip_position"] if has_tip else [])
         if not panels:
             continue
         ncol = min(2, len(panels))
@@ -602,14 +605,17 @@ def time_series_figures(study: Study, cmp: pd.DataFrame, max_cases: int = 2) -> 
                     if s is None:
                         continue
                     t, v = s
+                    if name in _MM_SERIES:
+                        v = 1e3 * v
                     styles = ["-", "--", ":", "-."]
+                    comp = ("x", "y", "z") if name == "tip_position" and v.shape[1] == 3 else None
                     for k in range(v.shape[1]):
                         ax.plot(t, v[:, k], color=model_color(m, study.models), ls=styles[k % 4],
                                 lw=2.0 if m == study.reference else 1.5,
-                                label=model_label(m) + (f" #{k}" if v.shape[1] > 1 else ""))
+                                label=model_label(m) + (f" {comp[k]}" if comp else f" #{k}" if v.shape[1] > 1 else ""))
                     if name == "length_change":
                         L = float(r.get("robot_length", np.nan))
-                        texts.append(f"{model_label(m)}: final backbone length change {fmt(1e3 * v[-1, 0])} mm ({fmt(100 * v[-1, 0] / L)} % of L).")
+                        texts.append(f"{model_label(m)}: final backbone length change {fmt(v[-1, 0])} mm ({fmt(0.1 * v[-1, 0] / L)} % of L).")
                 ax.set_ylabel(_SERIES_LABELS.get(name, name))
                 ax.set_title(_SERIES_TITLES.get(name, name.replace("_", " ")))
             ax.set_xlabel("time [s]")
