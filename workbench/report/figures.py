@@ -201,6 +201,9 @@ def _representative_cases(study: Study, cmp: pd.DataFrame) -> tuple[list[str], s
     return picks, how
 
 
+_PHYS_STYLES = [(5.0, 0.4, "-"), (1.8, 1.0, "-"), (1.5, 1.0, (0, (5, 2))), (1.3, 1.0, ":")]
+
+
 def shape_overlay_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]:
     ok = study.ok
     ids, how = _representative_cases(study, cmp)
@@ -224,11 +227,15 @@ def shape_overlay_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]
     spatial = bool(np.nanmax(np.abs(allpts[:, 1])) > 1e-6 * max(L, 1e-12))
     views = [(0, 2, "x [m]", "z [m]")] + ([(1, 2, "y [m]", "z [m]")] if spatial else [])
     ncol = len(data)
-    fig = Figure(figsize=(3.3 * ncol + 0.6, 3.6 * len(views) + 0.3), layout="constrained")
-    axs = np.atleast_2d(fig.subplots(len(views), ncol, squeeze=False))
-    lo = allpts.min(axis=0)
-    hi = allpts.max(axis=0)
+    lo = np.minimum(allpts.min(axis=0), 0.0)
+    hi = np.maximum(allpts.max(axis=0), 0.0)
     pad = 0.06 * max(float(np.max(hi - lo)), 1e-9)
+    # panel width from the data aspect ratio (equal axis scaling without wasted space)
+    aspect = max((hi[a] - lo[a] + 2 * pad) / (hi[b] - lo[b] + 2 * pad) for a, b, _, _ in views)
+    panel_h = 3.2
+    panel_w = float(np.clip(panel_h * aspect + 0.7, 2.2, 5.5))
+    fig = Figure(figsize=(panel_w * ncol + 0.4, (panel_h + 0.5) * len(views) + 0.4), layout="constrained")
+    axs = np.atleast_2d(fig.subplots(len(views), ncol, squeeze=False))
     for j, (cid, row0, per) in enumerate(data):
         for i, (a, b, la, lb) in enumerate(views):
             ax = axs[i, j]
@@ -238,14 +245,14 @@ def shape_overlay_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]
                     continue
                 p = per[m]
                 ref = m == study.reference
-                # physics models drawn thick-to-thin so coinciding backbones stay visible
-                lw = 2.2 if ref else max(3.2 - 1.0 * phys.index(m), 1.0)
+                # physics models drawn thick-and-light to thin so coinciding backbones stay visible
+                lw, alpha, ls = (2.0, 1.0, "--") if ref else _PHYS_STYLES[phys.index(m) % len(_PHYS_STYLES)]
                 ax.plot(
                     p[:, a], p[:, b],
                     color=model_color(m, models),
-                    ls="--" if ref else "-",
+                    ls=ls,
                     lw=lw,
-                    alpha=1.0 if ref else 0.85,
+                    alpha=alpha,
                     marker=None if p.shape[0] > 12 else "o",
                     ms=3,
                     label=model_label(m),
@@ -253,8 +260,8 @@ def shape_overlay_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]
                 )
                 ax.plot(p[-1, a], p[-1, b], "o", color=model_color(m, models), ms=4, zorder=4)
             ax.plot([0], [0], marker="s", color="0.4", ms=5)
-            ax.set_xlim(min(lo[a], 0) - pad, max(hi[a], 0) + pad)
-            ax.set_ylim(min(lo[b], 0) - pad, max(hi[b], 0) + pad)
+            ax.set_xlim(lo[a] - pad, hi[a] + pad)
+            ax.set_ylim(lo[b] - pad, hi[b] + pad)
             ax.set_aspect("equal", adjustable="box")
             ax.set_xlabel(la)
             if j == 0:
@@ -410,8 +417,10 @@ def error_vs_parameter_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFi
                 texts.append(_below_statement(x[good], y[good], short_label(x_ax, study.labels),
                                               f"{pair_label(ref, m)} at {short_label(c_ax, study.labels)} = {lo_txt}: tip error",
                                               study.categories.get(x_ax)))
+        rest = [short_label(a, study.labels) for a in axes[2:]]
+        worst = f" (worst case over {', '.join(rest)})" if rest else ""
         summary = (f"Tip error vs {short_label(x_ax, study.labels)}, one line per value of "
-                   f"{short_label(c_ax, study.labels)} (colour); dotted lines at 1, 5, 10 % of L. " + " ".join(texts))
+                   f"{short_label(c_ax, study.labels)} (colour){worst}; dotted lines at 1, 5, 10 % of L. " + " ".join(texts))
         out.append(ReportFigure(f"error_vs_{_slug(x_ax)}", f"Tip error vs {short_label(x_ax, study.labels)}", fig, summary))
     return out
 
