@@ -323,6 +323,7 @@ class _System:
                         markerNumbers=[prev, m], stiffness=0.0, damping=0.0, force=0.0, referenceLength=0.0)))
                     prev = m
                 self.segments.append(segs)
+        self.quad = geo.gauss_points(sn, 6)
         self._T = np.full(nt, np.nan)
         self._ext = np.nan
         mbs.Assemble()
@@ -377,15 +378,18 @@ class _System:
         """Tendon path lengths ``(..., n_tendons)`` for absolute node coordinates ``qn``."""
         pb = self.pb
         out = []
+        el_len = th = None
         for td in pb.tendons:
             if self.tendon_model == "continuum" and td.d0 == td.d1:
                 # constant offset: (r + y n)' = (|r'| - y theta') t, so l = int |r'| - y (theta_e - theta_0)
+                if el_len is None:
+                    el_len = geo.element_lengths(qn, pb.s_nodes, quad=self.quad)
+                    th = np.unwrap(np.arctan2(qn[..., 3], qn[..., 2]), axis=-1)
                 k = int(np.argmin(np.abs(pb.s_nodes - td.end)))
-                arc = geo.arc_length(qn[..., : k + 1, :], pb.s_nodes[: k + 1])
-                th = np.unwrap(np.arctan2(qn[..., : k + 1, 3], qn[..., : k + 1, 2]), axis=-1)
-                out.append(arc - float(td.y(0.0)) * (th[..., -1] - th[..., 0]))
+                arc = el_len[..., :k].sum(axis=-1)
+                out.append(arc - float(td.y(0.0)) * (th[..., k] - th[..., 0]))
             elif self.tendon_model == "continuum":
-                out.append(geo.offset_curve_length(qn, pb.s_nodes, td.end, td.y, td.dy))
+                out.append(geo.offset_curve_length(qn, pb.s_nodes, td.end, td.y, td.dy, quad=self.quad))
             else:
                 st = np.array(td.eyelets)
                 pts = geo.offset_points(qn, pb.s_nodes, st, td.y(st))
@@ -570,7 +574,7 @@ def run(
             T, tendon_it, q, times, series = _dynamic(sysm, drv, load, options, initial_state)
     qn = sysm.node_coords(q)
     pos, tang = _frame_and_positions(sysm, qn, stations)
-    length_change = float(geo.arc_length(qn, pb.s_nodes)) - pb.L
+    length_change = float(geo.arc_length(qn, pb.s_nodes, quad=sysm.quad)) - pb.L
     wall = _time.perf_counter() - t_wall
     return PhysicsResult(
         model="ancf",
@@ -666,6 +670,6 @@ def _dynamic(sysm: _System, drv: _StaticDriver, load: LoadCase, options: SolverO
     series = {
         "tip_position": tip[:, 0, :],
         "tendon_tensions": Ts,
-        "length_change": geo.arc_length(qn, pb.s_nodes) - pb.L,
+        "length_change": geo.arc_length(qn, pb.s_nodes, quad=sysm.quad) - pb.L,
     }
     return T_final, tendon_it, q_end, times, series
