@@ -394,3 +394,41 @@ def test_wrong_number_of_commands_rejected():
 
     with pytest.raises(RobotDescriptionError, match="tendons"):
         run(rod(tendons=TWO), LoadCase(actuation=TendonActuation("tension", (1.0, 2.0, 3.0))), opts(4))
+
+
+def test_solver_failure_becomes_model_failure(monkeypatch):
+    import exudyn as exu
+
+    from workbench.physics import ancf
+
+    def always_fails(self):
+        raise exu.SolverError("synthetic non-convergence")
+
+    monkeypatch.setattr(ancf._StaticDriver, "_solve", always_fails)
+    with pytest.raises(ModelFailure, match="synthetic non-convergence"):
+        run(rod(), LoadCase(tip_force=(1.0, 0, 0)), opts(4, max_load_steps=500))
+    with pytest.raises(ModelFailure, match="max_load_steps=3"):
+        run(rod(), LoadCase(tip_force=(1.0, 0, 0)), opts(4, max_load_steps=3))
+
+
+def test_implausible_states_rejected():
+    from workbench.physics._exudyn import quiet_exudyn
+    from workbench.physics.ancf import _check_state
+
+    with quiet_exudyn():
+        pb = _problem(rod(), LoadCase(), opts(4))
+        sysm = _System(pb, opts(4), "continuum", 0.0)
+    q = sysm.coords().copy()
+    _check_state(sysm, q)  # the reference state is fine
+    bad = q.copy()
+    bad[5] = np.nan
+    with pytest.raises(ModelFailure, match="non-finite"):
+        _check_state(sysm, bad)
+    bad = q.copy()
+    bad[6] = 2.0  # x-slope of node 1: 200 % stretch
+    with pytest.raises(ModelFailure, match="stretch"):
+        _check_state(sysm, bad)
+    bad = q.copy()
+    bad[-4] = 3.0 * L
+    with pytest.raises(ModelFailure, match="2 L"):
+        _check_state(sysm, bad)
