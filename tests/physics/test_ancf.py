@@ -432,3 +432,21 @@ def test_implausible_states_rejected():
     bad[-4] = 3.0 * L
     with pytest.raises(ModelFailure, match="2 L"):
         _check_state(sysm, bad)
+
+
+def test_first_frequency_with_tip_payload():
+    # clamped-free beam with tip mass m: 1 + cos b cosh b + r b (cos b sinh b - sin b cosh b) = 0,
+    # r = m / (rho A L), f = b^2 sqrt(EI / (rho A L^4)) / (2 pi)   (e.g. Blevins, Formulas for
+    # Natural Frequency and Mode Shape, table 8-1)
+    from scipy.optimize import brentq
+
+    m = 0.1
+    mu = STEEL.mass_per_length
+    ratio = m / (mu * L)
+    b = brentq(lambda b: 1 + math.cos(b) * math.cosh(b) + ratio * b * (math.cos(b) * math.sinh(b)
+                                                                       - math.sin(b) * math.cosh(b)), 0.5, 1.875)
+    f_exact = b**2 * math.sqrt(EI / (mu * L**4)) / (2 * math.pi)
+    res = run(rod(payload=m), LoadCase(tip_force=(1.0, 0, 0), analysis="dynamic", duration=2.0),
+              opts(16, time_step=1e-3), initial_state="reference")
+    f = _frequency(res.time, res.series["tip_position"][:, 0])
+    assert abs(f / f_exact - 1) <= 0.01, (f, f_exact)

@@ -35,7 +35,11 @@ curvature ``kappa_0 = sum_i T_i y_i cos(alpha_i) / EI`` and reference axial stra
 ``eps_0 = -sum_i T_i cos(alpha_i) / EA`` over the elements the tendon passes (elastic
 moment ``EI (kappa - kappa_0)``, axial force ``EA (eps - eps_0)``).  Exact for constant
 offsets; a tapered offset is sampled at element midpoints (O(h^2)) and ``alpha`` is
-taken in the reference configuration.
+taken in the reference configuration.  A tendon's offset varies linearly along its whole
+routed length ``[0, end]`` from ``TendonGroup.offset`` (base plate) to
+``TendonGroup.offset_tip`` (terminating disk) -- for a single section this is
+``TendonGroup.offset_at``; for tendons of later sections it is this model's reading of the
+description (which only defines the offset over the group's own section).
 
 ``"eyelets"``: one frictionless rope per tendon, anchored on the base plate at ``(0, y)``
 and passing through eyelets at every disk of the sections it crosses (rigid markers at
