@@ -30,14 +30,14 @@ def _robot():
 
 def _reeving_equilibrium(robot, load, options):
     import exudyn as exu
-    from exudyn.itemInterface import MarkerBodyRigid, ObjectConnectorReevingSystemSprings
+    from exudyn.itemInterface import MarkerBodyRigid, ObjectConnectorReevingSystemSprings, ObjectGround
 
     pb = _problem(robot, load, options)
     act = load.actuation
     with quiet_exudyn():
         sysm = _System(pb, options, "continuum", 0.0)  # plain rod: tendon curvature stays 0
         mbs = sysm.mbs
-        ground = mbs.AddObject(__import__("exudyn.itemInterface", fromlist=["ObjectGround"]).ObjectGround())
+        ground = mbs.AddObject(ObjectGround())
         ropes, l0s = [], []
         lref = sysm.reference_path_lengths()
         l0 = tendon_rest_lengths(lref, act.values, act.pretension, [t.EAt for t in pb.tendons])

@@ -297,7 +297,7 @@ class _System:
         tipm = mbs.AddMarker(MarkerNodePosition(nodeNumber=self.nodes[-1]))
         self.payload_load = None
         if pb.payload > 0:
-            mbs.AddObject(ObjectMassPoint2D(nodeNumber=self.nodes[-1], physicsMass=pb.payload))
+            mbs.AddObject(ObjectMassPoint2D(nodeNumber=self.nodes[-1], mass=pb.payload))
             if np.any(pb.gravity != 0):
                 self.payload_load = mbs.AddLoad(LoadForceVector(markerNumber=tipm, loadVector=[0, 0, 0]))
         self.force_load = None
