@@ -676,7 +676,8 @@ def _dynamic(sysm: _System, drv: _StaticDriver, load: LoadCase, options: SolverO
 
     mbs.SetPreStepUserFunction(pre_step)
     try:
-        mbs.SolveDynamic(settings, solverType=exu.DynamicSolverType.GeneralizedAlpha)
+        mbs.SolveDynamic(settings, solverType=exu.DynamicSolverType.GeneralizedAlpha, storeSolver=True)
+        drv.newton += int(mbs.sys["dynamicSolver"].it.newtonStepsCount)
     except exu.SolverError as err:
         hint = (" (length-controlled tendons are coupled explicitly: stiff tendons need a smaller "
                 "options.time_step)") if length_mode else ""
