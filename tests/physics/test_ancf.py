@@ -394,3 +394,81 @@ def test_wrong_number_of_commands_rejected():
 
     with pytest.raises(RobotDescriptionError, match="tendons"):
         run(rod(tendons=TWO), LoadCase(actuation=TendonActuation("tension", (1.0, 2.0, 3.0))), opts(4))
+
+
+def test_solver_failure_becomes_model_failure(monkeypatch):
+    import exudyn as exu
+
+    from workbench.physics import ancf
+
+    def always_fails(self):
+        raise exu.SolverError("synthetic non-convergence")
+
+    monkeypatch.setattr(ancf._StaticDriver, "_solve", always_fails)
+    with pytest.raises(ModelFailure, match="synthetic non-convergence"):
+        run(rod(), LoadCase(tip_force=(1.0, 0, 0)), opts(4, max_load_steps=500))
+    with pytest.raises(ModelFailure, match="max_load_steps=3"):
+        run(rod(), LoadCase(tip_force=(1.0, 0, 0)), opts(4, max_load_steps=3))
+
+
+def test_implausible_states_rejected():
+    from workbench.physics._exudyn import quiet_exudyn
+    from workbench.physics.ancf import _check_state
+
+    with quiet_exudyn():
+        pb = _problem(rod(), LoadCase(), opts(4))
+        sysm = _System(pb, opts(4), "continuum", 0.0)
+    q = sysm.coords().copy()
+    _check_state(sysm, q)  # the reference state is fine
+    bad = q.copy()
+    bad[5] = np.nan
+    with pytest.raises(ModelFailure, match="non-finite"):
+        _check_state(sysm, bad)
+    bad = q.copy()
+    bad[6] = 2.0  # x-slope of node 1: 200 % stretch
+    with pytest.raises(ModelFailure, match="stretch"):
+        _check_state(sysm, bad)
+    bad = q.copy()
+    bad[-4] = 3.0 * L
+    with pytest.raises(ModelFailure, match="2 L"):
+        _check_state(sysm, bad)
+
+
+def test_first_frequency_with_tip_payload():
+    # clamped-free beam with tip mass m: 1 + cos b cosh b + r b (cos b sinh b - sin b cosh b) = 0,
+    # r = m / (rho A L), f = b^2 sqrt(EI / (rho A L^4)) / (2 pi)   (e.g. Blevins, Formulas for
+    # Natural Frequency and Mode Shape, table 8-1)
+    from scipy.optimize import brentq
+
+    m = 0.1
+    mu = STEEL.mass_per_length
+    ratio = m / (mu * L)
+    b = brentq(lambda b: 1 + math.cos(b) * math.cosh(b) + ratio * b * (math.cos(b) * math.sinh(b)
+                                                                       - math.sin(b) * math.cosh(b)), 0.5, 1.875)
+    f_exact = b**2 * math.sqrt(EI / (mu * L**4)) / (2 * math.pi)
+    res = run(rod(payload=m), LoadCase(tip_force=(1.0, 0, 0), analysis="dynamic", duration=2.0),
+              opts(16, time_step=1e-3), initial_state="reference")
+    f = _frequency(res.time, res.series["tip_position"][:, 0])
+    assert abs(f / f_exact - 1) <= 0.01, (f, f_exact)
+
+
+def test_unstable_explicit_rope_coupling_is_reported():
+    # EA_t = 1e6 N at h = 1 ms: the explicitly coupled rope law chatters (measured) -> ModelFailure,
+    # never a garbage result; at h = 0.5 ms the same case settles to the static solution (slow test)
+    g = TendonGroup(angles=(0.0, math.pi), offset=0.02, axial_stiffness=1e6)
+    act = TendonActuation("length", (-0.005, 0.01))
+    with pytest.raises(ModelFailure, match="time_step"):
+        run(rod(gravity=9.81, tendons=g), LoadCase(actuation=act, analysis="dynamic", duration=1.5, ramp_time=1.0),
+            opts(16, damping=2e-3, time_step=1e-3))
+
+
+@pytest.mark.slow
+def test_stiff_rope_with_small_step_settles_to_static():
+    g = TendonGroup(angles=(0.0, math.pi), offset=0.02, axial_stiffness=1e6)
+    act = TendonActuation("length", (-0.005, 0.01))
+    robot = rod(gravity=9.81, tendons=g)
+    st = run(robot, LoadCase(actuation=act), opts(16))
+    dy = run(robot, LoadCase(actuation=act, analysis="dynamic", duration=3.0, ramp_time=1.0),
+             opts(16, damping=2e-3, time_step=5e-4))
+    assert np.max(np.abs(dy.tip_position - st.tip_position)) <= 1e-5 * L
+    assert np.allclose(dy.tendon_tensions, st.tendon_tensions, rtol=1e-3)

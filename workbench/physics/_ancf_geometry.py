@@ -15,7 +15,10 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["locate", "hermite", "centreline", "offset_points", "arc_length", "offset_curve_length"]
+__all__ = [
+    "locate", "hermite", "centreline", "offset_points", "gauss_points", "element_lengths", "arc_length",
+    "offset_curve_length",
+]
 
 
 def locate(s_nodes: np.ndarray, s) -> tuple[np.ndarray, np.ndarray]:
@@ -97,6 +100,15 @@ def offset_points(q: np.ndarray, s_nodes: np.ndarray, s, y) -> np.ndarray:
     return r + np.asarray(y, dtype=float)[:, None] * n
 
 
+def gauss_points(s_nodes: np.ndarray, n_gauss: int = 6):
+    """Gauss-Legendre points of every element: ``(elem, x, weight)``, each ``(n * n_gauss,)``.
+
+    Precompute once per mesh and pass as ``quad`` to the length functions (computing the
+    Gauss rule dominates the cost of a single evaluation otherwise).
+    """
+    return _gauss(np.asarray(s_nodes, dtype=float), int(n_gauss))
+
+
 def _gauss(s_nodes: np.ndarray, n_gauss: int):
     g, w = np.polynomial.legendre.leggauss(n_gauss)
     le = s_nodes[1:] - s_nodes[:-1]
@@ -106,14 +118,21 @@ def _gauss(s_nodes: np.ndarray, n_gauss: int):
     return elem, x, wt
 
 
-def arc_length(q: np.ndarray, s_nodes: np.ndarray, n_gauss: int = 6) -> np.ndarray:
-    """Deformed centreline length ``int |r'| dx`` (Gauss-Legendre per element), ``(...)`` [m]."""
-    elem, x, w = _gauss(s_nodes, n_gauss)
+def element_lengths(q: np.ndarray, s_nodes: np.ndarray, n_gauss: int = 6, quad=None) -> np.ndarray:
+    """Deformed length ``int |r'| dx`` of every element (Gauss-Legendre), ``(..., n)`` [m]."""
+    elem, x, w = _gauss(s_nodes, n_gauss) if quad is None else quad
     _, dr, _ = hermite(q, s_nodes, elem, x)
-    return np.sum(np.linalg.norm(dr, axis=-1) * w, axis=-1)
+    n_el = len(s_nodes) - 1
+    vals = np.linalg.norm(dr, axis=-1) * w
+    return vals.reshape(vals.shape[:-1] + (n_el, -1)).sum(axis=-1)
 
 
-def offset_curve_length(q, s_nodes, end, y_fun, dy_fun, n_gauss: int = 6) -> np.ndarray:
+def arc_length(q: np.ndarray, s_nodes: np.ndarray, n_gauss: int = 6, quad=None) -> np.ndarray:
+    """Deformed centreline length ``int |r'| dx`` (Gauss-Legendre per element), ``(...)`` [m]."""
+    return element_lengths(q, s_nodes, n_gauss, quad).sum(axis=-1)
+
+
+def offset_curve_length(q, s_nodes, end, y_fun, dy_fun, n_gauss: int = 6, quad=None) -> np.ndarray:
     """Length of the curve ``r(s) + y(s) n(s)`` for ``s in [0, end]`` (continuum tendon path).
 
     ``end`` must be a node position.  With ``t = r'/|r'|`` and ``n = R90 t``:
@@ -130,13 +149,17 @@ def offset_curve_length(q, s_nodes, end, y_fun, dy_fun, n_gauss: int = 6) -> np.
         Arc length where the tendon terminates [m] (a node).
     y_fun, dy_fun : callable
         ``y(s)`` [m] and ``dy/ds`` [-], vectorised.
+    n_gauss : int
+        Gauss points per element (ignored when ``quad`` is given).
+    quad : tuple, optional
+        Precomputed :func:`gauss_points`.
 
     Returns
     -------
     ndarray, shape (...)
         Path length [m].
     """
-    elem, x, w = _gauss(s_nodes, n_gauss)
+    elem, x, w = _gauss(s_nodes, n_gauss) if quad is None else quad
     s = s_nodes[elem] + x
     keep = s <= end + 1e-12
     elem, x, w, s = elem[keep], x[keep], w[keep], s[keep]

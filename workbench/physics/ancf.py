@@ -35,7 +35,11 @@ curvature ``kappa_0 = sum_i T_i y_i cos(alpha_i) / EI`` and reference axial stra
 ``eps_0 = -sum_i T_i cos(alpha_i) / EA`` over the elements the tendon passes (elastic
 moment ``EI (kappa - kappa_0)``, axial force ``EA (eps - eps_0)``).  Exact for constant
 offsets; a tapered offset is sampled at element midpoints (O(h^2)) and ``alpha`` is
-taken in the reference configuration.
+taken in the reference configuration.  A tendon's offset varies linearly along its whole
+routed length ``[0, end]`` from ``TendonGroup.offset`` (base plate) to
+``TendonGroup.offset_tip`` (terminating disk) -- for a single section this is
+``TendonGroup.offset_at``; for tendons of later sections it is this model's reading of the
+description (which only defines the offset over the group's own section).
 
 ``"eyelets"``: one frictionless rope per tendon, anchored on the base plate at ``(0, y)``
 and passing through eyelets at every disk of the sections it crosses (rigid markers at
@@ -45,6 +49,8 @@ disk.  Every straight segment carries the common rope tension (an
 tensions on both sides of each eyelet is exactly frictionless sliding.  Chosen over
 ``ObjectConnectorReevingSystemSprings`` for speed (facts note: 26 ms vs 0.4-1.8 s per
 static solve at 64 elements); the rope law of length control is applied outside (below).
+``tests/physics/test_ancf_reeving.py`` checks that both give the same length-controlled
+equilibrium (tip within 1e-6 L, tensions within 1e-5).
 
 Length control (``TendonActuation.mode == "length"``)
 ------------------------------------------------------
@@ -59,7 +65,13 @@ compliance (:func:`workbench.physics.tendon_loads.tendon_path_compliance`) and i
 by Broyden updates; slack tendons drop out (complementarity).  Without external loads the
 first step is already exact; gravity / tip loads need a few iterations.  Dynamic: the
 tension applied over a step is evaluated from the state at the step start and the rest
-length at the step end (one-step lag, ``PreStepUserFunction``).
+length at the step end (one-step lag, ``PreStepUserFunction``).  This explicit coupling is
+stable for moderate ``EA_t h^2`` (measured on the 0.8 m, 6 mm steel rod with d = 20 mm:
+stable for EA_t = 4e4, 1e5, 3e5 N at h = 2 ms and 1e6 N at 0.5 ms; 1e6 N at 1 or 2 ms
+diverges or chatters -- the boundary is near EA_t h^2 ~ 1 N s^2 but not sharp and depends on
+the rod).  Divergence raises ``ModelFailure``, and so does a chattering tension history
+(second differences above 25 % of the peak tension).  (A linearly implicit update with the
+quasi-static compliance was tried and rejected: it does not diverge but chatters.)
 
 Static solution
 ---------------
@@ -291,7 +303,7 @@ class _System:
         tipm = mbs.AddMarker(MarkerNodePosition(nodeNumber=self.nodes[-1]))
         self.payload_load = None
         if pb.payload > 0:
-            mbs.AddObject(ObjectMassPoint2D(nodeNumber=self.nodes[-1], physicsMass=pb.payload))
+            mbs.AddObject(ObjectMassPoint2D(nodeNumber=self.nodes[-1], mass=pb.payload))
             if np.any(pb.gravity != 0):
                 self.payload_load = mbs.AddLoad(LoadForceVector(markerNumber=tipm, loadVector=[0, 0, 0]))
         self.force_load = None
@@ -323,6 +335,7 @@ class _System:
                         markerNumbers=[prev, m], stiffness=0.0, damping=0.0, force=0.0, referenceLength=0.0)))
                     prev = m
                 self.segments.append(segs)
+        self.quad = geo.gauss_points(sn, 6)
         self._T = np.full(nt, np.nan)
         self._ext = np.nan
         mbs.Assemble()
@@ -377,15 +390,18 @@ class _System:
         """Tendon path lengths ``(..., n_tendons)`` for absolute node coordinates ``qn``."""
         pb = self.pb
         out = []
+        el_len = th = None
         for td in pb.tendons:
             if self.tendon_model == "continuum" and td.d0 == td.d1:
                 # constant offset: (r + y n)' = (|r'| - y theta') t, so l = int |r'| - y (theta_e - theta_0)
+                if el_len is None:
+                    el_len = geo.element_lengths(qn, pb.s_nodes, quad=self.quad)
+                    th = np.unwrap(np.arctan2(qn[..., 3], qn[..., 2]), axis=-1)
                 k = int(np.argmin(np.abs(pb.s_nodes - td.end)))
-                arc = geo.arc_length(qn[..., : k + 1, :], pb.s_nodes[: k + 1])
-                th = np.unwrap(np.arctan2(qn[..., : k + 1, 3], qn[..., : k + 1, 2]), axis=-1)
-                out.append(arc - float(td.y(0.0)) * (th[..., -1] - th[..., 0]))
+                arc = el_len[..., :k].sum(axis=-1)
+                out.append(arc - float(td.y(0.0)) * (th[..., k] - th[..., 0]))
             elif self.tendon_model == "continuum":
-                out.append(geo.offset_curve_length(qn, pb.s_nodes, td.end, td.y, td.dy))
+                out.append(geo.offset_curve_length(qn, pb.s_nodes, td.end, td.y, td.dy, quad=self.quad))
             else:
                 st = np.array(td.eyelets)
                 pts = geo.offset_points(qn, pb.s_nodes, st, td.y(st))
@@ -570,7 +586,7 @@ def run(
             T, tendon_it, q, times, series = _dynamic(sysm, drv, load, options, initial_state)
     qn = sysm.node_coords(q)
     pos, tang = _frame_and_positions(sysm, qn, stations)
-    length_change = float(geo.arc_length(qn, pb.s_nodes)) - pb.L
+    length_change = float(geo.arc_length(qn, pb.s_nodes, quad=sysm.quad)) - pb.L
     wall = _time.perf_counter() - t_wall
     return PhysicsResult(
         model="ancf",
@@ -587,6 +603,26 @@ def run(
         extras={"static_steps": float(drv.steps), "failed_steps": float(drv.failed),
                 "tendon_iterations": float(tendon_it), "gravity_out_of_plane": pb.g_out},
     )
+
+
+def _check_tension_history(Ts: np.ndarray, EAt: np.ndarray, h: float) -> None:
+    """Reject step-to-step chattering of explicitly coupled rope tensions (an unstable loop).
+
+    A physical tension history is smooth on the time-step scale (second differences ~
+    ``T (omega h)^2``); the unstable explicit coupling alternates between slack and taut.
+    """
+    if Ts.shape[0] < 3:
+        return
+    d2 = np.abs(Ts[2:] - 2.0 * Ts[1:-1] + Ts[:-2]).max(axis=0)
+    scale = np.abs(Ts).max(axis=0) + 1e-9
+    bad = d2 > 0.25 * scale
+    if np.any(bad):
+        i = int(np.argmax(bad))
+        raise ModelFailure(
+            f"length-controlled tendon {i} chatters (step-to-step tension jumps up to {d2[i]:.3g} N of "
+            f"{scale[i]:.3g} N): the explicit rope coupling is unstable for EA_t = {EAt[i]:.3g} N at "
+            f"time_step = {h:g} s; reduce options.time_step (the boundary is near EA_t h^2 ~ 1 N s^2)"
+        )
 
 
 def _dynamic(sysm: _System, drv: _StaticDriver, load: LoadCase, options: SolverOptions, initial_state: str):
@@ -640,9 +676,12 @@ def _dynamic(sysm: _System, drv: _StaticDriver, load: LoadCase, options: SolverO
 
     mbs.SetPreStepUserFunction(pre_step)
     try:
-        mbs.SolveDynamic(settings, solverType=exu.DynamicSolverType.GeneralizedAlpha)
+        mbs.SolveDynamic(settings, solverType=exu.DynamicSolverType.GeneralizedAlpha, storeSolver=True)
+        drv.newton += int(mbs.sys["dynamicSolver"].it.newtonStepsCount)
     except exu.SolverError as err:
-        raise ModelFailure(f"ANCF dynamic solve failed: {err}") from err
+        hint = (" (length-controlled tendons are coupled explicitly: stiff tendons need a smaller "
+                "options.time_step)") if length_mode else ""
+        raise ModelFailure(f"ANCF dynamic solve failed: {err}{hint}") from err
     finally:
         mbs.SetPreStepUserFunction(0)
     q_end = sysm.coords()
@@ -657,6 +696,7 @@ def _dynamic(sysm: _System, drv: _StaticDriver, load: LoadCase, options: SolverO
     if nt:
         if length_mode:
             Ts = tension_from_stretch(sysm.path_lengths(qn), np.array([rest(t) for t in times]), EAt)
+            _check_tension_history(Ts, EAt, h)
         else:
             Ts = np.array([commands(t) for t in times])
         T_final = Ts[-1]
@@ -666,6 +706,6 @@ def _dynamic(sysm: _System, drv: _StaticDriver, load: LoadCase, options: SolverO
     series = {
         "tip_position": tip[:, 0, :],
         "tendon_tensions": Ts,
-        "length_change": geo.arc_length(qn, pb.s_nodes) - pb.L,
+        "length_change": geo.arc_length(qn, pb.s_nodes, quad=sysm.quad) - pb.L,
     }
     return T_final, tendon_it, q_end, times, series

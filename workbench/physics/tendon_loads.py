@@ -170,7 +170,8 @@ def solve_length_controlled(
     and is improved by Broyden rank-one updates (the compliance is smooth, so the secant
     information survives changes of the slack/taut set -- updating the residual Jacobian
     instead cycles between slack and taut for stiff tendons); tensions are projected onto
-    ``T >= 0``.  With no external loads and the exact compliance
+    ``T >= 0``; steps are backtracked (halved, at most 8 times) until the residual in length
+    units ``|r l0 / EA_t|`` decreases.  With no external loads and the exact compliance
     (:func:`tendon_path_compliance`, continuum tendon) the first step is exact.
 
     Parameters
@@ -223,13 +224,21 @@ def solve_length_controlled(
             return LengthSolveInfo(T, l, it - 1, solves, float(np.max(np.abs(r), initial=0.0)))
         active = (stretch > 0).astype(float)
         J = np.eye(n) - (active * ea / l0)[:, None] * C
-        T_new = np.maximum(0.0, T + np.linalg.solve(J, -r))
-        l_new = equilibrium(T_new)
-        solves += 1
-        s = T_new - T
-        if np.dot(s, s) > 0:
-            # Broyden update of the compliance dl/dT (smooth, unlike the residual's kink at slack)
-            C = C + np.outer((l_new - l) - C @ s, s) / np.dot(s, s)
+        dT = np.linalg.solve(J, -r)
+        merit = np.linalg.norm(r * l0 / ea)  # residual in length units [m]
+        alpha = 1.0
+        for _ in range(8):  # backtracking on the merit (stiff antagonistic tendons overshoot)
+            T_new = np.maximum(0.0, T + alpha * dT)
+            l_new = equilibrium(T_new)
+            solves += 1
+            s = T_new - T
+            if np.dot(s, s) > 0:
+                # Broyden update of the compliance dl/dT (smooth, unlike the residual's kink at slack)
+                C = C + np.outer((l_new - l) - C @ s, s) / np.dot(s, s)
+            r_new = T_new - ea * np.maximum(0.0, (l_new - l0) / l0)
+            if np.linalg.norm(r_new * l0 / ea) < (1.0 - 1e-4 * alpha) * merit:
+                break
+            alpha *= 0.5
         T, l = T_new, l_new
     raise RuntimeError(
         f"length-controlled tendon solve did not converge in {max_iterations} iterations "
