@@ -75,3 +75,21 @@ def test_cc_model_dynamic_series_follow_the_ramps():
     np.testing.assert_allclose(res.series["tip_position"][0], [0, 0, robot.length], atol=1e-15)
     np.testing.assert_allclose(res.series["tip_position"][-1], res.tip_position, atol=1e-14)
     assert np.all(np.isnan(res.tendon_tensions))  # CC predicts no forces in length mode
+
+
+def test_tapered_tendons_use_their_mean_offset_per_section():
+    # two sections; the outer group's offset tapers 0.03 -> 0.01 over its whole routed length
+    from workbench.robot import CrossSection, Robot, Section, TendonGroup
+
+    rod = CrossSection.circular(6e-3)
+    inner = TendonGroup.evenly_spaced(3, 0.03, offset_tip=0.02)
+    outer = TendonGroup.evenly_spaced(3, 0.03, offset_tip=0.01)
+    robot = Robot(sections=(Section(0.5, rod, inner), Section(0.5, rod, outer)))
+    kappa, phi = np.array([1.0, 2.0]), np.array([0.3, -1.0])
+    act = actuation_from_arc(robot, kappa, phi, "length")
+    # outer tendon 0 (sigma = 0): mean offset 0.025 over section 0 and 0.015 over section 1
+    expected = -0.5 * 1.0 * 0.025 * np.cos(0.0 - 0.3) - 0.5 * 2.0 * 0.015 * np.cos(0.0 + 1.0)
+    assert act.values[3] == pytest.approx(expected, abs=1e-15)
+    k2, p2, _ = arc_from_actuation(robot, act)
+    np.testing.assert_allclose(k2, kappa, atol=1e-12)
+    np.testing.assert_allclose(p2, phi, atol=1e-12)

@@ -8,11 +8,11 @@ is exactly what the workbench measures against the physics.
 Tendon routing convention (shared with the physics models)
 ----------------------------------------------------------
 A tendon of section ``k`` is anchored on the base plate at its group's offset ``d`` and
-angle ``sigma``, runs parallel to the backbone through the disks of sections ``0..k`` and
-terminates on the last disk of section ``k``.  Its offset is the group's ``offset``
-everywhere except inside its own section, where a tapered group
-(``TendonGroup.offset_tip``) varies linearly; for CC purposes a section's tendon offset is
-the mean over the section.
+angle ``sigma``, runs along the backbone through the disks of sections ``0..k`` and
+terminates on the last disk of section ``k``.  A tapered (tronconic) group's offset varies
+linearly along the tendon's whole routed length, from ``offset`` at the base plate to
+``offset_tip`` at the terminating disk; for CC purposes a tendon's offset in a section is
+its mean over that section (exact for the tendon length, which is linear in the offset).
 
 Maps
 ----
@@ -46,8 +46,11 @@ __all__ = ["actuation_from_arc", "arc_from_actuation", "run"]
 
 
 def _section_offset(robot: Robot, tendon_section: int, section: int) -> float:
+    """Mean offset [m] of a tendon of ``tendon_section`` over ``section`` (<= tendon_section)."""
     group = robot.sections[tendon_section].tendons
-    return group.offset_at(0.5) if section == tendon_section else group.offset
+    ends = robot.section_ends
+    start = ends[section - 1] if section > 0 else 0.0
+    return group.offset_at(0.5 * (start + ends[section]) / ends[tendon_section])
 
 
 def _section_ei(robot: Robot, j: int) -> float:
