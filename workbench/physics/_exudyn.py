@@ -33,14 +33,14 @@ def quiet_exudyn() -> Iterator[None]:
 
 
 def _no_files(settings: "exu.SimulationSettings") -> None:
-    sol = settings.solutionSettings
-    sol.writeSolutionToFile = False
-    sol.writeRestartFile = False
-    sol.sensorsWritePeriod = 1e30
-    sol.solutionInformation = ""
-    settings.displayComputationTime = False
-    settings.displayStatistics = False
-    settings.displayGlobalTimers = False
+    sol = settings.solution
+    sol.file.write = False
+    sol.restart.write = False
+    sol.sensors.writePeriod = 1e30
+    sol.file.information = ""
+    settings.show.computationTime = False
+    settings.show.statistics = False
+    settings.show.globalTimers = False
 
 
 def static_settings(options: SolverOptions, n_load_steps: int = 1) -> "exu.SimulationSettings":

@@ -173,11 +173,12 @@ class TendonGroup:
         Angular positions ``sigma_i`` of the tendons in the cross-section [rad], measured
         from the base x axis (e.g. ``(0, 2pi/3, 4pi/3)``).
     offset : float
-        Radial offset ``d`` of the tendons from the backbone centreline [m] at the section
-        base.
+        Radial offset ``d`` of the tendons from the backbone centreline [m] at the robot's
+        base plate (where every tendon is anchored).
     offset_tip : float, optional
-        Offset at the section tip [m] for tronconic (tapered) sections; ``None`` means
-        constant offset.  The offset varies linearly along the section.
+        Offset at the terminating disk [m] for tronconic (tapered) robots; ``None`` means
+        constant offset.  The offset varies linearly with arc length along the tendon's
+        whole routed length, from the base plate (s = 0) to the end of its section.
     axial_stiffness : float
         Tendon axial stiffness ``EA_t`` [N] (e.g. steel wire of 0.5 mm: ~4e4 N).
     """
@@ -220,7 +221,10 @@ class TendonGroup:
         return cls(angles=angles, offset=offset, axial_stiffness=axial_stiffness, offset_tip=offset_tip)
 
     def offset_at(self, fraction: float) -> float:
-        """Tendon offset [m] at ``fraction`` in [0, 1] of the section length."""
+        """Tendon offset [m] at ``fraction`` in [0, 1] of the tendon's routed length.
+
+        ``fraction = s / s_end`` with ``s_end`` the arc length of the terminating disk.
+        """
         if self.offset_tip is None:
             return self.offset
         return self.offset + (self.offset_tip - self.offset) * float(fraction)

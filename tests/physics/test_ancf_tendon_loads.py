@@ -1,0 +1,68 @@
+"""Unit tests of the shared tendon helpers (pure numpy)."""
+
+import numpy as np
+import pytest
+
+from workbench.physics.tendon_loads import (
+    ramp_load, solve_length_controlled, tendon_path_compliance, tendon_rest_lengths, tension_from_stretch,
+)
+
+
+def test_rest_length_gives_pretension_exactly():
+    l0 = tendon_rest_lengths([0.8, 0.4], [0.0, -0.01], 20.0, 4e4)
+    assert np.allclose(tension_from_stretch([0.8], l0[:1], 4e4), 20.0)
+    assert l0[1] == pytest.approx(0.4 / (1 + 20 / 4e4) - 0.01)
+    with pytest.raises(ValueError, match="rest lengths"):
+        tendon_rest_lengths([0.1], [-0.2], 0.0, 1e4)
+
+
+def test_slack_rope_carries_nothing():
+    T = tension_from_stretch([0.7, 0.9], [0.8, 0.8], 1e4)
+    assert T[0] == 0.0 and T[1] == pytest.approx(1e4 * 0.1 / 0.8, rel=1e-12)
+
+
+def test_compliance_matches_closed_form():
+    s = np.linspace(0, 1.0, 2001)
+    y = np.array([np.full_like(s, 0.02), np.full_like(s, -0.02)])
+    C = tendon_path_compliance(s, np.full_like(s, 10.0), np.full_like(s, 1e6), y, [1.0, 0.5])
+    assert C[0, 0] == pytest.approx(-(0.02**2 / 10 + 1e-6))
+    assert C[0, 1] == pytest.approx(-0.5 * (-(0.02**2) / 10 + 1e-6))
+    assert C[1, 0] == pytest.approx(C[0, 1])
+
+
+def test_length_solver_on_a_nonlinear_spring_model():
+    # l(T) = L - c T - b T^2 (a softening structure); tendon law T = EA (l - l0)/l0
+    L, c, b, EA = 1.0, 1e-5, 1e-9, 1e5
+
+    def eq(T):
+        return L - c * T - b * T**2
+
+    l0 = np.array([0.99, 1.02])  # second tendon slack
+    info = solve_length_controlled(eq, l0, EA, -c * np.eye(2), tol=1e-12)
+    T = info.tensions
+    assert T[1] == 0.0
+    assert T[0] == pytest.approx(EA * (eq(T)[0] - l0[0]) / l0[0], rel=1e-10)
+    assert info.iterations < 15
+
+
+def test_ramp_halves_on_failure_and_respects_cap():
+    state = {"lam": 0.0, "x": 0.0}
+    history = []
+
+    def apply(lam):
+        state["lam"] = lam
+
+    def solve():
+        # "Newton" converges only for increments <= 0.3
+        if state["lam"] - state["x"] > 0.3:
+            raise ArithmeticError("diverged")
+        state["x"] = state["lam"]
+        history.append(state["lam"])
+
+    info = ramp_load(apply, solve, lambda: state["x"], lambda x: state.update(x=x), max_steps=100,
+                     failure=ArithmeticError)
+    assert history[-1] == 1.0 and info.failed_steps >= 2
+    assert np.all(np.diff(history) <= 0.3 + 1e-12)
+    with pytest.raises(RuntimeError, match="max_load_steps=3"):
+        ramp_load(apply, solve, lambda: state["x"], lambda x: state.update(x=x), max_steps=3,
+                  failure=ArithmeticError) if state.update(x=0.0) is None else None

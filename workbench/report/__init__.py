@@ -1,0 +1,13 @@
+"""Self-contained HTML comparison reports (matplotlib ``Figure`` objects, Agg; no pyplot).
+
+``build_report(data_dir, out_dir=None) -> Path`` reads ``data/<study>/`` (Parquet part files
+and ``manifest.json``; conventions in :mod:`workbench.report.load`) and writes
+``reports/<study>/report.html`` (figures inlined as PNG, no external references),
+``figures/*.png|svg`` and the metric tables as CSV.  Command line:
+``python -m workbench.report data/<study> [--out DIR]`` (:func:`main`).
+"""
+
+from .build import build_report, main
+from .load import Study, load_study
+
+__all__ = ["Study", "build_report", "load_study", "main"]
