@@ -69,20 +69,26 @@ def _resolve(dotted: str):
     return getattr(importlib.import_module(mod), fn)
 
 
-def _print_summary(summary, reports_dir: Path | None = None, report_note: str | None = None) -> None:
+def _print_summary(summary, reports_dir: Path | None = None, report_note: str | None = None,
+                   show_run: bool = True) -> None:
     from .study.runner import read_manifest
 
     man = read_manifest(summary.folder)
     name = man.get("study", {}).get("study", {}).get("name", "?")
     runs = man.get("runs", [])
     print(f"study {name!r}: {summary.folder}")
-    print(f"  cases {summary.n_cases}: ok {summary.n_ok}, failed {summary.n_failed}"
-          + (f" (this run: {summary.n_run} run, {summary.n_skipped} already stored)" if summary.n_run or summary.n_skipped else ""))
+    this_run = f" (this run: {summary.n_run} run, {summary.n_skipped} already stored)" if show_run else ""
+    print(f"  cases {summary.n_cases}: ok {summary.n_ok}, failed {summary.n_failed}{this_run}")
+    missing = summary.n_cases - summary.n_ok - summary.n_failed
+    if missing > 0:
+        print(f"  not run yet: {missing} (continue with: workbench run STUDY --out {summary.folder} --resume)")
     if runs:
         print(f"  runs {len(runs)}: first start {runs[0].get('start')}, last end {runs[-1].get('end')}, "
               f"last executor {runs[-1].get('executor')}")
-    if summary.wall_time == summary.wall_time:
+    if show_run:
         print(f"  wall time of this run: {summary.wall_time:.2f} s")
+    elif runs and runs[-1].get("wall_time") is not None:
+        print(f"  wall time of the last run: {runs[-1]['wall_time']:.2f} s")
     w = max([5] + [len(m) for m in summary.per_model])
     print(f"  {'model':<{w}}  {'ok':>6}  {'failed':>6}  {'model time [s]':>14}")
     for m, d in summary.per_model.items():
@@ -98,8 +104,8 @@ def _print_summary(summary, reports_dir: Path | None = None, report_note: str | 
     if report_note:
         print(f"  report: {report_note}")
     elif reports_dir is not None:
-        index = reports_dir / "index.html"
-        print(f"  report: {index if index.exists() else 'none (' + str(reports_dir) + ' has no index.html)'}")
+        found = [reports_dir / n for n in ("report.html", "index.html") if (reports_dir / n).exists()]
+        print(f"  report: {found[0] if found else 'none found in ' + str(reports_dir)}")
 
 
 def _build_report(data_dir: Path, out_dir: Path) -> str:
@@ -182,7 +188,7 @@ def _cmd_show(args) -> int:
     from .study.runner import read_manifest
 
     name = read_manifest(folder).get("study", {}).get("study", {}).get("name", folder.name)
-    _print_summary(summary, reports_dir=Path("reports") / name)
+    _print_summary(summary, reports_dir=Path("reports") / name, show_run=False)
     return summary.exit_code
 
 

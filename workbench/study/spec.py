@@ -619,6 +619,17 @@ def _case_rules(params: dict[str, Any], study: Study) -> list[str]:
         SolverOptions(**params["solver"])
     except (TypeError, ValueError) as e:
         out.append(f"solver: {e}")
+    if not out:
+        # dry-build the load case (tendon commands from the CC arc command): infeasible
+        # commands are input errors, reported before anything runs
+        from .evaluate import build_load
+
+        try:
+            build_load(robot, load)
+        except ImportError:
+            pass  # workbench.models.cc not installed: checked when the case runs
+        except Exception as e:  # noqa: BLE001
+            out.append(f"load: {e}")
     return out
 
 
