@@ -3,27 +3,9 @@ from pathlib import Path
 
 import pytest
 
+from study_fakes import GOOD
+
 HERE = Path(__file__).parent
-
-GOOD = textwrap.dedent("""\
-    [study]
-    name = "good"
-    seed = 3
-    models = ["cc", "ancf"]
-
-    [robot]
-    preset = "steel_rod"
-    length = 0.8
-
-    [load]
-    mode = "tension"
-    tensions = [1.0, 0.0]
-
-    [solver]
-    n_elements = 8
-    n_stations = 9
-    """)
-
 
 @pytest.fixture
 def write_study(tmp_path):

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-import fakes
+import study_fakes as fakes
 from workbench.study import build_robot, evaluate_case, expand, gravity_from_parameter, load_study
 
 
@@ -53,7 +53,7 @@ def test_rows_schema_and_values(write_study):
                                             (fakes.NAN, "non-finite result in"),
                                             (fakes.NOCONV, "not converged")])
 def test_failures_become_failed_rows(write_study, tension, reason):
-    from conftest import GOOD
+    from study_fakes import GOOD
 
     case = _case(write_study, base=GOOD.replace("tensions = [1.0, 0.0]", f"tensions = [{tension}, 0.0]"))[0]
     rows = evaluate_case(case.case_id, case.params, ("cc",), fakes.lookup)
@@ -84,7 +84,7 @@ def test_build_failure_fails_every_model(write_study):
 
 
 def test_bend_angle_goes_through_arc_actuation(write_study):
-    from conftest import GOOD
+    from study_fakes import GOOD
 
     base = GOOD.replace("tensions = [1.0, 0.0]", "bend_angle = 1.2\nbend_plane = 0.0")
     case = _case(write_study, base=base)[0]

@@ -13,7 +13,7 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-import fakes
+import study_fakes as fakes
 from workbench.study import (DaskExecutor, IsolatedExecutor, SerialExecutor, WorkerCrash, expand,
                              load_study, run_study)
 
@@ -26,7 +26,7 @@ EXPECTED_FAILED = {fakes.RAISE: "RuntimeError: fake model exploded", fakes.NAN: 
 
 
 def _study(write_study, with_exit=True):
-    from conftest import GOOD
+    from study_fakes import GOOD
 
     ts = [t for t in TENSIONS if with_exit or t != fakes.EXIT]
     axis = ", ".join(f"[{t}, 0.0]" for t in ts)
@@ -122,7 +122,7 @@ def test_cli_local_cluster_with_os_exit(tmp_path, write_study):
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), str(HERE)]))
     out = tmp_path / "o"
     r = subprocess.run([sys.executable, "-m", "workbench", "run", study.path, "--out", str(out), "--workers", "2",
-                        "--no-report", "--model-lookup", "fakes:lookup"], env=env, capture_output=True, text=True,
+                        "--no-report", "--model-lookup", "study_fakes:lookup"], env=env, capture_output=True, text=True,
                        timeout=300, cwd=tmp_path)
     assert r.returncode == 1, r.stderr
     _check(out)

@@ -44,7 +44,7 @@ def test_expansion_is_deterministic_and_ids_stable(write_study):
 
 
 def test_case_id_independent_of_order_name_and_models(write_study):
-    from conftest import GOOD
+    from study_fakes import GOOD
 
     base = {c.case_id for c in expand(load_study(write_study(SWEEP)))}
     reordered = SWEEP.replace('"robot.length" = [0.5, 0.8], "solver.n_elements" = [4, 8, 16]',
@@ -55,7 +55,7 @@ def test_case_id_independent_of_order_name_and_models(write_study):
 
 
 def test_case_id_changes_with_any_parameter(write_study):
-    from conftest import GOOD
+    from study_fakes import GOOD
 
     one = expand(load_study(write_study()))[0].case_id
     assert expand(load_study(write_study(base=GOOD.replace("n_stations = 9", "n_stations = 11"))))[0].case_id != one
@@ -63,7 +63,7 @@ def test_case_id_changes_with_any_parameter(write_study):
 
 
 def test_seed_changes_samples_only(write_study):
-    from conftest import GOOD
+    from study_fakes import GOOD
 
     s3 = expand(load_study(write_study(SWEEP)))
     s4 = expand(load_study(write_study(SWEEP, base=GOOD.replace("seed = 3", "seed = 4"))))

@@ -14,7 +14,7 @@ import pandas as pd
 import pyarrow.parquet as pq
 import pytest
 
-import fakes
+import study_fakes as fakes
 from workbench.study import (ResultStore, SerialExecutor, StudyError, array_shapes, load_study,
                              read_manifest, run_study)
 from workbench.study.store import SCHEMA_FILE
@@ -107,7 +107,7 @@ def test_rerun_without_resume_and_changed_config_refused(tmp_path, write_study):
 
 def _cli(study_path: Path, out: Path, *extra: str) -> list[str]:
     return [sys.executable, "-m", "workbench", "run", str(study_path), "--out", str(out), "--in-process",
-            "--no-report", "--progress", "off", "--model-lookup", "fakes:lookup_spin_20ms", "--flush-rows", "4",
+            "--no-report", "--progress", "off", "--model-lookup", "study_fakes:lookup_spin_20ms", "--flush-rows", "4",
             *extra]
 
 

@@ -13,6 +13,7 @@ trigger failure modes:
 from __future__ import annotations
 
 import os
+import textwrap
 import time
 
 import numpy as np
@@ -20,6 +21,27 @@ import numpy as np
 from workbench.models.result import PhysicsResult, SolverInfo
 
 RAISE, NAN, EXIT, NOCONV = 13.0, 7.0, 66.0, 5.0
+
+#: a valid study (no sweep) the tests extend
+GOOD = textwrap.dedent("""\
+    [study]
+    name = "good"
+    seed = 3
+    models = ["cc", "ancf"]
+
+    [robot]
+    preset = "steel_rod"
+    length = 0.8
+
+    [load]
+    mode = "tension"
+    tensions = [1.0, 0.0]
+
+    [solver]
+    n_elements = 8
+    n_stations = 9
+    """)
+
 
 
 def _arc(robot, load, options, *, spin: float = 0.0):
