@@ -140,3 +140,10 @@ def test_crash_inside_a_batch_is_blamed_on_its_case(tmp_path, write_study, kind,
                   batch_size=4)
     assert s.n_failed == 4 and s.n_ok == 6
     _check(tmp_path / "o")
+
+
+def test_progress_bar_counts(tmp_path, write_study, capsys):
+    run_study(_study(write_study, with_exit=False), tmp_path / "o", SerialExecutor(), model_lookup=fakes.lookup,
+              progress=True, batch_size=1)
+    err = capsys.readouterr().err
+    assert "9/9" in err and "ok=6 failed=3" in err
