@@ -53,6 +53,11 @@ def _parser() -> argparse.ArgumentParser:
     s = sub.add_parser("show", help="summarise a study result folder")
     s.add_argument("folder", help="e.g. data/example")
 
+    rp = sub.add_parser("report", help="write the HTML comparison report of a study result folder")
+    rp.add_argument("folder", help="e.g. data/quickstart")
+    rp.add_argument("--out", help="output folder (default reports/<study name>)")
+    rp.add_argument("--formats", default="png,svg", help="figure file formats, comma separated (png,svg,pdf)")
+
     v = sub.add_parser("validate", help="check a study file without running it")
     v.add_argument("study")
     v.add_argument("--max-cases", type=int, metavar="N", help="override study.max_cases")
@@ -192,10 +197,25 @@ def _cmd_show(args) -> int:
     return summary.exit_code
 
 
+def _cmd_report(args) -> int:
+    from .study.store import MANIFEST
+
+    folder = Path(args.folder)
+    if not (folder / MANIFEST).exists():
+        _err([f"{folder}: not a study result folder (no {MANIFEST})"])
+        return 2
+    from .report import build_report
+
+    formats = tuple(x for x in args.formats.split(",") if x)
+    print(build_report(folder, args.out, formats=formats))
+    return 0
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point; returns the exit code."""
     args = _parser().parse_args(argv)
-    return {"run": _cmd_run, "show": _cmd_show, "validate": _cmd_validate}[args.command](args)
+    commands = {"run": _cmd_run, "show": _cmd_show, "validate": _cmd_validate, "report": _cmd_report}
+    return commands[args.command](args)
 
 
 if __name__ == "__main__":  # pragma: no cover

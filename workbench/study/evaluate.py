@@ -143,8 +143,12 @@ def row_from_result(res, case_id: str, model: str, params: Mapping[str, Any], ro
                     wall_time: float, flat: Mapping[str, Any] | None = None) -> dict[str, Any]:
     """Flatten a PhysicsResult into a row; non-finite numbers make the row ``failed``."""
     T = np.asarray(res.tip_frame, dtype=float)
-    bad = [k for k, a in (("positions", res.positions), ("tendon_tensions", res.tendon_tensions),
-                          ("tip_frame", T)) if not np.isfinite(a).all()]
+    bad = [k for k, a in (("positions", res.positions), ("tip_frame", T)) if not np.isfinite(a).all()]
+    # Tendon tensions: NaN means "this model predicts no forces" (CC kinematics in length mode)
+    # and is allowed only when the whole vector is NaN; a partly NaN vector is a broken result.
+    tens = np.asarray(res.tendon_tensions, dtype=float)
+    if tens.size and not np.isfinite(tens).all() and not np.isnan(tens).all():
+        bad.append("tendon_tensions")
     row = {
         **_base_row(case_id, model, params, flat),
         "status": "ok",
