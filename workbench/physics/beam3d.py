@@ -72,9 +72,12 @@ Structure
   payload, the tip loads and the commands at t = 0.  Commands follow
   ``TendonActuation.command_at(t, load.ramp_time)`` and are set in a
   ``preStepUserFunction``.  Damping: ``options.damping`` = beta [s], stiffness-proportional
-  (Rayleigh) damping: the beam's ``dampingMatrix`` is beta times its stiffness matrix and
-  the reeving ropes get ``dampingPerLength = beta EA_t`` (the constant-force segments of
-  tension mode are undamped).  Time series are recorded every
+  (Rayleigh) damping: the beam's ``dampingMatrix`` is beta times its stiffness matrix.
+  The tendons are undamped: Exudyn's reeving damping acts on the rate of the rope's
+  geometric length, not on its stretch rate, so with a moving rest length (a motor reeling
+  in) it adds a spurious force ``beta EA_t v_wire / L`` (measured ~3 N, 5 % of the
+  tension, at 6 mm/s with beta = 1e-3 s); the constant-force segments of tension mode
+  carry exactly the commanded force.  Time series are recorded every
   ``output_interval = max(time_step, duration / 1000)``.
 
 Outputs
@@ -369,7 +372,7 @@ def _build(robot: Robot, load: LoadCase, options: SolverOptions, tendon_mode: st
                     mbs.AddObject(
                         ObjectConnectorReevingSystemSprings(
                             markerNumbers=markers, stiffnessPerLength=EAt,
-                            dampingPerLength=options.damping * EAt, referenceLength=L0,
+                            dampingPerLength=0.0, referenceLength=L0,
                             regularizationForce=_REGULARIZATION_FORCE,
                             sheavesAxes=exu.Vector3DList([[0.0, 0.0, 1.0]] * len(markers)),
                             sheavesRadii=[0.0] * len(markers)
@@ -599,6 +602,8 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
 
             def record(t: float) -> None:
                 T, st = _tendon_state(model)
+                if T.size != n_t:  # no tendon objects built (unloaded tendons)
+                    T, st = np.zeros(n_t), np.zeros(n_t)
                 dl, tw = _shape_scalars(model)
                 p = model.mbs.GetNodeOutput(model.nodes[-1], exu.OutputVariableType.Position)
                 rec["t"].append(t)
