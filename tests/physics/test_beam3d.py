@@ -163,6 +163,7 @@ def test_free_vibration_first_frequency():
     Excitation: a tiny tendon tension (1e-3 N, far below the buckling load 51 N, so the
     axial load shifts the frequency by < 1e-4) switched on at t = 1 ms; the frequency is
     taken from the upward zero crossings of the tip deflection about its mean.
+    Measured: -0.11 % (16 el., h = 1 ms), +0.03 % (8 el.), -0.03 % (16 el., h = 0.5 ms).
     """
     rod = steel_rod(tendon_count=1, disks_per_section=8)
     cs, L = rod.sections[0].cross_section, rod.length
