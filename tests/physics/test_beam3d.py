@@ -221,3 +221,32 @@ def test_tapered_section_properties_per_element():
     theta_expected = np.sum(0.6 / n * M / EI)
     t = res.tip_frame[:3, 2]
     assert math.atan2(t[0], t[2]) == pytest.approx(theta_expected, rel=1e-9)
+
+
+def test_quiet_and_file_free(capfd, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    rod = steel_rod(tendon_count=3)
+    beam3d.run(rod, LoadCase(actuation=TendonActuation("tension", (5.0, 0.0, 0.0))),
+               SolverOptions(n_elements=4, tendon_model="eyelets"))
+    beam3d.run(rod, LoadCase(actuation=TendonActuation("length", (-1e-3, 0.0, 0.0), pretension=2.0),
+                             analysis="dynamic", duration=0.02),
+               SolverOptions(n_elements=4, tendon_model="eyelets"))
+    out, err = capfd.readouterr()
+    assert out == "" and err == ""
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_dynamic_series_shapes_and_start_from_equilibrium():
+    rod = steel_rod(tendon_count=3, gravity=9.81, base_orientation="horizontal")
+    res = beam3d.run(rod, LoadCase(actuation=TendonActuation("tension", (20.0, 0.0, 0.0), start_times=(0.05, 0, 0)),
+                                   analysis="dynamic", duration=0.1, ramp_time=0.02),
+                     SolverOptions(n_elements=4, tendon_model="eyelets", time_step=2e-3))
+    k = res.time.size
+    assert res.series["tip_position"].shape == (k, 3)
+    assert res.series["tendon_tensions"].shape == (k, 3)
+    assert res.series["length_change"].shape == (k,) and res.series["tip_twist"].shape == (k,)
+    # at rest under gravity until the tendon starts: no motion before t = 0.05 s
+    before = res.time < 0.05
+    tip = res.series["tip_position"][before]
+    assert np.max(np.abs(tip - tip[0])) < 1e-9
+    np.testing.assert_allclose(res.series["tendon_tensions"][-1], [20.0, 0.0, 0.0])
