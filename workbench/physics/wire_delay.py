@@ -18,26 +18,27 @@ Conventions and errata
   of the bend (radius ``R + D/2 cos(alpha_1)``, Eq 9); the workbench's ``phi`` is the
   direction the section bends towards, so ``phi = alpha + pi`` and the radius of wire i
   is ``R - d cos(sigma_i - phi)``.
-* Eq 9 as extracted writes ``L_i1 = R + D1/2 cos(alpha_i)`` with the same sign for every
-  wire; combined with Eq 10 this is the projection rule above.  Eq 6-8 treat each wire as
-  a circular arc through its two end points at radii ``L_i1`` and ``L_i2`` from the centre
-  of curvature; the closed form used here, ``L_w = A / sinc(theta/2)`` with
-  ``A^2 = (d1 - d2)^2 c^2 + (H - d1 c theta)(H - d2 c theta) sinc^2(theta/2)``
-  (``c = cos(sigma_i - phi)``, ``sinc x = sin x / x``), is Eq 6-8 rewritten so that it is
-  regular at theta = 0 (where it gives the straight slanted wire
-  ``sqrt(H^2 + (d1 - d2)^2 c^2)``); checked numerically against Eq 6-8 in the tests.
+* Eq 6-8 treat each wire as a circular arc through its two end points at radii
+  ``L_i1``, ``L_i2`` from the centre of curvature (the kinematics module evaluates them in
+  a form regular at theta = 0, the straight slanted wire ``sqrt(H^2 + (d1 - d2)^2 c^2)``);
+  checked against Eq 6-8 written out literally in the tests.  The physics tendon runs in
+  straight chords between the disks, which is shorter than the paper's arc-wire by about
+  ``theta^2 / (24 n^2)`` per unit length (n disks): with 5 disks and theta = 45 deg the
+  commanded (arc) lengths are ~3e-4 m too long for all wires, a virtual *extension* an
+  order larger than the pretension stretch, so the outer wire goes slack in the
+  delay-free move.
 * Eq 12 (``mean(L_w) = L``) holds exactly only for the cylindrical section (D1 = D2); for
   the tronconic section the mean of consistent wire lengths differs from H at second
   order.  The *kinematic virtual compression* reported here is therefore the common
   offset ``e`` in ``L_cmd,i = L_w,i(theta, phi) + e`` solved together with (theta, phi)
   (3 equations, 3 unknowns): ``e = 0`` exactly when the commanded lengths are a CC
   configuration; ``e < 0`` means the wires are collectively too short, i.e. the bone
-  would have to be compressed.  The literal Eq 12 value ``mean(L_cmd) - mean(L_w(0))``
-  is reported as well.
+  would have to be compressed.  The literal Eq 12 value ``mean(L_cmd) - H`` is reported
+  as well.
 
-These maps are a local closed form (``wire_lengths_tronconic``) until the kinematics
-branch provides ``tendon_lengths_from_arc`` / ``wire_lengths_tronconic`` /
-``virtual_compression``; they are numpy-only.
+The forward wire map and Eq 12 come from :mod:`workbench.kinematics` (merged from the
+kinematics branch: ``wire_lengths_tronconic``, ``virtual_compression``); the inverse with a
+common offset (:func:`arc_from_wire_lengths_tronconic`) is local.
 """
 
 from __future__ import annotations
@@ -66,38 +67,41 @@ def _sinc(x: np.ndarray) -> np.ndarray:
 def wire_lengths_tronconic(theta, phi, length: float, offset_base: float, offset_tip: float, sigma) -> np.ndarray:
     """Wire lengths of a tronconic section bent into a CC arc (Cojocaru Eq 4-11).
 
+    Thin adapter to :func:`workbench.kinematics.wire_lengths_tronconic` (paper convention:
+    direction ``alpha``, disk diameters ``D1, D2``, wires at 0/120/240 deg) in the workbench
+    convention (direction ``phi = alpha + pi``, offsets, wire angles ``sigma``).
+
     Parameters
     ----------
     theta : array_like, shape (...)
         Bending angle [rad] (>= 0).
     phi : array_like, shape (...)
-        Bending direction [rad] (workbench convention; paper ``alpha = phi - pi``).
+        Bending direction [rad] (workbench convention).
     length : float
         Section (backbone) length H [m].
     offset_base, offset_tip : float
         Wire offsets D1/2 and D2/2 at the section's end disks [m].
-    sigma : array_like, shape (n,)
-        Wire angles [rad].
+    sigma : array_like, shape (3,)
+        Wire angles [rad]: ``first + (0, 2 pi/3, 4 pi/3)`` (the paper's layout, any
+        ``first``).
 
     Returns
     -------
-    ndarray, shape (..., n)
-        Wire lengths [m] (circular wire between the end disks, Eq 6-8; regular form, see
-        the module docstring).
+    ndarray, shape (..., 3)
+        Wire lengths [m] in the order of ``sigma``.
     """
-    theta = np.asarray(theta, dtype=float)[..., None]
-    phi = np.asarray(phi, dtype=float)[..., None]
+    from ..kinematics import wire_lengths_tronconic as _paper
+
     sigma = np.asarray(sigma, dtype=float).reshape(-1)
+    rel = np.mod(sigma - sigma[0], 2 * np.pi)
+    if sigma.size != 3 or not np.allclose(rel, [0.0, 2 * np.pi / 3, 4 * np.pi / 3], atol=1e-12):
+        raise ValueError(f"sigma must hold 3 wire angles at first + (0, 120, 240) deg, got {sigma.tolist()}")
+    theta = np.asarray(theta, dtype=float)
     if np.any(theta < 0):
         raise ValueError("theta must be >= 0 (use phi for the direction)")
-    if not (length > 0 and offset_base >= 0 and offset_tip >= 0):
-        raise ValueError(f"length must be > 0 and offsets >= 0, got {length}, {offset_base}, {offset_tip}")
-    c = np.cos(sigma - phi)
-    sc = _sinc(theta / 2.0)
-    A2 = ((offset_base - offset_tip) * c) ** 2 + (length - offset_base * c * theta) * (
-        length - offset_tip * c * theta
-    ) * sc**2
-    return np.sqrt(A2) / sc
+    # wire n sits at azimuth sigma_n; the paper's wires sit at (0, 120, 240) deg from its x axis
+    alpha = np.asarray(phi, dtype=float) - np.pi - sigma[0]
+    return _paper(theta, alpha, length, 2.0 * offset_base, 2.0 * offset_tip)
 
 
 def arc_from_wire_lengths_tronconic(
@@ -161,6 +165,12 @@ def arc_from_wire_lengths_tronconic(
     return theta, phi, x[..., 2]
 
 
+def _eq12(wire_lengths: np.ndarray, H: float) -> np.ndarray:
+    from ..kinematics import virtual_compression
+
+    return virtual_compression(wire_lengths, H)
+
+
 def _cc_tip(theta: np.ndarray, phi: np.ndarray, length: float) -> np.ndarray:
     th = np.asarray(theta, dtype=float)
     sc = _sinc(th / 2.0)
@@ -184,7 +194,8 @@ class WireDelayResult:
         Kinematic virtual compression ``e`` [m] (negative = bone would be compressed;
         see the module docstring).
     virtual_compression_eq12 : ndarray, shape (k,)
-        Literal Eq 12: ``mean(L_cmd) - mean(L_w(0))`` [m].
+        Literal Eq 12: ``mean(L_cmd) - H`` [m] (``workbench.kinematics.virtual_compression``;
+        non-zero, ~+7e-5 m, already for the straight tronconic section).
     length_change : ndarray, shape (k,)
         Real backbone length change from the physics model [m].
     tendon_tensions, tendon_stretch : ndarray, shape (k, 3)
@@ -315,7 +326,7 @@ def simulate_wire_delay(
         time=t,
         commanded_wire_lengths=Lcmd,
         virtual_compression=e,
-        virtual_compression_eq12=Lcmd.mean(axis=1) - L0.mean(),
+        virtual_compression_eq12=_eq12(Lcmd, H),
         length_change=res.series["length_change"],
         tendon_tensions=res.series["tendon_tensions"],
         tendon_stretch=res.series["tendon_stretch"],
