@@ -71,7 +71,9 @@ Structure
   ``options.spectral_radius``), starting from the static equilibrium under gravity, the
   payload, the tip loads and the commands at t = 0.  Commands follow
   ``TendonActuation.command_at(t, load.ramp_time)`` and are set in a
-  ``preStepUserFunction``.  Damping: ``options.damping`` = beta [s], stiffness-proportional
+  ``preStepUserFunction`` (Exudyn calls it with t = the *end* of the coming step, measured;
+  the commands are set to their value at that time, constant within the step, and the
+  state recorded there is labelled t - h_cur).  Damping: ``options.damping`` = beta [s], stiffness-proportional
   (Rayleigh) damping: the beam's ``dampingMatrix`` is beta times its stiffness matrix.
   The tendons are undamped: Exudyn's reeving damping acts on the rate of the rope's
   geometric length, not on its stretch rate, so with a moving rest length (a motor reeling
@@ -238,7 +240,7 @@ def tendon_routes(robot: Robot) -> list[list[tuple[float, float]]]:
     return routes
 
 
-def _build(robot: Robot, load: LoadCase, options: SolverOptions, tendon_mode: str) -> _Model:
+def _build(robot: Robot, load: LoadCase, options: SolverOptions, tendon_mode: str, node_type: str = "EP") -> _Model:
     import exudyn as exu
     from exudyn.itemInterface import (
         CoordinateConstraint,
@@ -251,6 +253,7 @@ def _build(robot: Robot, load: LoadCase, options: SolverOptions, tendon_mode: st
         MarkerNodeRigid,
         NodePointGround,
         NodeRigidBodyEP,
+        NodeRigidBodyRotVecLG,
         ObjectBeamGeometricallyExact,
         ObjectConnectorReevingSystemSprings,
         ObjectConnectorSpringDamper,
@@ -263,7 +266,12 @@ def _build(robot: Robot, load: LoadCase, options: SolverOptions, tendon_mode: st
     node_s, elem_sec = element_layout(robot, options.n_elements)
     n_el = elem_sec.size
     elem_len = np.diff(node_s)
-    nodes = [mbs.AddNode(NodeRigidBodyEP(referenceCoordinates=[float(s), 0, 0, 1, 0, 0, 0])) for s in node_s]
+    if node_type == "EP":
+        nodes = [mbs.AddNode(NodeRigidBodyEP(referenceCoordinates=[float(s), 0, 0, 1, 0, 0, 0])) for s in node_s]
+        clamped = (0, 1, 2, 4, 5, 6)  # position and Euler parameters e1..e3 (e0 follows from |e| = 1)
+    else:
+        nodes = [mbs.AddNode(NodeRigidBodyRotVecLG(referenceCoordinates=[float(s), 0, 0, 0, 0, 0])) for s in node_s]
+        clamped = (0, 1, 2, 3, 4, 5)
     starts = np.concatenate([[0.0], robot.section_ends[:-1]])
     elements = []
     for e in range(n_el):
@@ -283,7 +291,7 @@ def _build(robot: Robot, load: LoadCase, options: SolverOptions, tendon_mode: st
     # clamp
     ng = mbs.AddNode(NodePointGround())
     mg = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=ng, coordinate=0))
-    for k in (0, 1, 2, 4, 5, 6):  # position and Euler parameters e1..e3 (e0 follows from |e| = 1)
+    for k in clamped:
         mk = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nodes[0], coordinate=k))
         mbs.AddObject(CoordinateConstraint(markerNumbers=[mg, mk]))
 
@@ -598,7 +606,6 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
             h = load.duration / n_steps
             out_every = max(1, int(round(max(h, load.duration / 1000.0) / h)))
             rec = {"t": [], "tip": [], "T": [], "dl": [], "tw": [], "st": []}
-            counter = {"k": 0}
 
             def record(t: float) -> None:
                 T, st = _tendon_state(model)
@@ -606,6 +613,10 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
                     T, st = np.zeros(n_t), np.zeros(n_t)
                 dl, tw = _shape_scalars(model)
                 p = model.mbs.GetNodeOutput(model.nodes[-1], exu.OutputVariableType.Position)
+                # a step retried with a smaller step size calls pre_step again at the same t
+                while rec["t"] and rec["t"][-1] >= t - 1e-12:
+                    for key in rec:
+                        rec[key].pop()
                 rec["t"].append(t)
                 rec["tip"].append(R_BASE_MODEL @ np.asarray(p))
                 rec["T"].append(T)
@@ -613,13 +624,22 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
                 rec["dl"].append(dl)
                 rec["tw"].append(tw)
 
+            drive = act is not None and mode != "none"
+            out_dt = out_every * h
+
             def pre_step(mbs, t):
-                # state here is the converged state at time t (end of the previous step)
-                if counter["k"] % out_every == 0:
-                    record(float(t))
-                counter["k"] += 1
-                if act is not None and mode != "none":
-                    _set_tendons(model, act.command_at(t + h, load.ramp_time), 1.0)
+                # Exudyn calls this with t = the END time of the step about to be solved;
+                # the state is the converged state at t - h_cur (last accepted step).
+                solver = mbs.sys.get("dynamicSolver")
+                h_cur = solver.it.currentStepSize if solver is not None else h
+                t_state = t - h_cur
+                if drive:  # record the state with the commands it was solved for
+                    _set_tendons(model, act.command_at(t_state, load.ramp_time), 1.0)
+                k = round(t_state / out_dt)
+                if abs(t_state - k * out_dt) < 0.5 * h:
+                    record(float(t_state))
+                if drive:  # commands at the end of this step (exact also for reduced steps)
+                    _set_tendons(model, act.command_at(t, load.ramp_time), 1.0)
                 return True
 
             model.mbs.SetPreStepUserFunction(pre_step)
@@ -627,6 +647,8 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
                 exu.SolveDynamic(model.mbs, sim, solverType=exu.DynamicSolverType.GeneralizedAlpha)
             except exu.SolverError as err:
                 raise ModelFailure(f"beam3d: dynamic solve failed: {err}") from None
+            if drive:
+                _set_tendons(model, act.command_at(load.duration, load.ramp_time), 1.0)
             record(float(load.duration))
             times = np.asarray(rec["t"])
             series = {
