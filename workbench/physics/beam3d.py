@@ -40,18 +40,23 @@ Structure
 
   - tension mode: one ``ObjectConnectorSpringDamper`` per straight rope segment with zero
     stiffness and constant force ``T``: every segment carries exactly the same tension,
-    which is what a frictionless rope does, and it is the cheapest element (26 ms per
-    static solve vs 0.4-1.8 s for a reeving system in the facts-note measurements).
+    which is what a frictionless rope does, with nothing to converge (a static solve of a
+    single 50 N tendon on 16 elements took 0.09 s here).
   - length mode: one ``ObjectConnectorReevingSystemSprings`` per tendon (a single rope
     through all its eyelets, uniform tension by construction, axial stiffness EA_t over
     the whole current length).  A chain of independent springs would fix the length of
     every segment (a rope glued to every eyelet), which is wrong for a frictionless
-    tendon whose total length is controlled, so the reeving system is used although it
-    is slower.  Its rest length is ``L_path0 / (1 + T_pre/EA_t) + delta_l`` (reference
+    tendon whose total length is controlled, so the reeving system is used although its
+    statics are slow: 3-10 s for one 3-tendon static solve (8 elements, 8-16 disks,
+    EA_t = 1e8 N, bending to 1 rad), mostly because the step-size-converged Newton needs
+    load increments of ~0.1 once a tendon goes slack.  In dynamics the two cost the
+    same order (1 s simulated at 5 ms on the one-section Cojocaru robot, 8 elements:
+    constant-force chain 5.0 s, reeving 3.1 s, measured on a loaded 2-core machine).
+    Its rest length is ``L_path0 / (1 + T_pre/EA_t) + delta_l`` (reference
     path length through the eyelets, shortened so that the straight reference carries
     the pretension ``T_pre``, plus the command).  Exudyn's ``regularizationForce`` (set
     to 1e-3 N) limits the compression of a slack rope to 1e-3 N; reported tensions are
-    clipped at 0.
+    ``max(0, EA_t stretch / rest length)``.
   - ``numericalDifferentiation.forODE2Connectors = True`` (the analytic Jacobian of
     offset connectors is wrong, facts note).
 
