@@ -1,7 +1,8 @@
 """Wall time of Cojocaru's wire-delay case: 10 s simulated, one tronconic section.
 
 The delayed case (3 s) is the benchmark; the delay-free move is printed for comparison
-(the delayed case buckles the section between disks at t ~ 2 s, which is what costs).
+(between t ~ 2 s and 5 s the delayed case snaps into a strongly bent shape that is not a
+constant-curvature arc, at ~1.7 kN per wire; that phase is what costs).
 
 Run from the repository root::
 

@@ -36,6 +36,26 @@ Conventions and errata
   would have to be compressed.  The literal Eq 12 value ``mean(L_cmd) - H`` is reported
   as well.
 
+Measured behaviour (defaults: ``cojocaru_tronconic(n_sections=1)`` = H 0.35 m, 4 mm
+steel rod, D 100 -> 80 mm, 1 mm steel wires (EA_t 1.65e5 N), 5 disks, 20 N pretension;
+8 elements, 5 ms steps, beta = 1e-3 s; 4 s moves to (45 deg, 45 deg), wire 1 (which must
+lengthen) 3 s late, 10 s simulated):
+
+* kinematic virtual compression e reaches -6.23 mm (-1.78 % of H) at t = 3 s, the
+  paper's "approximately 2 %";
+* for t < ~2 s the physics splits e like springs in series: backbone length change =
+  e * 3 k_t / (3 k_t + k_b) (k_t = EA_t/H, k_b = EA/H; 16 % of e here, within 1 %), all
+  three wires tighten equally (~840 N at t = 1 s) and the tip stays on the CC arc
+  (0.7 mm);
+* at ~1.7 kN per wire (t ~ 2 s) the backbone compression saturates at -0.66 mm
+  (-0.19 %) and the section snaps into a strongly bent shape that is not a CC arc
+  (curvature up to ~9 1/m against the CC 2.2 1/m, tip 0.15 m off the CC tip, tip twist
+  up to 2.5e-2 rad) until wire 1 catches up (t ~ 6 s): "a wrong solution ... that cannot
+  be described with only 2 DOF" (Sec. 5.1), rather than a 2 % compression of the bone;
+* without delay e stays below 1.8e-6 m and the backbone shortens only by sum(T) H / EA
+  of the bending tensions (about 2e-5 m); the outer wire goes slack (see the chord
+  remark above) and the final tip is 2-3 mm off the CC tip.
+
 The forward wire map and Eq 12 come from :mod:`workbench.kinematics` (merged from the
 kinematics branch: ``wire_lengths_tronconic``, ``virtual_compression``); the inverse with a
 common offset (:func:`arc_from_wire_lengths_tronconic`) is local.
