@@ -50,7 +50,8 @@ lengthen) 3 s late, 10 s simulated):
 * at ~1.7 kN per wire (t ~ 2 s) the backbone compression saturates at -0.66 mm
   (-0.19 %) and the section snaps into a strongly bent shape that is not a CC arc
   (curvature up to ~9 1/m against the CC 2.2 1/m, tip 0.15 m off the CC tip, tip twist
-  up to 2.5e-2 rad) until wire 1 catches up (t ~ 6 s): "a wrong solution ... that cannot
+  up to 2.5e-2 rad) until wire 1 has caught up (tip error 17 mm at t = 5 s, 3 mm at
+  t = 6 s): "a wrong solution ... that cannot
   be described with only 2 DOF" (Sec. 5.1), rather than a 2 % compression of the bone;
 * without delay e stays below 1.8e-6 m and the backbone shortens only by sum(T) H / EA
   of the bending tensions (about 2e-5 m); the outer wire goes slack (see the chord
