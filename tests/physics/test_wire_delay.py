@@ -116,7 +116,9 @@ def test_full_delay_run_leaves_the_cc_manifold_and_recovers():
     H = r.section_length
     i3 = np.argmin(np.abs(r.time - 3.0))
     assert r.virtual_compression[i3] / H == pytest.approx(-0.0178, abs=0.001)
-    assert r.length_change.min() < 0.5 * _axial_share(robot) * r.virtual_compression.min()
+    series_springs = _axial_share(robot) * r.virtual_compression.min()  # -0.98 mm
+    # the bone takes a large share, but saturates below the springs-in-series value
+    assert 0.5 * series_springs > r.length_change.min() > 0.8 * series_springs
     assert r.tip_error.max() > 0.05
     late = r.time >= 7.0
     assert np.max(r.tip_error[late]) < 5e-3
