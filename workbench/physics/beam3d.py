@@ -122,7 +122,7 @@ import numpy as np
 from ..models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ..robot import LoadCase, Robot
 
-__all__ = ["run", "R_BASE_MODEL"]
+__all__ = ["run", "element_layout", "tendon_routes", "R_BASE_MODEL"]
 
 #: base <- model rotation: model x (beam axis) = base z, model y = base x, model z = base y.
 R_BASE_MODEL = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]])
