@@ -229,8 +229,9 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
             counter = {"k": 0}
 
             def pre_step(mbs_, t):
+                # Exudyn passes the end time of the coming step; the state is at t - h
                 if counter["k"] % every == 0:
-                    rec_t.append(float(t))
+                    rec_t.append(float(t) - h)
                     rec_p.append(np.asarray(mbs_.GetNodeOutput(nodes[-1], exu.OutputVariableType.Position)))
                 counter["k"] += 1
                 return True
