@@ -201,7 +201,7 @@ def test_bad_actuation_length_is_rejected():
 
 def test_ramp_cap_raises_model_failure():
     rod = steel_rod(tendon_count=3)
-    # a buckling-size single tension needs more than one increment; cap at 1 attempt
+    # bending to 3 rad by a tip moment fails in one increment (measured); cap at 1 attempt
     M = rod.sections[0].cross_section.EI * 3.0 / rod.length
     with pytest.raises(ModelFailure, match="max_load_steps"):
         beam3d.run(rod, LoadCase(tip_torque=(0.0, M, 0.0)), SolverOptions(n_elements=8, max_load_steps=1))
