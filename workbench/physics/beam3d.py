@@ -130,6 +130,8 @@ R_BASE_MODEL = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]])
 _SHEAR_FACTOR_IF_NONE = 100.0
 _REGULARIZATION_FORCE = 1e-3
 _MIN_INCREMENT = 1e-6
+_RAMP_GROWTH = 2.0
+_STATIC_MAX_ITERATIONS = 50
 
 
 @dataclass
@@ -493,7 +495,7 @@ def _static_settings(options: SolverOptions):
     st = s.staticSolver
     st.adaptiveStep = False
     st.newton.numericalDifferentiation.forODE2Connectors = True
-    st.newton.maxIterations = 50
+    st.newton.maxIterations = _STATIC_MAX_ITERATIONS
     return s
 
 
@@ -533,7 +535,7 @@ def _ramp_static(model: _Model, options: SolverOptions, values_at, lam_pre_at, l
         if ok:
             lam = target
             accepted += 1
-            dlam = min(1.0 - lam, 2.0 * dlam) if lam < 1.0 else dlam
+            dlam = min(1.0 - lam, _RAMP_GROWTH * dlam) if lam < 1.0 else dlam
         else:
             mbs.systemData.SetODE2Coordinates(q0, configuration=exu.ConfigurationType.Initial)
             mbs.systemData.SetODE2Coordinates(q0, configuration=exu.ConfigurationType.Current)
