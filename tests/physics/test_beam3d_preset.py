@@ -21,10 +21,15 @@ def test_preset_structure():
     for k, sec in enumerate(r.sections):
         g = sec.tendons
         np.testing.assert_allclose(np.diff(g.angles), 2 * np.pi / 3)
-        assert g.offset == pytest.approx(0.05 - 0.01 * k)
-        assert g.offset_tip == pytest.approx(g.offset - 0.01)
-    # D2 of one section is D1 of the next
-    assert r.sections[0].tendons.offset_tip == pytest.approx(r.sections[1].tendons.offset)
+        # every wire starts on the base disk's rim and ends on its terminating disk's rim
+        assert g.offset == pytest.approx(0.05)
+        assert g.offset_tip == pytest.approx(0.05 - 0.01 * (k + 1))
+    # the cone is continuous: at the end of section 0 every later wire sits where section 0's wires end
+    s0 = r.section_ends[0]
+    for sec in r.sections[1:]:
+        g = sec.tendons
+        j_end = r.section_ends[list(r.sections).index(sec)]
+        assert g.offset_at(s0 / j_end) == pytest.approx(r.sections[0].tendons.offset_tip)
     with pytest.raises(ValueError, match="diameters"):
         cojocaru_tronconic(base_disk_diameter=0.05, disk_diameter_step=0.02)
 

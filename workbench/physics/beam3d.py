@@ -34,9 +34,8 @@ Structure
   plate at offset ``d(0)`` and routed through eyelets = rigid markers on the beam's
   cross-section frame at every disk of the sections it traverses, at
   ``(d cos sigma, d sin sigma)`` in the cross-section, and terminates on the last disk
-  of its section.  Offsets: within its own section a tendon follows
-  ``TendonGroup.offset_at(fraction)`` (tronconic taper), in earlier sections it runs at
-  the group's base ``offset``.
+  of its section.  Offsets: linear along the tendon's whole routed length,
+  ``TendonGroup.offset_at(s / s_end)`` (tronconic taper; the TendonGroup convention).
 
   - tension mode: one ``ObjectConnectorSpringDamper`` per straight rope segment with zero
     stiffness and constant force ``T``: every segment carries exactly the same tension,
@@ -236,13 +235,15 @@ def tendon_routes(robot: Robot) -> list[list[tuple[float, float]]]:
     """
     routes = []
     starts = np.concatenate([[0.0], robot.section_ends[:-1]])
+    ends = robot.section_ends
     for j, sigma, group in robot.tendon_table():
-        route = [(0.0, group.offset if j > 0 else group.offset_at(0.0))]
+        # offset linear along the whole routed length [0, ends[j]] (TendonGroup convention)
+        route = [(0.0, group.offset_at(0.0))]
         for k in range(j + 1):
             sec = robot.sections[k]
             for sd in sec.disk_positions():
-                d = group.offset_at(sd / sec.length) if k == j else group.offset
-                route.append((float(starts[k] + sd), float(d)))
+                s = float(starts[k] + sd)
+                route.append((s, float(group.offset_at(s / ends[j]))))
         routes.append(route)
     return routes
 

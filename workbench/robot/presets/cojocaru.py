@@ -100,10 +100,12 @@ def cojocaru_tronconic(
     ea_wire = wire_youngs_modulus * math.pi * wire_diameter**2 / 4.0
     sections = []
     for k in range(n):
-        d1 = base_disk_diameter - k * disk_diameter_step
-        d2 = d1 - disk_diameter_step
+        # every wire runs on the cone's rim from the base plate to its terminating disk:
+        # offset linear along its routed length (the TendonGroup convention)
+        d_end = base_disk_diameter - (k + 1) * disk_diameter_step
         group = TendonGroup.evenly_spaced(
-            3, d1 / 2.0, ea_wire, first_wire_angle, offset_tip=d2 / 2.0 if d2 != d1 else None
+            3, base_disk_diameter / 2.0, ea_wire, first_wire_angle,
+            offset_tip=d_end / 2.0 if d_end != base_disk_diameter else None,
         )
         sections.append(
             Section(
