@@ -270,7 +270,8 @@ def solve_stack(specs, base_pose, platform_guesses, leg_shapes, gravity, wrench,
 
     ``platform_guesses``: (n, 4, 4) global poses; ``leg_shapes``: per module list of 6 LegShape
     in global coordinates.  ``wrench``: (F, M) global at the last platform origin, or None.
-    Returns (outcome, platform poses (n,4,4), tip forces on legs (n,6,3), tip moments (n,6,3)).
+    Returns (outcome, platform poses (n,4,4), tip forces on legs (n,6,3), tip moments (n,6,3),
+    leg node positions (n,6,N+1,3)).
     """
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
@@ -283,7 +284,7 @@ def solve_stack(specs, base_pose, platform_guesses, leg_shapes, gravity, wrench,
         pn = mbs.AddNode(NodeRigidBodyEP(referenceCoordinates=list(Tg[:3, 3]) + [ep[3], ep[0], ep[1], ep[2]]))
         I = spec.platform_inertia
         body = mbs.AddObject(
-            ObjectRigidBody(physicsMass=spec.platform_mass, physicsInertia=[I[0], I[1], I[2], 0.0, 0.0, 0.0], nodeNumber=pn)
+            ObjectRigidBody(physicsMass=max(spec.platform_mass, 1e-6), physicsInertia=[I[0], I[1], I[2], 0.0, 0.0, 0.0], nodeNumber=pn)
         )
         joints = []
         for i in range(6):
@@ -294,7 +295,7 @@ def solve_stack(specs, base_pose, platform_guesses, leg_shapes, gravity, wrench,
                 _hole_joint(mbs, ground, hp, hr, nodes[0])
             else:
                 _hole_joint(mbs, base_body, spec_prev_mount_pos[i], spec_prev_mount_rot[i], nodes[0])  # noqa: F821
-            joints.append((_clamp_joint(mbs, body, spec.attachments[i], np.eye(3), nodes[-1]), beams[-1], nodes[-1]))
+            joints.append((_clamp_joint(mbs, body, spec.attachments[i], np.eye(3), nodes[-1]), beams[-1], nodes[-1], nodes))
         tip_joints.append(joints)
         mk = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body, localPosition=[0.0, 0.0, 0.0]))
         if gravity is not None and spec.platform_mass > 0:
@@ -314,7 +315,9 @@ def solve_stack(specs, base_pose, platform_guesses, leg_shapes, gravity, wrench,
             base_T = platform_guesses[k] @ Mt
     out = _solve(mbs, tol, max_iter, n_load_steps)
     if not out.converged:
-        return out, None, None, None
+        return out, None, None, None, None
+    n_nodes = leg_shapes[0][0].positions.shape[0]
+    legpos = np.zeros((len(specs), 6, n_nodes, 3))
     poses = np.tile(np.eye(4), (len(specs), 1, 1))
     forces = np.zeros((len(specs), 6, 3))
     moments = np.zeros((len(specs), 6, 3))
@@ -324,6 +327,7 @@ def solve_stack(specs, base_pose, platform_guesses, leg_shapes, gravity, wrench,
         poses[k, :3, 3] = p
         for i in range(6):
             # the clamp joint's marker-0 frame: platform frame @ C
-            jt, bm, nd = tip_joints[k][i]
+            jt, bm, nd = tip_joints[k][i][:3]
+            legpos[k, i] = [node_state(mbs, q)[0] for q in tip_joints[k][i][3]]
             forces[k, i], moments[k, i] = _tip_wrench_on_leg(mbs, jt, A @ C_EXU, bm, 0.0, nd)
-    return out, poses, forces, moments
+    return out, poses, forces, moments, legpos

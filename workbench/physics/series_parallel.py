@@ -279,9 +279,9 @@ _GL_U = 0.5 * (_GL_X + 1.0)
 _GL_W = 0.5 * _GL_W
 
 
-def _hermite(p0, t0, p1, t1, u):
-    """Cubic Hermite curve with end tangents scaled by the chord; returns points and derivatives."""
-    c = np.linalg.norm(p1 - p0)
+def _hermite(p0, t0, p1, t1, u, scale=None):
+    """Cubic Hermite curve with end tangents scaled by ``scale`` (default: the chord); points and derivatives."""
+    c = np.linalg.norm(p1 - p0) if scale is None else scale
     u = np.asarray(u)[:, None]
     h00 = 2 * u**3 - 3 * u**2 + 1
     h10 = u**3 - 2 * u**2 + u
@@ -339,10 +339,33 @@ def _pose_from_lengths_hermite(geometry, L, T_guess):
     return T_guess @ pose_from_xyz_rotvec(sol.x[:3], sol.x[3:])
 
 
+def _tangent_scale_for_length(p0, t0, p1, t1, length):
+    """Tangent scale of the Hermite leg whose arc length equals ``length`` (secant iteration).
+
+    Falls back to the chord-scaled curve when no scale reaches the length (leg shorter than
+    the chord would require stretching).
+    """
+    c = float(np.linalg.norm(p1 - p0))
+
+    def arc(a):
+        _, D = _hermite(p0, t0, p1, t1, _GL_U, a)
+        return float(np.sum(_GL_W * np.linalg.norm(D, axis=1)))
+
+    a0, a1 = c, 1.1 * c
+    f0, f1 = arc(a0) - length, arc(a1) - length
+    for _ in range(30):
+        if abs(f1) < 1e-13 * length or f1 == f0:
+            break
+        a0, a1, f0 = a1, max(a1 - f1 * (a1 - a0) / (f1 - f0), 1e-3 * c), f1
+        f1 = arc(a1) - length
+    return a1 if abs(f1) < 1e-9 * length else c
+
+
 def _leg_shape(p0, R0, length, p1, R1, n_elements, free_twist=True) -> _ex.LegShape:
     """Node positions (equal arc length along the Hermite curve) and parallel-transported frames."""
     u = np.linspace(0.0, 1.0, 401)
-    P, D = _hermite(p0, R0[:, 2], p1, R1[:, 2], u)
+    scale = _tangent_scale_for_length(p0, R0[:, 2], p1, R1[:, 2], length)
+    P, D = _hermite(p0, R0[:, 2], p1, R1[:, 2], u, scale)
     sp = np.linalg.norm(D, axis=1)
     s = np.concatenate([[0.0], np.cumsum(0.5 * (sp[1:] + sp[:-1]) * np.diff(u))])
     tan = D / sp[:, None]
@@ -360,13 +383,13 @@ def _leg_shape(p0, R0, length, p1, R1, n_elements, free_twist=True) -> _ex.LegSh
     s_nodes = np.linspace(0.0, s[-1], n_elements + 1)
     u_nodes = np.interp(s_nodes, s, u)
     idx = np.clip(np.searchsorted(u, u_nodes), 0, u.size - 1)
-    Pn, _ = _hermite(p0, R0[:, 2], p1, R1[:, 2], u_nodes)
+    Pn, _ = _hermite(p0, R0[:, 2], p1, R1[:, 2], u_nodes, scale)
     Rn = np.empty((n_elements + 1, 3, 3))
     for j in range(n_elements + 1):
         frac = 1.0 if free_twist else s_nodes[j] / s[-1]
         Fj = frames[idx[j]]
         # re-align with the exact tangent at u_nodes[j]
-        _, Dj = _hermite(p0, R0[:, 2], p1, R1[:, 2], [u_nodes[j]])
+        _, Dj = _hermite(p0, R0[:, 2], p1, R1[:, 2], [u_nodes[j]], scale)
         tj = Dj[0] / np.linalg.norm(Dj[0])
         ax = np.cross(Fj[:, 2], tj)
         sn = np.linalg.norm(ax)
@@ -424,6 +447,7 @@ def leg_static(
     tolerance: float = 1e-10,
     max_iterations: int = 50,
     n_load_steps: int = 1,
+    initial_guess: "LegSolution | None" = None,
 ) -> LegSolution:
     """Static equilibrium of one flexible leg (GE beam) for given end conditions.
 
@@ -457,6 +481,9 @@ def leg_static(
         Newton iteration cap per load step.
     n_load_steps : int
         Load steps (tip-wrench problems only; constraints are not ramped by Exudyn).
+    initial_guess : LegSolution, optional
+        Converged state of a nearby problem (same ``n_elements``) to start Newton from, instead
+        of the length-matched cubic-Hermite shape.
 
     Returns
     -------
@@ -476,7 +503,12 @@ def leg_static(
     rod = geometry.rod_params()
     if tip_pose is not None:
         T = _check_pose(tip_pose, "tip_pose")
-        shape = _leg_shape(p0, R0, L, T[:3, 3], T[:3, :3], n_el, free_base_twist)
+        if initial_guess is not None and initial_guess.converged and initial_guess.positions.shape == (n_el + 1, 3):
+            shape = _ex.LegShape(positions=initial_guess.positions.copy(), rotations=initial_guess.rotations.copy())
+            shape.positions[-1] = T[:3, 3]
+            shape.rotations[-1] = T[:3, :3]
+        else:
+            shape = _leg_shape(p0, R0, L, T[:3, 3], T[:3, :3], n_el, free_base_twist)
         out, F, M, P, R = _ex.solve_leg_tip_pose(
             rod, p0, R0, L, T[:3, 3], T[:3, :3], shape, g, tolerance, max_iterations, free_base_twist
         )
@@ -498,3 +530,713 @@ def _check_n_elements(n):
     if int(n) != n or n < 1:
         raise ValueError(f"n_elements must be a positive integer, got {n!r}")
     return int(n)
+
+
+# --------------------------------------------------------------------------- results
+
+
+@dataclass(frozen=True)
+class ModulePose:
+    """Forward kinematics of one module (static equilibrium, Eq 21-24).
+
+    Parameters
+    ----------
+    pose : ndarray, shape (4, 4)
+        Platform pose in the module base frame (base <- platform).
+    tip_forces, tip_moments : ndarray, shape (6, 3)
+        ``n_i(L_i)``, ``m_i(L_i)``: force [N] and moment [N m] the platform exerts on each rod
+        tip, module base frame.
+    leg_positions : ndarray, shape (6, N+1, 3)
+        Leg node positions [m], hole first.
+    converged : bool
+    iterations : int
+        Newton iterations of the static solve.
+    residual : float
+        Max-norm of the platform balance Eq 22 recomputed from the leg tip wrenches (forces in N,
+        moments divided by the platform radius, in N): an independent equilibrium check.
+    reason : str
+        Failure reason, "" when converged.
+    wall_time : float
+        Seconds.
+    """
+
+    pose: np.ndarray
+    tip_forces: np.ndarray
+    tip_moments: np.ndarray
+    leg_positions: np.ndarray
+    converged: bool
+    iterations: int
+    residual: float
+    reason: str = ""
+    wall_time: float = 0.0
+
+
+@dataclass(frozen=True)
+class ModuleIK:
+    """Inverse kinematics of one module (Eq 25-28).
+
+    Parameters
+    ----------
+    lengths : ndarray, shape (6,)
+        Insertion lengths L_i [m].
+    success : bool
+        Newton converged (length update below ``length_tolerance``) and every leg solve converged.
+    iterations : int
+        Newton iterations over L.
+    residual : float
+        Max-norm of the platform balance Eq 22 at the returned L (forces in N, moments / platform
+        radius in N).
+    reason : str
+        Failure reason, "" on success.
+    tip_forces, tip_moments : ndarray, shape (6, 3)
+        ``n_i(L_i)``, ``m_i(L_i)`` at the solution, module base frame.
+    base_forces, base_moments : ndarray, shape (6, 3)
+        Force and moment (about the hole) each rod exerts on the base platform, ``n_i(0)``,
+        ``m_i(0)``, module base frame (what stack IK passes to the module below).
+    leg_positions : ndarray, shape (6, N+1, 3)
+        Leg node positions [m].
+    leg_solves : int
+        Number of single-leg static solves used.
+    wall_time : float
+        Seconds.
+    """
+
+    lengths: np.ndarray
+    success: bool
+    iterations: int
+    residual: float
+    reason: str
+    tip_forces: np.ndarray
+    tip_moments: np.ndarray
+    base_forces: np.ndarray
+    base_moments: np.ndarray
+    leg_positions: np.ndarray
+    leg_solves: int = 0
+    wall_time: float = 0.0
+
+
+@dataclass(frozen=True)
+class StackPose:
+    """Forward kinematics of n modules in series (Eq 29-30).
+
+    Parameters
+    ----------
+    poses : ndarray, shape (n, 4, 4)
+        Platform poses in the stack base frame (global <- platform k).
+    local_poses : ndarray, shape (n, 4, 4)
+        Platform k in module k's base frame (Eq 29).
+    leg_positions : ndarray, shape (n, 6, N+1, 3)
+        Leg node positions, stack base frame [m].
+    converged, iterations, residual, reason, wall_time
+        As in :class:`ModulePose`; ``residual`` is the worst platform balance over the stack.
+    """
+
+    poses: np.ndarray
+    local_poses: np.ndarray
+    leg_positions: np.ndarray
+    converged: bool
+    iterations: int
+    residual: float
+    reason: str = ""
+    wall_time: float = 0.0
+
+
+@dataclass(frozen=True)
+class StackIK:
+    """Inverse kinematics of n modules in series (Eq 31-32).
+
+    Parameters
+    ----------
+    lengths : ndarray, shape (n, 6)
+        Insertion lengths per module [m].
+    success : bool
+    iterations : ndarray, shape (n,)
+        Newton iterations per module.
+    residual : float
+        Worst module residual (see :class:`ModuleIK`).
+    reason : str
+    modules : tuple of ModuleIK
+        Per-module results (module base frames).
+    wall_time : float
+    """
+
+    lengths: np.ndarray
+    success: bool
+    iterations: np.ndarray
+    residual: float
+    reason: str
+    modules: tuple
+    wall_time: float = 0.0
+
+
+# --------------------------------------------------------------------------- module kinematics
+
+
+def _spec(geometry: ModuleGeometry, L: np.ndarray) -> _ex.ModuleSpec:
+    P, R = hole_frames(geometry)
+    return _ex.ModuleSpec(
+        hole_positions=P,
+        hole_rotations=R,
+        attachments=attachment_points(geometry),
+        lengths=np.asarray(L, float),
+        rod=geometry.rod_params(),
+        platform_mass=geometry.platform_mass,
+        platform_inertia=geometry.platform_inertia(),
+        mount=geometry.mount_transform(),
+    )
+
+
+def _balance(geometry, T, F_legs, M_legs, wrench, gravity):
+    """Platform balance Eq 22 in the module base frame, returns the (6,) residual [N, N m]."""
+    A = attachment_points(geometry)
+    p = T[:3, :3] @ A.T + T[:3, 3:4]  # (3, 6)
+    F_tot = np.zeros(3)
+    M_ext = np.zeros(3)
+    if wrench is not None:
+        F_tot = F_tot + wrench[:3]
+        M_ext = M_ext + wrench[3:]
+    if gravity is not None:
+        F_tot = F_tot + geometry.platform_mass * gravity
+    rf = F_legs.sum(axis=0) - F_tot
+    rm = np.sum(np.cross(p.T, F_legs) + M_legs, axis=0) - np.cross(T[:3, 3], F_tot) - M_ext
+    return np.concatenate([rf, rm])
+
+
+def _resnorm(geometry, r):
+    return float(max(np.max(np.abs(r[:3])), np.max(np.abs(r[3:])) / geometry.platform_radius))
+
+
+def module_forward(
+    geometry: ModuleGeometry,
+    insertion_lengths,
+    wrench=None,
+    gravity=None,
+    *,
+    n_elements: int = 8,
+    initial_pose=None,
+    tolerance: float = 1e-10,
+    max_iterations: int = 50,
+) -> ModulePose:
+    """Forward kinematics of one module: static equilibrium for given insertion lengths (Eq 21-24).
+
+    One Exudyn static solve of six GE-beam legs and the free platform.  The start is a geometric
+    predictor: the platform pose whose cubic-Hermite legs have the given lengths.
+
+    Parameters
+    ----------
+    geometry : ModuleGeometry
+    insertion_lengths : array_like, shape (6,)
+        Free leg lengths hole -> platform L_i [m].
+    wrench : array_like, shape (6,), optional
+        External force [N] and moment [N m] on the platform at its origin, base frame.
+    gravity : array_like, shape (3,), optional
+        Gravitational acceleration in the base frame [m/s^2], e.g. ``(0, 0, -9.81)``; None = off.
+    n_elements : int
+        GE beam elements per leg.
+    initial_pose : array_like, shape (4, 4), optional
+        Starting guess for the predictor (default: home pose).
+    tolerance : float
+        Newton relative tolerance on the step size.
+    max_iterations : int
+        Newton iteration cap.
+
+    Returns
+    -------
+    ModulePose
+    """
+    L = _check_lengths(insertion_lengths)
+    st = stack_forward(
+        [geometry], L[None, :], wrench=wrench, gravity=gravity, n_elements=n_elements,
+        initial_poses=None if initial_pose is None else _check_pose(initial_pose, "initial_pose")[None],
+        tolerance=tolerance, max_iterations=max_iterations, _return_legs=True,
+    )
+    res, F, M = st
+    return ModulePose(
+        pose=res.poses[0], tip_forces=F[0], tip_moments=M[0], leg_positions=res.leg_positions[0],
+        converged=res.converged, iterations=res.iterations, residual=res.residual, reason=res.reason,
+        wall_time=res.wall_time,
+    )
+
+
+def _leg_solve(geometry, i, Li, T, gravity, n_el, tol, max_it, guess=None):
+    P0, R0 = hole_frames(geometry)
+    A = attachment_points(geometry)
+    Tt = np.eye(4)
+    Tt[:3, :3] = T[:3, :3]
+    Tt[:3, 3] = T[:3, :3] @ A[i] + T[:3, 3]
+    kw = dict(tip_pose=Tt, free_base_twist=True, gravity=gravity, n_elements=n_el, tolerance=tol, max_iterations=max_it)
+    leg = leg_static(geometry, P0[i], R0[i], Li, initial_guess=guess, **kw)
+    if not leg.converged and guess is not None:
+        leg = leg_static(geometry, P0[i], R0[i], Li, **kw)
+    return leg
+
+
+def module_inverse(
+    geometry: ModuleGeometry,
+    target_pose,
+    wrench=None,
+    gravity=None,
+    *,
+    n_elements: int = 8,
+    initial_lengths=None,
+    length_tolerance: float = 1e-10,
+    max_iterations: int = 20,
+    leg_tolerance: float = 1e-11,
+    fd_step: float = 1e-7,
+) -> ModuleIK:
+    """Inverse kinematics of one module: insertion lengths that hold the platform at a pose (Eq 25-28).
+
+    With the platform pose prescribed, each leg is an independent two-point boundary-value
+    problem (hole condition Eq 21 at the base, clamp Eq 25-26 at the platform), solved with
+    Exudyn.  Newton over ``L`` drives the platform balance Eq 22 to zero; the Jacobian
+    ``d(balance)/dL`` is built column by column by forward differences (leg i depends on L_i
+    only, so a column costs one leg solve), and reused (chord Newton) while the length updates
+    contract by at least a factor 4.
+
+    Parameters
+    ----------
+    geometry : ModuleGeometry
+    target_pose : array_like, shape (4, 4)
+        Desired platform pose in the module base frame.
+    wrench : array_like, shape (6,), optional
+        External force and moment on the platform at its origin, base frame [N, N m].
+    gravity : array_like, shape (3,), optional
+        Gravitational acceleration, base frame [m/s^2].
+    n_elements : int
+        GE beam elements per leg.
+    initial_lengths : array_like, shape (6,), optional
+        Start (default: cubic-Hermite leg lengths of the target pose).
+    length_tolerance : float
+        Converged when the max length update is below this [m].
+    max_iterations : int
+        Newton iteration cap.
+    leg_tolerance : float
+        Newton tolerance of each leg solve.
+    fd_step : float
+        Finite-difference step on L_i [m].
+
+    Returns
+    -------
+    ModuleIK
+    """
+    t_start = time.perf_counter()
+    T = _check_pose(target_pose, "target_pose")
+    w = _check_wrench(wrench)
+    g = _check_gravity(gravity)
+    n_el = _check_n_elements(n_elements)
+    L = _hermite_lengths(geometry, T) if initial_lengths is None else _check_lengths(initial_lengths).copy()
+    solves = 0
+
+    def evaluate(Lv, legs_only=None, cache=None):
+        nonlocal solves
+        legs = list(cache) if cache is not None else [None] * 6
+        for i in range(6) if legs_only is None else legs_only:
+            legs[i] = _leg_solve(geometry, i, Lv[i], T, g, n_el, leg_tolerance, 50, guess=None if cache is None else cache[i])
+            solves += 1
+            if not legs[i].converged:
+                return None, legs, f"leg {i} static solve failed at L = {Lv[i]:.6g} m: {legs[i].reason}"
+        F = np.stack([lg.tip_force for lg in legs])
+        M = np.stack([lg.tip_moment for lg in legs])
+        return _balance(geometry, T, F, M, w, g), legs, ""
+
+    def fail(msg, it, legs, r):
+        nan = np.full((6, 3), np.nan)
+        return ModuleIK(L, False, it, r, msg, nan, nan, nan, nan, np.full((6, n_el + 1, 3), np.nan), solves,
+                        time.perf_counter() - t_start)
+
+    r, legs, msg = evaluate(L)
+    if r is None:
+        return fail(msg, 0, legs, float("nan"))
+    J = None
+    last_step = np.inf
+    it = 0
+    success = False
+    for it in range(1, max_iterations + 1):
+        if J is None:
+            J = np.empty((6, 6))
+            for i in range(6):
+                Lp = L.copy()
+                Lp[i] += fd_step
+                rp, _, msg = evaluate(Lp, legs_only=[i], cache=legs)
+                if rp is None:
+                    return fail("Jacobian: " + msg, it, legs, _resnorm(geometry, r))
+                J[:, i] = (rp - r) / fd_step
+        try:
+            dL = -np.linalg.solve(J, r)
+        except np.linalg.LinAlgError:
+            return fail("singular IK Jacobian d(balance)/dL (module at a singular pose)", it, legs, _resnorm(geometry, r))
+        L = L + dL
+        if np.any(L <= 0):
+            return fail(f"Newton produced a non-positive insertion length {L}", it, legs, _resnorm(geometry, r))
+        r, legs, msg = evaluate(L, cache=legs)
+        if r is None:
+            return fail(msg, it, legs, float("nan"))
+        step = float(np.max(np.abs(dL)))
+        if step < length_tolerance:
+            success = True
+            break
+        if step > 0.25 * last_step:
+            J = None  # slow contraction: refresh the Jacobian
+        last_step = step
+    F = np.stack([lg.tip_force for lg in legs])
+    M = np.stack([lg.tip_moment for lg in legs])
+    base = [_base_reaction_lumped(geometry, i, legs[i], L[i], g) for i in range(6)]
+    return ModuleIK(
+        lengths=L, success=success, iterations=it, residual=_resnorm(geometry, r),
+        reason="" if success else f"no convergence in {max_iterations} Newton iterations (last update {step:.3g} m)",
+        tip_forces=F, tip_moments=M,
+        base_forces=np.stack([b[0] for b in base]), base_moments=np.stack([b[1] for b in base]),
+        leg_positions=np.stack([lg.positions for lg in legs]), leg_solves=solves,
+        wall_time=time.perf_counter() - t_start,
+    )
+
+
+def _base_reaction_lumped(geometry, i, leg: LegSolution, Li, gravity):
+    """``n_i(0)``, ``m_i(0)`` (about the hole): force and moment rod i exerts on the base.
+
+    Exact for the discrete model: equilibrium of the whole leg under the tip wrench and the rod
+    weight lumped at the nodes (as in ``_series_parallel_exudyn._add_leg``).
+    """
+    P0, _ = hole_frames(geometry)
+    p = leg.positions
+    n0 = leg.tip_force.copy()
+    m0 = leg.tip_moment + np.cross(p[-1] - P0[i], leg.tip_force)
+    if gravity is not None:
+        N = p.shape[0] - 1
+        wts = np.full(N + 1, Li / N)
+        wts[0] *= 0.5
+        wts[-1] *= 0.5
+        f = wts[:, None] * (geometry.rod_params().weight_per_length * gravity)[None, :]
+        n0 = n0 + f.sum(axis=0)
+        m0 = m0 + np.sum(np.cross(p - P0[i], f), axis=0)
+    return n0, m0
+
+
+# --------------------------------------------------------------------------- stacks
+
+
+def _check_geometries(geometries) -> tuple:
+    gs = tuple(geometries)
+    if len(gs) < 1 or not all(isinstance(g, ModuleGeometry) for g in gs):
+        raise ValueError("geometries must be a non-empty sequence of ModuleGeometry")
+    return gs
+
+
+def stack_forward(
+    geometries: Sequence[ModuleGeometry],
+    lengths_per_module,
+    wrench=None,
+    gravity=None,
+    *,
+    base_pose=None,
+    n_elements: int = 8,
+    initial_poses=None,
+    tolerance: float = 1e-10,
+    max_iterations: int = 50,
+    _return_legs: bool = False,
+):
+    """Forward kinematics of n modules in series (Eq 29-30), one static equilibrium.
+
+    All modules are solved together: module k's holes sit on platform k-1 (through the constant
+    mount transform of module k-1), so the weight of the modules above and the tip wrench are
+    carried exactly.  Without loads this equals the paper's recursion ``T_k = T_{k-1} M T'_k``
+    with each ``T'_k = F(L_k)`` (Eq 29-30).
+
+    Parameters
+    ----------
+    geometries : sequence of n ModuleGeometry
+        Module 1 (at the base) first.
+    lengths_per_module : array_like, shape (n, 6)
+        Insertion lengths [m].
+    wrench : array_like, shape (6,), optional
+        External force/moment at the last platform's origin, stack base frame [N, N m].
+    gravity : array_like, shape (3,), optional
+        Gravitational acceleration, stack base frame [m/s^2].
+    base_pose : array_like, shape (4, 4), optional
+        Pose of module 1's base in the stack base frame (default identity).
+    n_elements : int
+        GE beam elements per leg.
+    initial_poses : array_like, shape (n, 4, 4), optional
+        Module-local starting guesses for the geometric predictor (default home poses).
+    tolerance, max_iterations
+        Newton settings.
+
+    Returns
+    -------
+    StackPose
+    """
+    t_start = time.perf_counter()
+    gs = _check_geometries(geometries)
+    n = len(gs)
+    Ls = np.asarray(lengths_per_module, dtype=float)
+    if Ls.shape != (n, 6):
+        raise ValueError(f"lengths_per_module must have shape ({n}, 6), got {Ls.shape}")
+    for k in range(n):
+        _check_lengths(Ls[k])
+    w = _check_wrench(wrench)
+    g = _check_gravity(gravity)
+    n_el = _check_n_elements(n_elements)
+    B = np.eye(4) if base_pose is None else _check_pose(base_pose, "base_pose")
+    # geometric predictor, module by module (Eq 30 recursion)
+    guesses = np.empty((n, 4, 4))
+    shapes = []
+    Tb = B.copy()
+    for k, geo in enumerate(gs):
+        Tk0 = home_pose(geo) if initial_poses is None else _check_pose(np.asarray(initial_poses)[k], "initial_poses[k]")
+        Tloc = _pose_from_lengths_hermite(geo, Ls[k], Tk0)
+        guesses[k] = Tb @ Tloc
+        P0, R0 = hole_frames(geo)
+        A = attachment_points(geo)
+        legs = []
+        for i in range(6):
+            pb = Tb[:3, :3] @ P0[i] + Tb[:3, 3]
+            Rb = Tb[:3, :3] @ R0[i]
+            pt = guesses[k][:3, :3] @ A[i] + guesses[k][:3, 3]
+            # start each leg from its own equilibrium with the platform held at the predicted
+            # pose (the Hermite shape alone is too far off for Newton on the whole module)
+            Tt = np.eye(4)
+            Tt[:3, :3] = guesses[k][:3, :3]
+            Tt[:3, 3] = pt
+            leg = leg_static(geo, pb, Rb, Ls[k, i], tip_pose=Tt, gravity=g, n_elements=n_el)
+            if leg.converged:
+                legs.append(_ex.LegShape(positions=leg.positions, rotations=leg.rotations))
+            else:
+                legs.append(_leg_shape(pb, Rb, Ls[k, i], pt, guesses[k][:3, :3], n_el, True))
+        shapes.append(legs)
+        Tb = guesses[k] @ geo.mount_transform()
+    specs = [_spec(geo, Ls[k]) for k, geo in enumerate(gs)]
+    wr = None if w is None else (w[:3], w[3:])
+    out, poses, F, M, legpos = _ex.solve_stack(specs, B, guesses, shapes, g, wr, tolerance, max_iterations, 1)
+    if not out.converged:
+        nanT = np.full((n, 4, 4), np.nan)
+        res = StackPose(nanT, nanT, np.full((n, 6, n_el + 1, 3), np.nan), False, out.iterations, float("nan"),
+                        out.reason or "static solve failed", time.perf_counter() - t_start)
+        return (res, np.full((n, 6, 3), np.nan), np.full((n, 6, 3), np.nan)) if _return_legs else res
+    # local poses (Eq 31) and the per-platform balance check in the stack base frame
+    local = np.empty_like(poses)
+    Tb = B.copy()
+    worst = 0.0
+    for k, geo in enumerate(gs):
+        local[k] = np.linalg.solve(Tb, poses[k])
+        Tb = poses[k] @ geo.mount_transform()
+    for k, geo in enumerate(gs):
+        # forces on platform k: its legs' tips, the next module's holes, gravity, tip wrench
+        Tk = poses[k]
+        A = attachment_points(geo)
+        pa = (Tk[:3, :3] @ A.T).T + Tk[:3, 3]
+        Fs = -F[k].sum(axis=0)
+        Ms = -np.sum(np.cross(pa - Tk[:3, 3], F[k]) + M[k], axis=0)
+        if g is not None:
+            Fs = Fs + geo.platform_mass * g
+        if k + 1 < n:
+            geo_n = gs[k + 1]
+            Tbn = Tk @ geo.mount_transform()
+            P0, _ = hole_frames(geo_n)
+            for i in range(6):
+                leg = LegSolution(legpos[k + 1, i], np.empty((0, 3, 3)), F[k + 1, i], M[k + 1, i], True, 0)
+                hole = Tbn[:3, :3] @ P0[i] + Tbn[:3, 3]
+                n0 = leg.tip_force.copy()
+                m0 = leg.tip_moment + np.cross(leg.positions[-1] - hole, leg.tip_force)
+                if g is not None:
+                    Nn = leg.positions.shape[0] - 1
+                    wts = np.full(Nn + 1, Ls[k + 1, i] / Nn)
+                    wts[[0, -1]] *= 0.5
+                    f = wts[:, None] * (geo_n.rod_params().weight_per_length * g)[None, :]
+                    n0 = n0 + f.sum(axis=0)
+                    m0 = m0 + np.sum(np.cross(leg.positions - hole, f), axis=0)
+                Fs = Fs + n0
+                Ms = Ms + m0 + np.cross(hole - Tk[:3, 3], n0)
+        elif w is not None:
+            Fs = Fs + w[:3]
+            Ms = Ms + w[3:]
+        worst = max(worst, _resnorm(geo, np.concatenate([Fs, Ms])))
+    res = StackPose(poses, local, legpos, True, out.iterations, worst, "", time.perf_counter() - t_start)
+    return (res, F, M) if _return_legs else res
+
+
+def stack_inverse(
+    geometries: Sequence[ModuleGeometry],
+    platform_poses,
+    wrench=None,
+    gravity=None,
+    *,
+    base_pose=None,
+    n_elements: int = 8,
+    length_tolerance: float = 1e-10,
+    max_iterations: int = 20,
+) -> StackIK:
+    """Inverse kinematics of n modules in series for given platform poses (Eq 31-32).
+
+    The paper's "configuration planning" gives every platform pose; then each module's local
+    target is ``T'_k = (T_{k-1} M_{k-1})^{-1} T_k`` (Eq 31) and ``L_k = f(T'_k)`` (Eq 32).  With
+    loads, the modules are solved from the top down: the force and moment each rod of module k+1
+    exerts on its hole (from its IK solution) are applied to platform k, which is exact because
+    all platform poses are prescribed.
+
+    Parameters
+    ----------
+    geometries : sequence of n ModuleGeometry
+    platform_poses : array_like, shape (n, 4, 4)
+        Desired platform poses in the stack base frame.
+    wrench : array_like, shape (6,), optional
+        External force/moment at the last platform origin, stack base frame.
+    gravity : array_like, shape (3,), optional
+        Stack base frame [m/s^2].
+    base_pose : array_like, shape (4, 4), optional
+        Module 1's base in the stack base frame (default identity).
+    n_elements, length_tolerance, max_iterations
+        Passed to :func:`module_inverse`.
+
+    Returns
+    -------
+    StackIK
+    """
+    t_start = time.perf_counter()
+    gs = _check_geometries(geometries)
+    n = len(gs)
+    Tp = np.asarray(platform_poses, dtype=float)
+    if Tp.shape != (n, 4, 4):
+        raise ValueError(f"platform_poses must have shape ({n}, 4, 4), got {Tp.shape}")
+    for k in range(n):
+        _check_pose(Tp[k], f"platform_poses[{k}]")
+    w = _check_wrench(wrench)
+    g = _check_gravity(gravity)
+    B = np.eye(4) if base_pose is None else _check_pose(base_pose, "base_pose")
+    bases = [B] + [Tp[k] @ gs[k].mount_transform() for k in range(n - 1)]
+    results: list = [None] * n
+    # global wrench acting on the current platform from above, as (F, M about global origin)
+    # the wrench is given about the last platform origin; M_above_o is about the stack origin
+    F_above = np.zeros(3) if w is None else w[:3].copy()
+    M_above_o = np.zeros(3) if w is None else w[3:] + np.cross(Tp[-1][:3, 3], w[:3])
+    Bg = g
+    for k in range(n - 1, -1, -1):
+        Tb = bases[k]
+        Rb = Tb[:3, :3]
+        local = np.linalg.solve(Tb, Tp[k])
+        # wrench at platform k origin, module-k base frame
+        pk = Tp[k][:3, 3]
+        M_pk = M_above_o - np.cross(pk, F_above)
+        wk = np.concatenate([Rb.T @ F_above, Rb.T @ M_pk])
+        gk = None if Bg is None else Rb.T @ Bg
+        r = module_inverse(gs[k], local, wrench=wk if np.any(wk) else None, gravity=gk, n_elements=n_elements,
+                           length_tolerance=length_tolerance, max_iterations=max_iterations)
+        results[k] = r
+        if not r.success:
+            return StackIK(np.stack([x.lengths if x is not None else np.full(6, np.nan) for x in results]), False,
+                           np.array([x.iterations if x is not None else 0 for x in results]), r.residual,
+                           f"module {k + 1}: {r.reason}", tuple(results), time.perf_counter() - t_start)
+        # module k's rods act on its base (platform k-1): forces n_i(0), moments m_i(0) about the holes
+        P0, _ = hole_frames(gs[k])
+        holes = (Rb @ P0.T).T + Tb[:3, 3]
+        Fg = (Rb @ r.base_forces.T).T
+        Mg = (Rb @ r.base_moments.T).T
+        F_above = Fg.sum(axis=0)
+        M_above_o = np.sum(Mg + np.cross(holes, Fg), axis=0)
+    L = np.stack([x.lengths for x in results])
+    return StackIK(L, True, np.array([x.iterations for x in results]), max(x.residual for x in results), "",
+                   tuple(results), time.perf_counter() - t_start)
+
+
+# --------------------------------------------------------------------------- constant curvature
+
+
+@dataclass(frozen=True)
+class ArcFit:
+    """Constant-curvature arc fitted through platform poses.
+
+    The arc starts at the stack base origin, tangent to the base z axis (the CC assumption for a
+    single section): ``p(s) = ((1 - cos ks)/k cos phi, (1 - cos ks)/k sin phi, sin(ks)/k)``.
+
+    Parameters
+    ----------
+    curvature : float
+        k [1/m] (>= 0).
+    phi : float
+        Bending-plane angle from base x [rad].
+    arc_lengths : ndarray, shape (n,)
+        Arc-length parameter of each platform on the fitted arc [m].
+    position_errors : ndarray, shape (n,)
+        Distance of each platform origin from its arc point [m].
+    tangent_errors : ndarray, shape (n,)
+        Angle between each platform z axis and the arc tangent at its arc point [rad].
+    rms_position_error, max_position_error : float
+        [m].
+    max_tangent_error : float
+        [rad].
+    """
+
+    curvature: float
+    phi: float
+    arc_lengths: np.ndarray
+    position_errors: np.ndarray
+    tangent_errors: np.ndarray
+    rms_position_error: float
+    max_position_error: float
+    max_tangent_error: float
+
+
+def _arc_points(k, phi, s):
+    """Arc points and tangents, stable for k -> 0; s shape (n,) -> (n, 3), (n, 3)."""
+    x = k * s
+    # (1 - cos x)/k = s * (1 - cos x)/x ; sin x / k = s * sin x / x
+    small = np.abs(x) < 1e-6
+    xs = np.where(small, 1.0, x)
+    c1 = np.where(small, x / 2.0 - x**3 / 24.0, (1.0 - np.cos(xs)) / xs)
+    c2 = np.where(small, 1.0 - x**2 / 6.0, np.sin(xs) / xs)
+    P = np.stack([s * c1 * np.cos(phi), s * c1 * np.sin(phi), s * c2], axis=-1)
+    t = np.stack([np.sin(x) * np.cos(phi), np.sin(x) * np.sin(phi), np.cos(x)], axis=-1)
+    return P, t
+
+
+def fit_constant_curvature(platform_poses, base_pose=None) -> ArcFit:
+    """Least-squares constant-curvature arc through the platform origins of a stack.
+
+    Unknowns: curvature k, plane angle phi and one arc-length parameter per platform; the
+    objective is the sum of squared distances between the platform origins and their arc points
+    (positions only; the platform-z vs arc-tangent angle is reported, not fitted).  A stack that
+    bends like one CC section (e.g. the paper's Fig 10 "bending") fits closely; translation and
+    S-shapes do not, which is the point of the comparison.
+
+    Parameters
+    ----------
+    platform_poses : array_like, shape (n, 4, 4)
+        Platform poses in the stack base frame.
+    base_pose : array_like, shape (4, 4), optional
+        Frame the arc starts in (default identity); poses are expressed in it first.
+
+    Returns
+    -------
+    ArcFit
+    """
+    T = np.asarray(platform_poses, dtype=float)
+    if T.ndim != 3 or T.shape[1:] != (4, 4) or T.shape[0] < 1:
+        raise ValueError(f"platform_poses must have shape (n, 4, 4) with n >= 1, got {T.shape}")
+    B = np.eye(4) if base_pose is None else _check_pose(base_pose, "base_pose")
+    T = np.einsum("ij,njk->nik", np.linalg.inv(B), T)
+    P = T[:, :3, 3]
+    Z = T[:, :3, 2]
+    n = P.shape[0]
+    tip = P[-1]
+    phi0 = math.atan2(tip[1], tip[0]) if np.hypot(tip[0], tip[1]) > 1e-12 else 0.0
+    s0 = np.cumsum(np.linalg.norm(np.diff(np.vstack([np.zeros(3), P]), axis=0), axis=1))
+    r_xy = np.hypot(tip[0], tip[1])
+    d2 = float(tip @ tip)
+    k0 = 2.0 * r_xy / d2 if d2 > 0 else 0.0
+
+    def res(x):
+        Pa, _ = _arc_points(x[0], x[1], x[2:])
+        return (Pa - P).ravel()
+
+    best = None
+    for kk in (k0, 0.0, 0.5 * k0, 2.0 * k0):
+        sol = least_squares(res, np.concatenate([[kk, phi0], s0]), method="lm", xtol=1e-14, ftol=1e-14)
+        if best is None or sol.cost < best.cost:
+            best = sol
+    k, phi, s = best.x[0], best.x[1], best.x[2:]
+    if k < 0:  # same arc, opposite plane
+        k, phi = -k, phi + math.pi
+    phi = math.atan2(math.sin(phi), math.cos(phi))
+    Pa, ta = _arc_points(k, phi, s)
+    e = np.linalg.norm(Pa - P, axis=1)
+    ang = np.arccos(np.clip(np.sum(ta * Z, axis=1), -1.0, 1.0))
+    return ArcFit(float(k), float(phi), s, e, ang, float(np.sqrt(np.mean(e**2))), float(e.max()), float(ang.max()))
