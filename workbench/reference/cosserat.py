@@ -200,21 +200,33 @@ def _check_length(length):
 
 
 def _rhs_factory(stiffness: RodStiffness, f: np.ndarray, l: np.ndarray):
+    """Right-hand side of Eq 18-20 for the state ``y = (p, R (row-major), n, m)``."""
     cse = np.array([1.0 / stiffness.GA, 1.0 / stiffness.GA, 1.0 / stiffness.EA])
     cbt = np.array([1.0 / stiffness.EI, 1.0 / stiffness.EI, 1.0 / stiffness.GJ])
+    f = np.asarray(f, dtype=float)
+    l = np.asarray(l, dtype=float)
+    out = np.empty(18)
 
     def rhs(s, y):
         R = y[3:12].reshape(3, 3)
         n = y[12:15]
         m = y[15:18]
-        v = cse * (R.T @ n)
+        v = cse * (n @ R)  # R^T n
         v[2] += 1.0
-        u = cbt * (R.T @ m)
+        u = cbt * (m @ R)  # R^T m
         dp = R @ v
-        dR = R @ _hat(u)
-        dn = -f
-        dm = -np.cross(dp, n) - l
-        return np.concatenate([dp, dR.ravel(), dn, dm])
+        # R' = R u^  (columns: R[:, j]' = R (u x e_j))
+        out[0:3] = dp
+        dR = np.empty((3, 3))
+        dR[:, 0] = R[:, 1] * u[2] - R[:, 2] * u[1]
+        dR[:, 1] = R[:, 2] * u[0] - R[:, 0] * u[2]
+        dR[:, 2] = R[:, 0] * u[1] - R[:, 1] * u[0]
+        out[3:12] = dR.ravel()
+        out[12:15] = -f
+        out[15] = -(dp[1] * n[2] - dp[2] * n[1]) - l[0]
+        out[16] = -(dp[2] * n[0] - dp[0] * n[2]) - l[1]
+        out[17] = -(dp[0] * n[1] - dp[1] * n[0]) - l[2]
+        return out.copy()
 
     return rhs
 
