@@ -63,13 +63,13 @@ class StaticOutcome:
 
 def _settings(tol: float, max_iter: int, n_load_steps: int):
     s = exu.SimulationSettings()
-    sol = s.solutionSettings
-    sol.writeSolutionToFile = False
-    sol.writeRestartFile = False
-    sol.sensorsWritePeriod = 1e30
-    sol.solutionInformation = ""
-    s.displayComputationTime = False
-    s.displayStatistics = False
+    s.solution.file.write = False
+    s.solution.restart.write = False
+    s.solution.sensors.active = False
+    s.solution.sensors.writePeriod = 1e30
+    s.show.computationTime = False
+    s.show.statistics = False
+    s.show.globalTimers = False
     st = s.staticSolver
     st.verboseMode = 0
     st.numberOfLoadSteps = int(n_load_steps)
@@ -77,7 +77,7 @@ def _settings(tol: float, max_iter: int, n_load_steps: int):
     st.newton.absoluteTolerance = 1e-14
     st.newton.residualMode = 1
     st.newton.maxIterations = int(max_iter)
-    st.adaptiveStep = n_load_steps > 1
+    st.adaptiveStep = True
     st.minimumStepSize = 1e-3
     return s
 
@@ -283,7 +283,7 @@ def solve_stack(specs, base_pose, platform_guesses, leg_shapes, gravity, wrench,
         pn = mbs.AddNode(NodeRigidBodyEP(referenceCoordinates=list(Tg[:3, 3]) + [ep[3], ep[0], ep[1], ep[2]]))
         I = spec.platform_inertia
         body = mbs.AddObject(
-            ObjectRigidBody(physicsMass=max(spec.platform_mass, 1e-6), physicsInertia=[I[0], I[1], I[2], 0.0, 0.0, 0.0], nodeNumber=pn)
+            ObjectRigidBody(mass=max(spec.platform_mass, 1e-6), inertia=[I[0], I[1], I[2], 0.0, 0.0, 0.0], nodeNumber=pn)
         )
         joints = []
         for i in range(6):

@@ -446,7 +446,7 @@ def leg_static(
     n_elements: int = 8,
     tolerance: float = 1e-10,
     max_iterations: int = 50,
-    n_load_steps: int = 1,
+    n_load_steps: int = 10,
     initial_guess: "LegSolution | None" = None,
 ) -> LegSolution:
     """Static equilibrium of one flexible leg (GE beam) for given end conditions.
@@ -480,7 +480,8 @@ def leg_static(
     max_iterations : int
         Newton iteration cap per load step.
     n_load_steps : int
-        Load steps (tip-wrench problems only; constraints are not ramped by Exudyn).
+        Load steps of a tip-wrench problem (adaptive halving on failure); a tip-pose problem is
+        solved in one step (constraints are not ramped by Exudyn).
     initial_guess : LegSolution, optional
         Converged state of a nearby problem (same ``n_elements``) to start Newton from, instead
         of the length-matched cubic-Hermite shape.
@@ -509,7 +510,7 @@ def leg_static(
             shape.rotations[-1] = T[:3, :3]
         else:
             shape = _leg_shape(p0, R0, L, T[:3, 3], T[:3, :3], n_el, free_base_twist)
-        out, F, M, P, R = _ex.solve_leg_tip_pose(
+        out, F, M, P, R = _ex.solve_leg_tip_pose(  # one step: nothing to ramp
             rod, p0, R0, L, T[:3, 3], T[:3, :3], shape, g, tolerance, max_iterations, free_base_twist
         )
     else:

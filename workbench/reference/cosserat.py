@@ -178,9 +178,10 @@ def _check_frame(p0, R0):
         raise ValueError(f"base position must have shape (3,), got {p0.shape}")
     if R0.shape != (3, 3):
         raise ValueError(f"base rotation must have shape (3, 3), got {R0.shape}")
-    if not np.allclose(R0.T @ R0, np.eye(3), atol=1e-9) or np.linalg.det(R0) < 0:
+    if not np.all(np.isfinite(R0)) or not np.allclose(R0.T @ R0, np.eye(3), atol=1e-6) or np.linalg.det(R0) < 0:
         raise ValueError("base rotation must be a proper rotation matrix (R^T R = I, det R = +1)")
-    return p0, R0
+    U, _, Vt = np.linalg.svd(R0)  # remove round-off (e.g. frames read back from a solver)
+    return p0, U @ Vt
 
 
 def _vec3(x, name):
