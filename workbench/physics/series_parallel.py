@@ -56,7 +56,7 @@ from typing import Sequence
 
 import numpy as np
 from scipy.optimize import least_squares
-from scipy.spatial.transform import Rotation
+from scipy.spatial.transform import Rotation, Slerp
 
 from . import _series_parallel_exudyn as _ex
 
@@ -448,6 +448,7 @@ def leg_static(
     max_iterations: int = 50,
     n_load_steps: int = 10,
     initial_guess: "LegSolution | None" = None,
+    continuation: bool = True,
 ) -> LegSolution:
     """Static equilibrium of one flexible leg (GE beam) for given end conditions.
 
@@ -485,6 +486,11 @@ def leg_static(
     initial_guess : LegSolution, optional
         Converged state of a nearby problem (same ``n_elements``) to start Newton from, instead
         of the length-matched cubic-Hermite shape.
+    continuation : bool
+        Tip-pose problems: if Newton fails from the start shape, walk from the straight leg to
+        the target (tip pose interpolated on SE(3), leg length following the Hermite length of
+        each intermediate pose and blending into ``length``), warm-starting every step and
+        halving the step on failure.
 
     Returns
     -------
@@ -513,6 +519,10 @@ def leg_static(
         out, F, M, P, R = _ex.solve_leg_tip_pose(  # one step: nothing to ramp
             rod, p0, R0, L, T[:3, 3], T[:3, :3], shape, g, tolerance, max_iterations, free_base_twist
         )
+        if not out.converged and continuation:
+            out, F, M, P, R = _leg_pose_continuation(
+                rod, p0, R0, L, T, n_el, g, tolerance, max_iterations, free_base_twist, out
+            )
     else:
         if free_base_twist:
             raise ValueError("a tip-wrench leg needs a clamped base (free_base_twist=False): the twist would be a free mode")
@@ -525,6 +535,44 @@ def leg_static(
         nan = np.full(3, np.nan)
         return LegSolution(np.full((n_el + 1, 3), np.nan), np.full((n_el + 1, 3, 3), np.nan), nan, nan, False, out.iterations, out.reason)
     return LegSolution(P, R, np.asarray(F, float), np.asarray(M, float), True, out.iterations, "")
+
+
+def _leg_pose_continuation(rod, p0, R0, L, T, n_el, g, tol, max_it, free_twist, last_out, min_step=1.0 / 512):
+    """Continuation fallback of :func:`leg_static` for a prescribed tip pose (see there)."""
+
+    def hlen(pt, Rt):
+        _, D = _hermite(p0, R0[:, 2], pt, Rt[:, 2], _GL_U)
+        return float(np.sum(_GL_W * np.linalg.norm(D, axis=1)))
+
+    slerp = Slerp([0.0, 1.0], Rotation.from_matrix(np.stack([R0, T[:3, :3]])))
+    p_start = p0 + L * R0[:, 2]
+    dL = L - hlen(T[:3, 3], T[:3, :3])
+    s_nodes = np.linspace(0.0, 1.0, n_el + 1)
+    P = p0 + np.outer(s_nodes * L, R0[:, 2])
+    R = np.tile(R0, (n_el + 1, 1, 1))
+    lam, step = 0.0, 0.125
+    out = last_out
+    F = M = None
+    while lam < 1.0:
+        lt = min(1.0, lam + step)
+        pt = (1.0 - lt) * p_start + lt * T[:3, 3]
+        Rt = slerp([lt]).as_matrix()[0]
+        Lt = hlen(pt, Rt) + lt * dL
+        Pg = P + np.outer(s_nodes, pt - P[-1])
+        Rg = R.copy()
+        Rg[-1] = Rt
+        out, Ft, Mt, Pt, Rr = _ex.solve_leg_tip_pose(
+            rod, p0, R0, Lt, pt, Rt, _ex.LegShape(positions=Pg, rotations=Rg), g, tol, max_it, free_twist
+        )
+        if out.converged:
+            lam, P, R, F, M = lt, Pt, Rr, Ft, Mt
+            step = min(2.0 * step, 0.25)
+        else:
+            step *= 0.5
+            if step < min_step:
+                reason = f"continuation stalled at {lam:.3f} of the way to the tip pose: {out.reason}"
+                return _ex.StaticOutcome(False, out.iterations, out.residual, reason, out.wall_time), None, None, None, None
+    return out, F, M, P, R
 
 
 def _check_n_elements(n):
