@@ -832,6 +832,7 @@ def module_inverse(
     max_iterations: int = 20,
     leg_tolerance: float = 1e-11,
     fd_step: float = 1e-7,
+    path_steps: int | None = None,
 ) -> ModuleIK:
     """Inverse kinematics of one module: insertion lengths that hold the platform at a pose (Eq 25-28).
 
@@ -839,8 +840,9 @@ def module_inverse(
     problem (hole condition Eq 21 at the base, clamp Eq 25-26 at the platform), solved with
     Exudyn.  Newton over ``L`` drives the platform balance Eq 22 to zero; the Jacobian
     ``d(balance)/dL`` is built column by column by forward differences (leg i depends on L_i
-    only, so a column costs one leg solve), and reused (chord Newton) while the length updates
-    contract by at least a factor 4.
+    only, so a column costs one leg solve), reused (chord Newton) while the length updates
+    contract by at least a factor 4, with a backtracking line search on the balance residual.
+    Large motions fall back to continuation along the path from the home pose.
 
     Parameters
     ----------
@@ -863,6 +865,10 @@ def module_inverse(
         Newton tolerance of each leg solve.
     fd_step : float
         Finite-difference step on L_i [m].
+    path_steps : int, optional
+        If Newton from the start fails, continue along the SE(3) path from the home pose to the
+        target in this many steps (adaptive halving; default: about one step per 40 mm and
+        0.1 rad); 0 disables the fallback.
 
     Returns
     -------
@@ -873,71 +879,125 @@ def module_inverse(
     w = _check_wrench(wrench)
     g = _check_gravity(gravity)
     n_el = _check_n_elements(n_elements)
-    L = _hermite_lengths(geometry, T) if initial_lengths is None else _check_lengths(initial_lengths).copy()
-    solves = 0
+    L0 = _hermite_lengths(geometry, T) if initial_lengths is None else _check_lengths(initial_lengths).copy()
+    counter = [0]
+    kw = dict(w=w, g=g, n_el=n_el, length_tolerance=length_tolerance, leg_tolerance=leg_tolerance, fd_step=fd_step,
+              counter=counter)
+    direct_cap = max_iterations if path_steps == 0 else min(max_iterations, 8)
+    L, legs, ok, its, r, msg = _ik_newton(geometry, T, L0, None, max_iterations=direct_cap, **kw)
+    total_its = its
+    if not ok and path_steps != 0:
+        # continuation along the SE(3) path home -> target, warm-starting L and the legs
+        H = home_pose(geometry)
+        slerp = Slerp([0.0, 1.0], Rotation.from_matrix(np.stack([H[:3, :3], T[:3, :3]])))
+        n_steps = path_steps if path_steps else max(
+            2, int(math.ceil(np.linalg.norm(T[:3, 3] - H[:3, 3]) / 0.04 + np.linalg.norm(rotation_vector(H[:3, :3].T @ T[:3, :3])) / 0.1))
+        )
+        lam, step = 0.0, 1.0 / n_steps
+        Lc, legs_c = _hermite_lengths(geometry, H), None
+        while lam < 1.0:
+            lt = min(1.0, lam + step)
+            Tt = np.eye(4)
+            Tt[:3, :3] = slerp([lt]).as_matrix()[0]
+            Tt[:3, 3] = (1 - lt) * H[:3, 3] + lt * T[:3, 3]
+            # predictor: previous L shifted by the change of the Hermite lengths
+            Lg = Lc + (_hermite_lengths(geometry, Tt) - _hermite_lengths(geometry, _interp_pose(H, T, slerp, lam)))
+            Ln, legs_n, okn, itn, rn, msgn = _ik_newton(geometry, Tt, Lg, legs_c, max_iterations=max_iterations, **kw)
+            total_its += itn
+            if okn:
+                lam, Lc, legs_c = lt, Ln, legs_n
+                step = min(1.5 * step, 2.0 / n_steps)
+            else:
+                step *= 0.5
+                if step < 1.0 / (16 * n_steps):
+                    msg = f"pose continuation stalled at {lam:.3f} of the way from home: {msgn}"
+                    break
+        if lam >= 1.0:
+            L, legs, ok, r, msg = Lc, legs_c, True, rn, ""
+    if not ok or legs is None or any(lg is None or not lg.converged for lg in legs):
+        nan = np.full((6, 3), np.nan)
+        return ModuleIK(L, False, total_its, float("nan") if r is None else _resnorm(geometry, r), msg or "IK failed",
+                        nan, nan, nan, nan, np.full((6, n_el + 1, 3), np.nan), counter[0], time.perf_counter() - t_start)
+    F = np.stack([lg.tip_force for lg in legs])
+    M = np.stack([lg.tip_moment for lg in legs])
+    base = [_base_reaction_lumped(geometry, i, legs[i], L[i], g) for i in range(6)]
+    return ModuleIK(
+        lengths=L, success=True, iterations=total_its, residual=_resnorm(geometry, r), reason="",
+        tip_forces=F, tip_moments=M,
+        base_forces=np.stack([b[0] for b in base]), base_moments=np.stack([b[1] for b in base]),
+        leg_positions=np.stack([lg.positions for lg in legs]), leg_solves=counter[0],
+        wall_time=time.perf_counter() - t_start,
+    )
 
-    def evaluate(Lv, legs_only=None, cache=None):
-        nonlocal solves
-        legs = list(cache) if cache is not None else [None] * 6
-        for i in range(6) if legs_only is None else legs_only:
-            legs[i] = _leg_solve(geometry, i, Lv[i], T, g, n_el, leg_tolerance, 50, guess=None if cache is None else cache[i])
-            solves += 1
+
+def rotation_vector(R) -> np.ndarray:
+    """``(3,)`` rotation vector (log map) of a rotation matrix [rad] (Eq 27-28)."""
+    return Rotation.from_matrix(np.asarray(R, dtype=float)).as_rotvec()
+
+
+def _interp_pose(H, T, slerp, lam):
+    Tt = np.eye(4)
+    Tt[:3, :3] = slerp([lam]).as_matrix()[0]
+    Tt[:3, 3] = (1 - lam) * H[:3, 3] + lam * T[:3, 3]
+    return Tt
+
+
+def _ik_newton(geometry, T, L, legs0, *, w, g, n_el, length_tolerance, leg_tolerance, fd_step, max_iterations, counter):
+    """Newton over L for a fixed platform pose (Eq 22 with Eq 25-26), backtracking on the residual.
+
+    Returns (L, legs, success, iterations, residual vector, message).
+    """
+
+    def evaluate(Lv, guess_legs, only=None, base_legs=None):
+        legs = list(base_legs) if base_legs is not None else [None] * 6
+        for i in range(6) if only is None else only:
+            gl = None if guess_legs is None else guess_legs[i]
+            legs[i] = _leg_solve(geometry, i, Lv[i], T, g, n_el, leg_tolerance, 50, guess=gl)
+            counter[0] += 1
             if not legs[i].converged:
                 return None, legs, f"leg {i} static solve failed at L = {Lv[i]:.6g} m: {legs[i].reason}"
         F = np.stack([lg.tip_force for lg in legs])
         M = np.stack([lg.tip_moment for lg in legs])
         return _balance(geometry, T, F, M, w, g), legs, ""
 
-    def fail(msg, it, legs, r):
-        nan = np.full((6, 3), np.nan)
-        return ModuleIK(L, False, it, r, msg, nan, nan, nan, nan, np.full((6, n_el + 1, 3), np.nan), solves,
-                        time.perf_counter() - t_start)
-
-    r, legs, msg = evaluate(L)
+    r, legs, msg = evaluate(L, legs0)
     if r is None:
-        return fail(msg, 0, legs, float("nan"))
+        return L, None, False, 0, None, msg
     J = None
     last_step = np.inf
-    it = 0
-    success = False
     for it in range(1, max_iterations + 1):
         if J is None:
             J = np.empty((6, 6))
             for i in range(6):
                 Lp = L.copy()
                 Lp[i] += fd_step
-                rp, _, msg = evaluate(Lp, legs_only=[i], cache=legs)
+                rp, _, msg = evaluate(Lp, legs, only=[i], base_legs=legs)
                 if rp is None:
-                    return fail("Jacobian: " + msg, it, legs, _resnorm(geometry, r))
+                    return L, legs, False, it, r, "Jacobian: " + msg
                 J[:, i] = (rp - r) / fd_step
         try:
             dL = -np.linalg.solve(J, r)
         except np.linalg.LinAlgError:
-            return fail("singular IK Jacobian d(balance)/dL (module at a singular pose)", it, legs, _resnorm(geometry, r))
-        L = L + dL
-        if np.any(L <= 0):
-            return fail(f"Newton produced a non-positive insertion length {L}", it, legs, _resnorm(geometry, r))
-        r, legs, msg = evaluate(L, cache=legs)
-        if r is None:
-            return fail(msg, it, legs, float("nan"))
-        step = float(np.max(np.abs(dL)))
+            return L, legs, False, it, r, "singular IK Jacobian d(balance)/dL (module at a singular pose)"
+        # backtracking: accept the first fraction that lowers the scaled balance residual
+        r0 = _resnorm(geometry, r)
+        for frac in (1.0, 0.5, 0.25, 0.125):
+            Ln = L + frac * dL
+            if np.any(Ln <= 0):
+                continue
+            rn, legs_n, msg = evaluate(Ln, legs)
+            if rn is not None and (_resnorm(geometry, rn) < r0 or frac * np.max(np.abs(dL)) < length_tolerance):
+                break
+        else:
+            return L, legs, False, it, r, msg or "line search failed to reduce the platform balance residual"
+        L, r, legs = Ln, rn, legs_n
+        step = float(np.max(np.abs(frac * dL)))
         if step < length_tolerance:
-            success = True
-            break
-        if step > 0.25 * last_step:
-            J = None  # slow contraction: refresh the Jacobian
+            return L, legs, True, it, r, ""
+        if frac < 1.0 or step > 0.25 * last_step:
+            J = None  # slow contraction or damped step: refresh the Jacobian
         last_step = step
-    F = np.stack([lg.tip_force for lg in legs])
-    M = np.stack([lg.tip_moment for lg in legs])
-    base = [_base_reaction_lumped(geometry, i, legs[i], L[i], g) for i in range(6)]
-    return ModuleIK(
-        lengths=L, success=success, iterations=it, residual=_resnorm(geometry, r),
-        reason="" if success else f"no convergence in {max_iterations} Newton iterations (last update {step:.3g} m)",
-        tip_forces=F, tip_moments=M,
-        base_forces=np.stack([b[0] for b in base]), base_moments=np.stack([b[1] for b in base]),
-        leg_positions=np.stack([lg.positions for lg in legs]), leg_solves=solves,
-        wall_time=time.perf_counter() - t_start,
-    )
+    return L, legs, False, max_iterations, r, f"no convergence in {max_iterations} Newton iterations (last update {step:.3g} m)"
 
 
 def _base_reaction_lumped(geometry, i, leg: LegSolution, Li, gravity):
