@@ -77,7 +77,7 @@ def _settings(tol: float, max_iter: int, n_load_steps: int):
     st.newton.absoluteTolerance = 1e-14
     st.newton.residualMode = 1
     st.newton.maxIterations = int(max_iter)
-    st.adaptiveStep = True
+    st.adaptiveStep = n_load_steps > 1  # retrying a constraint-driven solve at a smaller "load" is pointless
     st.minimumStepSize = 1e-3
     return s
 
@@ -314,9 +314,10 @@ def solve_stack(specs, base_pose, platform_guesses, leg_shapes, gravity, wrench,
             base_T = platform_guesses[k] @ Mt
     out = _solve(mbs, tol, max_iter, n_load_steps)
     if not out.converged:
-        return out, None, None, None, None
+        return out, None, None, None, (None, None)
     n_nodes = leg_shapes[0][0].positions.shape[0]
     legpos = np.zeros((len(specs), 6, n_nodes, 3))
+    legrot = np.zeros((len(specs), 6, n_nodes, 3, 3))
     poses = np.tile(np.eye(4), (len(specs), 1, 1))
     forces = np.zeros((len(specs), 6, 3))
     moments = np.zeros((len(specs), 6, 3))
@@ -327,6 +328,8 @@ def solve_stack(specs, base_pose, platform_guesses, leg_shapes, gravity, wrench,
         for i in range(6):
             # the clamp joint's marker-0 frame: platform frame @ C
             jt, bm, nd = tip_joints[k][i][:3]
-            legpos[k, i] = [node_state(mbs, q)[0] for q in tip_joints[k][i][3]]
+            for j, q in enumerate(tip_joints[k][i][3]):
+                legpos[k, i, j], Aq = node_state(mbs, q)
+                legrot[k, i, j] = Aq @ C_EXU.T
             forces[k, i], moments[k, i] = _tip_wrench_on_leg(mbs, jt, A @ C_EXU, bm, 0.0, nd)
-    return out, poses, forces, moments, legpos
+    return out, poses, forces, moments, (legpos, legrot)

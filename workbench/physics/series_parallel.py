@@ -799,7 +799,7 @@ def module_forward(
         initial_poses=None if initial_pose is None else _check_pose(initial_pose, "initial_pose")[None],
         tolerance=tolerance, max_iterations=max_iterations, _return_legs=True,
     )
-    res, F, M = st
+    res, F, M, _ = st
     return ModulePose(
         pose=res.poses[0], tip_forces=F[0], tip_moments=M[0], leg_positions=res.leg_positions[0],
         converged=res.converged, iterations=res.iterations, residual=res.residual, reason=res.reason,
@@ -813,7 +813,8 @@ def _leg_solve(geometry, i, Li, T, gravity, n_el, tol, max_it, guess=None):
     Tt = np.eye(4)
     Tt[:3, :3] = T[:3, :3]
     Tt[:3, 3] = T[:3, :3] @ A[i] + T[:3, 3]
-    kw = dict(tip_pose=Tt, free_base_twist=True, gravity=gravity, n_elements=n_el, tolerance=tol, max_iterations=max_it)
+    kw = dict(tip_pose=Tt, free_base_twist=True, gravity=gravity, n_elements=n_el, tolerance=tol, max_iterations=max_it,
+              continuation=False)  # the IK continues on the platform pose instead (cheaper)
     leg = leg_static(geometry, P0[i], R0[i], Li, initial_guess=guess, **kw)
     if not leg.converged and guess is not None:
         leg = leg_static(geometry, P0[i], R0[i], Li, **kw)
@@ -1042,6 +1043,7 @@ def stack_forward(
     initial_poses=None,
     tolerance: float = 1e-10,
     max_iterations: int = 50,
+    continuation: bool = True,
     _return_legs: bool = False,
 ):
     """Forward kinematics of n modules in series (Eq 29-30), one static equilibrium.
@@ -1069,6 +1071,10 @@ def stack_forward(
         Module-local starting guesses for the geometric predictor (default home poses).
     tolerance, max_iterations
         Newton settings.
+    continuation : bool
+        If the solve from the geometric predictor fails, start from the home poses (their
+        insertion lengths by :func:`module_inverse`) and walk the lengths to the requested ones,
+        warm-starting every step from the previous equilibrium and halving the step on failure.
 
     Returns
     -------
@@ -1115,12 +1121,14 @@ def stack_forward(
         Tb = guesses[k] @ geo.mount_transform()
     specs = [_spec(geo, Ls[k]) for k, geo in enumerate(gs)]
     wr = None if w is None else (w[:3], w[3:])
-    out, poses, F, M, legpos = _ex.solve_stack(specs, B, guesses, shapes, g, wr, tolerance, max_iterations, 1)
+    out, poses, F, M, (legpos, legrot) = _ex.solve_stack(specs, B, guesses, shapes, g, wr, tolerance, max_iterations, 1)
+    if not out.converged and continuation:
+        out, poses, F, M, (legpos, legrot) = _stack_continuation(gs, Ls, B, g, wr, n_el, tolerance, max_iterations, out)
     if not out.converged:
         nanT = np.full((n, 4, 4), np.nan)
         res = StackPose(nanT, nanT, np.full((n, 6, n_el + 1, 3), np.nan), False, out.iterations, float("nan"),
                         out.reason or "static solve failed", time.perf_counter() - t_start)
-        return (res, np.full((n, 6, 3), np.nan), np.full((n, 6, 3), np.nan)) if _return_legs else res
+        return (res, np.full((n, 6, 3), np.nan), np.full((n, 6, 3), np.nan), None) if _return_legs else res
     # local poses (Eq 31) and the per-platform balance check in the stack base frame
     local = np.empty_like(poses)
     Tb = B.copy()
@@ -1160,7 +1168,64 @@ def stack_forward(
             Ms = Ms + w[3:]
         worst = max(worst, _resnorm(geo, np.concatenate([Fs, Ms])))
     res = StackPose(poses, local, legpos, True, out.iterations, worst, "", time.perf_counter() - t_start)
-    return (res, F, M) if _return_legs else res
+    return (res, F, M, legrot) if _return_legs else res
+
+
+def _extrapolate_rot(R_prev, R_curr, c):
+    """``R_curr exp(c log(R_prev^T R_curr))`` for stacks of rotations (..., 3, 3)."""
+    shp = R_curr.shape
+    a = Rotation.from_matrix(R_prev.reshape(-1, 3, 3))
+    b = Rotation.from_matrix(R_curr.reshape(-1, 3, 3))
+    d = (a.inv() * b).as_rotvec()
+    return (b * Rotation.from_rotvec(c * d)).as_matrix().reshape(shp)
+
+
+def _stack_continuation(gs, Ls, B, g, wr, n_el, tol, max_it, last_out, min_step=1.0 / 256):
+    """Length continuation from the home configuration for :func:`stack_forward`."""
+    n = len(gs)
+    L_home = np.empty((n, 6))
+    for k, geo in enumerate(gs):
+        ik = module_inverse(geo, home_pose(geo), n_elements=n_el)
+        if not ik.success:
+            return last_out, None, None, None, (None, None)
+        L_home[k] = ik.lengths
+    # home configuration of the stack (no loads): predictor + leg equilibria
+    res = stack_forward(gs, L_home, base_pose=B, n_elements=n_el, tolerance=tol, max_iterations=max_it,
+                        continuation=False, _return_legs=True)
+    if not res[0].converged:
+        return last_out, None, None, None, (None, None)
+    poses, legpos = res[0].poses, res[0].leg_positions
+    legrot = res[3]
+    lam, step = 0.0, 0.25
+    out = last_out
+    F = M = None
+    prev = None  # (lam, poses, legpos, legrot) of the step before: secant predictor
+    while lam < 1.0:
+        lt = min(1.0, lam + step)
+        Lt = L_home + lt * (Ls - L_home)
+        specs = [_spec(geo, Lt[k]) for k, geo in enumerate(gs)]
+        if prev is None:
+            g_poses, g_pos, g_rot = poses, legpos, legrot
+        else:
+            c = (lt - lam) / (lam - prev[0])
+            g_poses = poses.copy()
+            g_poses[:, :3, 3] += c * (poses[:, :3, 3] - prev[1][:, :3, 3])
+            g_poses[:, :3, :3] = _extrapolate_rot(prev[1][:, :3, :3], poses[:, :3, :3], c)
+            g_pos = legpos + c * (legpos - prev[2])
+            g_rot = _extrapolate_rot(prev[3], legrot, c)
+        shapes = [[_ex.LegShape(positions=g_pos[k, i], rotations=g_rot[k, i]) for i in range(6)] for k in range(n)]
+        out, P_, F_, M_, (lp, lr) = _ex.solve_stack(specs, B, g_poses, shapes, g if lt == 1.0 or g is None else lt * g,
+                                                     None if wr is None else (lt * wr[0], lt * wr[1]), tol, max_it, 1)
+        if out.converged:
+            prev = (lam, poses, legpos, legrot)
+            lam, poses, F, M, legpos, legrot = lt, P_, F_, M_, lp, lr
+            step = min(2.0 * step, 0.5)
+        else:
+            step *= 0.5
+            if step < min_step:
+                reason = f"length continuation from home stalled at {lam:.3f}: {out.reason}"
+                return _ex.StaticOutcome(False, out.iterations, out.residual, reason, out.wall_time), None, None, None, (None, None)
+    return out, poses, F, M, (legpos, legrot)
 
 
 def stack_inverse(
