@@ -230,8 +230,8 @@ def test_three_module_round_trip_bending():
     assert fit.curvature == pytest.approx(0.6, rel=1e-5)
 
 
-@pytest.mark.slow
 def test_three_module_round_trip_with_gravity():
+    """Stack IK top-down with the hole reactions passed down, then one FK system of all modules."""
     geos = [ModuleGeometry(platform_mass=1.0)] * 3
     g = np.array([0.0, 0.0, -9.81])
     poses = _arc_poses(0.4, -1.0, [0.5, 1.0, 1.5])

@@ -277,6 +277,7 @@ def solve_stack(specs, base_pose, platform_guesses, leg_shapes, gravity, wrench,
     ground = mbs.AddObject(ObjectGround())
     base_body, base_T = ground, np.asarray(base_pose, dtype=float)
     bodies, pnodes, tip_joints = [], [], []
+    next_hole_pos = next_hole_rot = None  # holes of module k+1 in platform k's body frame
     for k, spec in enumerate(specs):
         Tg = platform_guesses[k]
         ep = Rotation.from_matrix(Tg[:3, :3]).as_quat()  # x, y, z, w
@@ -293,7 +294,7 @@ def solve_stack(specs, base_pose, platform_guesses, leg_shapes, gravity, wrench,
             if base_body == ground:
                 _hole_joint(mbs, ground, hp, hr, nodes[0])
             else:
-                _hole_joint(mbs, base_body, spec_prev_mount_pos[i], spec_prev_mount_rot[i], nodes[0])  # noqa: F821
+                _hole_joint(mbs, base_body, next_hole_pos[i], next_hole_rot[i], nodes[0])
             joints.append((_clamp_joint(mbs, body, spec.attachments[i], np.eye(3), nodes[-1]), beams[-1], nodes[-1], nodes))
         tip_joints.append(joints)
         mk = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body, localPosition=[0.0, 0.0, 0.0]))
@@ -308,8 +309,8 @@ def solve_stack(specs, base_pose, platform_guesses, leg_shapes, gravity, wrench,
         if k + 1 < len(specs):
             nxt = specs[k + 1]
             Mt = spec.mount
-            spec_prev_mount_pos = [Mt[:3, :3] @ nxt.hole_positions[i] + Mt[:3, 3] for i in range(6)]
-            spec_prev_mount_rot = [Mt[:3, :3] @ nxt.hole_rotations[i] for i in range(6)]
+            next_hole_pos = [Mt[:3, :3] @ nxt.hole_positions[i] + Mt[:3, 3] for i in range(6)]
+            next_hole_rot = [Mt[:3, :3] @ nxt.hole_rotations[i] for i in range(6)]
             base_body = body
             base_T = platform_guesses[k] @ Mt
     out = _solve(mbs, tol, max_iter, n_load_steps)

@@ -23,7 +23,9 @@ between hole and platform, the *insertion length* ``L_i``, is the actuator.  Mod
 * the moving platform is a rigid body (Euler-parameter node); optional gravity (rods lumped at
   the nodes, platform at its centre) and an external wrench at the platform origin (Eq 22).
 
-Forward kinematics (Eq 21-24) is one static equilibrium solve with the platform free.  Inverse
+Forward kinematics (Eq 21-24) is one static equilibrium solve with the platform free, started
+from a geometric predictor with every leg pre-solved at the predicted pose; if that fails (large
+motions), the lengths are walked from the home configuration with a secant predictor.  Inverse
 kinematics (Eq 25-28): with the platform pose prescribed every leg is an independent two-point
 boundary-value problem; Newton over ``L`` drives the platform wrench balance Eq 22 to zero, with
 the 6x6 Jacobian by finite differences (one extra leg solve per column, since leg ``i`` depends
@@ -51,7 +53,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Sequence
 
 import numpy as np
@@ -79,6 +81,7 @@ __all__ = [
     "stack_forward",
     "stack_inverse",
     "fit_constant_curvature",
+    "rotation_vector",
 ]
 
 
@@ -416,7 +419,7 @@ class LegSolution:
         Section frames (column 3 = material tangent; Cosserat convention).
     tip_force, tip_moment : ndarray, shape (3,)
         ``n(L)``, ``m(L)``: force [N] and moment [N m] the tip support exerts on the rod, global
-        frame (zero-size arrays' NaN when not converged; for a tip-wrench problem: the applied wrench).
+        frame (NaN when not converged; for a tip-wrench problem: the applied wrench).
     converged : bool
     iterations : int
         Newton iterations.
