@@ -1,6 +1,6 @@
 """Per-case overhead of the study runner vs a bare Python loop, and Dask speed-up.
 
-    /work/venv/bin/python benchmarks/bench_runner.py [--cases 200] [--quick]
+    python benchmarks/bench_runner.py [--cases 200] [--quick]
 
 The same N cheap cases run (a) in a bare loop calling the model function on a pre-built
 robot, (b) through ``run_study`` with the in-process serial executor, the isolated child
