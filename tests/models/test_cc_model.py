@@ -93,3 +93,12 @@ def test_tapered_tendons_use_their_mean_offset_per_section():
     k2, p2, _ = arc_from_actuation(robot, act)
     np.testing.assert_allclose(k2, kappa, atol=1e-12)
     np.testing.assert_allclose(p2, phi, atol=1e-12)
+
+
+@pytest.mark.parametrize("name", ["cc", "ancf", "beam3d", "ancf3d", "spring_link"])
+def test_every_model_rejects_wrong_argument_types(name):
+    robot = build_preset("steel_rod")
+    with pytest.raises(TypeError, match="robot must be a workbench.Robot"):
+        get_model(name)({"length": 0.8}, LoadCase(), SolverOptions())
+    with pytest.raises(Exception, match="robot has 2 tendons"):
+        get_model(name)(robot, LoadCase(actuation=TendonActuation("tension", (1.0, 0.0, 0.0))), SolverOptions())

@@ -40,6 +40,7 @@ from ..kinematics import (
     tendon_lengths_from_arc,
 )
 from ..robot import LoadCase, Robot, TendonActuation
+from .inputs import check_model_inputs
 from .result import PhysicsResult, SolverInfo, SolverOptions
 
 __all__ = ["actuation_from_arc", "arc_from_actuation", "run"]
@@ -221,6 +222,7 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
         CC kinematics predicts no forces); ``length_change`` is the virtual length change
         ``sum(ell) - L``; ``tip_twist`` is 0.
     """
+    check_model_inputs(robot, load, options)
     t0 = time.perf_counter()
     act = load.actuation
     kappa, phi, ell = arc_from_actuation(robot, act)

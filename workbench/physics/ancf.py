@@ -127,6 +127,7 @@ from typing import Literal
 
 import numpy as np
 
+from ..models.inputs import check_model_inputs
 from ..models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ..robot import LoadCase, Robot
 from . import _ancf_geometry as geo
@@ -195,14 +196,7 @@ def _tendon_sign(sigma: float, index: int) -> float:
 
 
 def _problem(robot: Robot, load: LoadCase, options: SolverOptions) -> _Problem:
-    if not isinstance(robot, Robot):
-        raise TypeError(f"robot must be a Robot, got {type(robot).__name__}")
-    if not isinstance(load, LoadCase):
-        raise TypeError(f"load must be a LoadCase, got {type(load).__name__}")
-    if not isinstance(options, SolverOptions):
-        raise TypeError(f"options must be a SolverOptions, got {type(options).__name__}")
-    if load.actuation is not None:
-        load.actuation.check_against(robot)
+    check_model_inputs(robot, load, options)
     L = robot.length
     F = np.asarray(load.tip_force)
     M = np.asarray(load.tip_torque)

@@ -43,6 +43,7 @@ import time as _time
 
 import numpy as np
 
+from ..models.inputs import check_model_inputs
 from ..models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ..robot import LoadCase, Robot
 from .beam3d import element_layout
@@ -53,15 +54,9 @@ _MIN_INCREMENT = 1e-6
 
 
 def _check(robot: Robot, load: LoadCase, options: SolverOptions) -> None:
-    if not isinstance(robot, Robot):
-        raise TypeError(f"robot must be a workbench.robot.Robot, got {type(robot).__name__}")
-    if not isinstance(load, LoadCase):
-        raise TypeError(f"load must be a workbench.robot.LoadCase, got {type(load).__name__}")
-    if not isinstance(options, SolverOptions):
-        raise TypeError(f"options must be a SolverOptions, got {type(options).__name__}")
+    check_model_inputs(robot, load, options)
     act = load.actuation
     if act is not None:
-        act.check_against(robot)
         if any(v != 0 for v in act.values) or act.pretension > 0:
             raise ModelFailure(
                 "ancf3d has no cross-section frame and cannot carry offset tendons: tendon commands "

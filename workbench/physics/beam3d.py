@@ -118,6 +118,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..models.inputs import check_model_inputs
 from ..models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ..robot import LoadCase, Robot
 
@@ -154,14 +155,7 @@ class _Model:
 
 
 def _check(robot: Robot, load: LoadCase, options: SolverOptions) -> None:
-    if not isinstance(robot, Robot):
-        raise TypeError(f"robot must be a workbench.robot.Robot, got {type(robot).__name__}")
-    if not isinstance(load, LoadCase):
-        raise TypeError(f"load must be a workbench.robot.LoadCase, got {type(load).__name__}")
-    if not isinstance(options, SolverOptions):
-        raise TypeError(f"options must be a SolverOptions, got {type(options).__name__}")
-    if load.actuation is not None:
-        load.actuation.check_against(robot)
+    check_model_inputs(robot, load, options)
     if load.analysis == "dynamic" and robot.payload.mass > 0 and any(robot.payload.offset):
         raise ModelFailure("beam3d: a payload with non-zero offset is supported in static analysis only")
 

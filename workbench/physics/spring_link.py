@@ -117,6 +117,7 @@ from typing import Callable, Literal
 
 import numpy as np
 
+from ..models.inputs import check_model_inputs
 from ..models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ..robot import LoadCase, Robot
 from ._spring_link_geometry import ChainGeometry, chain_geometry_from_robot
@@ -1069,6 +1070,7 @@ def solve(robot: Robot, load: LoadCase, options: SolverOptions,
     """
     from ._exudyn import dynamic_settings, quiet_exudyn
 
+    check_model_inputs(robot, load, options)
     planar, why = is_planar(robot, load)
     if params.dimension == "2d" and not planar:
         raise ModelFailure(f"spring_link: dimension='2d' requested but the case is not planar: {why}")
