@@ -8,6 +8,8 @@ table of :func:`workbench.compare.compare_table`.
 from __future__ import annotations
 
 import math
+import re
+import textwrap
 from dataclasses import dataclass
 from typing import Any, Mapping, Sequence
 
@@ -118,7 +120,10 @@ def short_label(col: str, labels: Mapping[str, str] | None = None) -> str:
     if col in plain:
         return plain[col]
     if labels and col in labels:
-        return labels[col]
+        # the symbol part of a user label: "eyelet spacing ds/L (0 = continuous)" -> "eyelet spacing ds/L",
+        # "gravity parameter γ = qL³/EI" -> "gravity parameter γ"
+        short = re.split(r"\s+[(\[]|\s+=\s+", labels[col], maxsplit=1)[0].strip()
+        return short or labels[col]
     return col[2:] if col.startswith("p.") else col
 
 
@@ -234,7 +239,7 @@ def shape_overlay_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]
     aspect = max((hi[a] - lo[a] + 2 * pad) / (hi[b] - lo[b] + 2 * pad) for a, b, _, _ in views)
     panel_h = 3.2
     panel_w = float(np.clip(panel_h * aspect + 0.7, 2.2, 5.5))
-    fig = Figure(figsize=(panel_w * ncol + 0.4, (panel_h + 0.5) * len(views) + 0.4), layout="constrained")
+    fig = Figure(figsize=(panel_w * ncol + 0.4, (panel_h + 0.9) * len(views) + 0.4), layout="constrained")
     axs = np.atleast_2d(fig.subplots(len(views), ncol, squeeze=False))
     for j, (cid, row0, per) in enumerate(data):
         for i, (a, b, la, lb) in enumerate(views):
@@ -267,7 +272,7 @@ def shape_overlay_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]
             if j == 0:
                 ax.set_ylabel(lb)
             if i == 0:
-                ax.set_title(_case_title(row0, study.axes, study.labels))
+                ax.set_title(textwrap.fill(_case_title(row0, study.axes, study.labels), width=36), fontsize=9.5)
     handles, labs = axs[0, 0].get_legend_handles_labels()
     for ax in axs.flat:
         h, lab = ax.get_legend_handles_labels()
