@@ -13,7 +13,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from .golden import GOLDEN_DIR, STUDIES_DIR, read_golden, run_small_study, small_study_paths, write_golden
+from .golden import GOLDEN_DIR, STUDIES_DIR, run_small_study, small_study_paths, write_golden
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -29,8 +29,9 @@ def main(argv: list[str] | None = None) -> int:
         with tempfile.TemporaryDirectory() as tmp:
             frame = run_small_study(p, Path(tmp) / p.stem)
         out = GOLDEN_DIR / f"{p.stem}.csv"
-        changed = "new" if not out.exists() else ("unchanged" if read_golden(out).shape == frame.shape else "rewritten")
+        old = out.read_text() if out.exists() else None
         write_golden(frame, out)
+        changed = "new" if old is None else ("unchanged" if out.read_text() == old else "CHANGED")
         n_fail = int((frame["status"] != "ok").sum())
         print(f"{p.stem}: {len(frame)} rows ({n_fail} failed) -> {out} [{changed}]")
     print("Goldens rewritten.  Review `git diff tests/regression/golden/` and commit with the REASON for "
