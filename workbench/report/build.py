@@ -241,7 +241,14 @@ def _page(study: Study, cmp, summary, failed, fcols, sections, fig_names) -> str
             prov.append((str(k), v))
     prov_html = "<dl class='prov'>" + "".join(f"<dt>{_esc(k)}</dt><dd>{_esc(v)}</dd>" for k, v in prov) + "</dl>"
     if len(failed):
-        fail_html = "<h2>Failed cases</h2><p>Excluded from all figures and metrics.</p>" + _table(failed[fcols]).replace("<tr><td>", "<tr class='failed'><td>")
+        rows = _table(failed[fcols]).replace("<tr><td>", "<tr class='failed'><td>")
+        per_model = ", ".join(f"{_esc(m)} {n}" for m, n in failed["model"].astype(str).value_counts().sort_index().items())
+        fail_html = (f"<h2>Failed cases</h2><p>{len(failed)} failed model runs ({per_model}), excluded from all "
+                     "figures and metrics.</p>")
+        if len(failed) > 8:  # a long list would push the results off the first screen
+            fail_html += f"<details><summary>show the {len(failed)} failed runs and their reasons</summary>{rows}</details>"
+        else:
+            fail_html += rows
     else:
         fail_html = "<p class='note'>No failed cases.</p>"
     if summary.empty:

@@ -8,6 +8,8 @@ table of :func:`workbench.compare.compare_table`.
 from __future__ import annotations
 
 import math
+import re
+import textwrap
 from dataclasses import dataclass
 from typing import Any, Mapping, Sequence
 
@@ -118,7 +120,10 @@ def short_label(col: str, labels: Mapping[str, str] | None = None) -> str:
     if col in plain:
         return plain[col]
     if labels and col in labels:
-        return labels[col]
+        # the symbol part of a user label: "eyelet spacing ds/L (0 = continuous)" -> "eyelet spacing ds/L",
+        # "gravity parameter γ = qL³/EI" -> "gravity parameter γ"
+        short = re.split(r"\s+[(\[]|\s+=\s+", labels[col], maxsplit=1)[0].strip()
+        return short or labels[col]
     return col[2:] if col.startswith("p.") else col
 
 
@@ -234,7 +239,7 @@ def shape_overlay_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]
     aspect = max((hi[a] - lo[a] + 2 * pad) / (hi[b] - lo[b] + 2 * pad) for a, b, _, _ in views)
     panel_h = 3.2
     panel_w = float(np.clip(panel_h * aspect + 0.7, 2.2, 5.5))
-    fig = Figure(figsize=(panel_w * ncol + 0.4, (panel_h + 0.5) * len(views) + 0.4), layout="constrained")
+    fig = Figure(figsize=(panel_w * ncol + 0.4, (panel_h + 0.9) * len(views) + 0.4), layout="constrained")
     axs = np.atleast_2d(fig.subplots(len(views), ncol, squeeze=False))
     for j, (cid, row0, per) in enumerate(data):
         for i, (a, b, la, lb) in enumerate(views):
@@ -267,7 +272,7 @@ def shape_overlay_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]
             if j == 0:
                 ax.set_ylabel(lb)
             if i == 0:
-                ax.set_title(_case_title(row0, study.axes, study.labels))
+                ax.set_title(textwrap.fill(_case_title(row0, study.axes, study.labels), width=36), fontsize=9.5)
     handles, labs = axs[0, 0].get_legend_handles_labels()
     for ax in axs.flat:
         h, lab = ax.get_legend_handles_labels()
@@ -457,6 +462,13 @@ def _slug(col: str) -> str:
 # --------------------------------------------------------------------------------------
 # validity map
 # --------------------------------------------------------------------------------------
+def _facet_axis(study: Study, axes: Sequence[str]) -> str | None:
+    """A categorical third axis with a few values: one validity-map panel per category."""
+    if len(axes) >= 3 and axes[2] in study.categories and 2 <= len(study.categories[axes[2]]) <= 4:
+        return axes[2]
+    return None
+
+
 def validity_map_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]:
     axes = list(study.axes)
     if len(axes) < 2 or cmp.empty:
@@ -465,9 +477,12 @@ def validity_map_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]:
     pairs = [p for p in _ref_pairs(cmp, study.reference) if p[0] == study.reference] or _ref_pairs(cmp, study.reference)
     if not pairs:
         return []
-    n = len(pairs)
+    facet = _facet_axis(study, axes)
+    facet_vals: list[float | None] = (list(range(len(study.categories[facet]))) if facet else [None])
+    panels = [(ref, m, fv) for ref, m in pairs for fv in facet_vals]
+    n = len(panels)
     fig = Figure(figsize=(4.0 * n + 1.2, 3.8), layout="constrained")
-    axs = np.atleast_1d(fig.subplots(1, n, squeeze=False)[0])
+    axs = np.atleast_1d(fig.subplots(1, n, squeeze=False, sharey=True)[0])
     allv = numeric(cmp["tip_error_pct"])
     allv = allv[np.isfinite(allv) & (allv > 0)]
     if allv.size == 0:
@@ -477,10 +492,17 @@ def validity_map_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]:
     texts = []
     mesh = None
     missing_note = False
-    for ax, (ref, m) in zip(axs, pairs):
+    for ax, (ref, m, fv) in zip(axs, panels):
         sub = cmp[(cmp["reference"] == ref) & (cmp["model"] == m)]
+        where = ""
+        if facet is not None:
+            sub = sub[numeric(sub[facet]) == fv]
+            where = f" ({study.categories[facet][int(fv)]})"
         g = pd.DataFrame({"x": numeric(sub[a0]), "y": numeric(sub[a1]), "e": numeric(sub["tip_error_pct"])})
         g = g.dropna().groupby(["y", "x"])["e"].max().unstack("x")  # worst over other axes
+        if g.empty:
+            ax.set_axis_off()
+            continue
         xs, ys, E = g.columns.to_numpy(float), g.index.to_numpy(float), g.to_numpy(float)
         Em = np.ma.masked_invalid(E)
         mesh = ax.pcolormesh(xs, ys, Em, shading="nearest", cmap="magma_r", norm=norm)
@@ -497,7 +519,7 @@ def validity_map_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]:
         ax.set_xlabel(axis_label(a0, study.labels))
         _category_ticks(ax, study, a0, "x")
         _category_ticks(ax, study, a1, "y")
-        ax.set_title(pair_label(ref, m))
+        ax.set_title(pair_label(ref, m) + where)
         # failed / missing grid cells
         if np.isnan(E).any():
             yy, xx = np.nonzero(np.isnan(E))
@@ -510,18 +532,22 @@ def validity_map_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]:
         frac = [100.0 * np.sum(E[np.isfinite(E)] < t) / tot for t in THRESHOLDS]
         iy, ix = np.unravel_index(np.nanargmax(E), E.shape)
         texts.append(
-            f"{pair_label(ref, m)}: CC tip error is below 1 % of L in {fmt(frac[0])} % of the {tot} swept points, "
+            f"{pair_label(ref, m)}{where}: CC tip error is below 1 % of L in {fmt(frac[0])} % of the {tot} swept points, "
             f"below 5 % in {fmt(frac[1])} %, below 10 % in {fmt(frac[2])} %; worst {fmt(E[iy, ix])} % at "
             f"{short_label(a0, study.labels)} = {_val(study, a0, xs[ix])}, {short_label(a1, study.labels)} = {_val(study, a1, ys[iy])}."
             + _region_statement(xs, ys, E, a0, a1, study)
         )
+    if mesh is None:
+        return []
     axs[0].set_ylabel(axis_label(a1, study.labels))
     cb = fig.colorbar(mesh, ax=list(axs), shrink=0.95)
     cb.set_label("CC tip position error [% L]")
     if missing_note:
         texts.append("Blank cells marked × are failed or missing cases (excluded).")
-    extra = f" (maximum over {', '.join(short_label(a, study.labels) for a in axes[2:])})" if len(axes) > 2 else ""
-    summary = "Validity map: heat map of the tip error, contour lines at 1 %, 5 % and 10 % of L" + extra + ". " + " ".join(texts)
+    rest = [a for a in axes[2:] if a != facet]
+    extra = f" (maximum over {', '.join(short_label(a, study.labels) for a in rest)})" if rest else ""
+    per = f", one panel per {short_label(facet, study.labels)}" if facet else ""
+    summary = "Validity map: heat map of the tip error, contour lines at 1 %, 5 % and 10 % of L" + per + extra + ". " + " ".join(texts)
     return [ReportFigure("validity_map", "Validity map of constant curvature", fig, summary)]
 
 

@@ -204,10 +204,11 @@ def load_study(data_dir: str | Path) -> Study:
 
     axes: list[str] = []
     for a in rep.get("axes") or []:
-        if str(a) in df.columns and varies(str(a)):
-            axes.append(str(a))
-        elif f"p.{a}" in df.columns and varies(f"p.{a}"):
-            axes.append(f"p.{a}")
+        # numeric or categorical (e.g. robot.base_orientation) axes, named with or without "p."
+        for col in (str(a), f"p.{a}"):
+            if col in df.columns and (varies(col) or varies_categorical(col)):
+                axes.append(col)
+                break
     if not axes:
         for k in sweep_keys(spec):
             col = k if k in df.columns else f"p.{k}"
