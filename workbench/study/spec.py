@@ -46,12 +46,18 @@ Annotated example (``studies/example.toml`` is a runnable one)::
     n_stations = 33
     tendon_model = "continuum"  # "continuum" | "eyelets"
 
+    [scenario]                  # optional: per-case tendon commands from a registered pure
+    name = "wire_delay"         #   function (workbench.study.scenarios.SCENARIOS); the other
+    delay = 3.0                 #   keys are its keyword parameters (typed by their defaults),
+                                #   sweepable as "scenario.<key>"; its returned [load] fields
+                                #   (length_changes, start_delays, ...) replace the [load] ones
+
     [derived]                   # optional dimensionless parameters resolved per case
     gravity_parameter = 1.0     # gamma = q L^3 / EI with q = backbone weight per length;
                                 # sets the preset's gravity to g = gamma EI / (m' L^3)
                                 # (uniform robots only; do not also set robot.gravity)
 
-    [sweep]                     # axes: dotted keys into robot / load / solver / derived
+    [sweep]                     # axes: dotted keys into robot / load / solver / derived / scenario
     product = { "load.bend_angle" = [0.5, 1.0, 2.0], "robot.length" = [0.5, 0.8] }  # grid
     zip = { "solver.n_elements" = [8, 16], "solver.n_stations" = [17, 33] }  # paired, equal length
     cases = [ { "load.pretension" = 1.0 }, { "load.pretension" = 2.0 } ]     # explicit list
