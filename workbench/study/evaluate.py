@@ -244,7 +244,12 @@ def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str]
             robot = robot_cache.get(key)
             if robot is None:
                 robot = robot_cache[key] = build_robot(params["robot"], params.get("derived"))
-        load = build_load(robot, params["load"], arc_actuation)
+        load_params = params["load"]
+        if params.get("scenario"):
+            from .scenarios import load_with_scenario
+
+            load_params = load_with_scenario(robot, load_params, params["scenario"])
+        load = build_load(robot, load_params, arc_actuation)
         options = build_options(params["solver"])
     except Exception as e:  # noqa: BLE001 - recorded as the case's failure reason
         return failed_rows(case_id, params, models, f"building the case failed: {_reason(e)}")

@@ -46,12 +46,18 @@ Annotated example (``studies/example.toml`` is a runnable one)::
     n_stations = 33
     tendon_model = "continuum"  # "continuum" | "eyelets"
 
+    [scenario]                  # optional: per-case tendon commands from a registered pure
+    name = "wire_delay"         #   function (workbench.study.scenarios.SCENARIOS); the other
+    delay = 3.0                 #   keys are its keyword parameters (typed by their defaults),
+                                #   sweepable as "scenario.<key>"; its returned [load] fields
+                                #   (length_changes, start_delays, ...) replace the [load] ones
+
     [derived]                   # optional dimensionless parameters resolved per case
     gravity_parameter = 1.0     # gamma = q L^3 / EI with q = backbone weight per length;
                                 # sets the preset's gravity to g = gamma EI / (m' L^3)
                                 # (uniform robots only; do not also set robot.gravity)
 
-    [sweep]                     # axes: dotted keys into robot / load / solver / derived
+    [sweep]                     # axes: dotted keys into robot / load / solver / derived / scenario
     product = { "load.bend_angle" = [0.5, 1.0, 2.0], "robot.length" = [0.5, 0.8] }  # grid
     zip = { "solver.n_elements" = [8, 16], "solver.n_stations" = [17, 33] }  # paired, equal length
     cases = [ { "load.pretension" = 1.0 }, { "load.pretension" = 2.0 } ]     # explicit list
@@ -97,7 +103,7 @@ __all__ = [
 ]
 
 DEFAULT_MAX_CASES = 5000
-SWEEP_SECTIONS = ("robot", "load", "solver", "derived")
+SWEEP_SECTIONS = ("robot", "load", "solver", "derived", "scenario")
 
 
 class StudyError(ValueError):
@@ -187,6 +193,7 @@ class StudyFile(BaseModel):
     derived: DerivedSection = Field(default_factory=DerivedSection)
     sweep: SweepSection = Field(default_factory=SweepSection)
     report: ReportSection = Field(default_factory=ReportSection)
+    scenario: dict[str, Any] | None = None
 
 
 _SECTION_MODELS: dict[str, type[BaseModel]] = {
@@ -516,6 +523,9 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
         if preset_defaults and "gravity" not in preset_defaults:
             problems.append("derived.gravity_parameter: the preset has no 'gravity' parameter to derive")
 
+    scenario_base, scenario_problems = _check_scenario(raw.get("scenario"))
+    problems.extend(scenario_problems)
+
     base: dict[str, dict[str, Any]] | None = None
     if robot_base is not None and all(k in sections for k in ("load", "solver", "derived")):
         base = {
@@ -524,6 +534,8 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
             "solver": sections["solver"].model_dump(),
             "derived": sections["derived"].model_dump(),
         }
+        if scenario_base is not None:  # only when given: keeps case ids of scenario-free studies
+            base["scenario"] = scenario_base
 
     sweep_plain: dict[str, Any] = {}
     if "sweep" in sections and base is not None:
@@ -566,6 +578,39 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
     return study
 
 
+def _check_scenario(raw: Any) -> tuple[dict[str, Any] | None, list[str]]:
+    """Resolve ``[scenario]``: a registered name plus typed parameters (defaults filled in)."""
+    from .scenarios import SCENARIOS, scenario_parameters
+
+    if raw is None:
+        return None, []
+    if not isinstance(raw, dict):
+        return None, [f"scenario: must be a table [scenario], got {type(raw).__name__}"]
+    name = raw.get("name")
+    if name is None:
+        return None, ["scenario.name: missing required key (one of: " + ", ".join(sorted(SCENARIOS)) + ")"]
+    if not isinstance(name, str):
+        return None, [f"scenario.name: must be a string, got {type(name).__name__} {name!r}"]
+    if name not in SCENARIOS:
+        return None, [f"scenario.name: unknown scenario {name!r}{_suggest(name, sorted(SCENARIOS))}"
+                      .replace("; known keys:", "; known scenarios:")]
+    defaults = scenario_parameters(name)
+    out: dict[str, Any] = {"name": name, **defaults}
+    problems = []
+    for k, v in raw.items():
+        if k == "name":
+            continue
+        if k not in defaults:
+            problems.append(f"scenario.{k}: unknown parameter of scenario {name!r}{_suggest(k, list(defaults))}")
+            continue
+        cv, prob = check_robot_value(k, v, defaults[k])
+        if prob:
+            problems.append(f"scenario.{k}: {prob}")
+        else:
+            out[k] = cv
+    return out, problems
+
+
 def _load_rules(load: dict[str, Any], where: str) -> list[str]:
     """Cross-field and element-wise load checks (structural, robot-independent)."""
     out = []
@@ -603,6 +648,14 @@ def _case_rules(params: dict[str, Any], study: Study) -> list[str]:
     except Exception as e:  # noqa: BLE001 - every build failure is a user input problem here
         return [f"robot: {e}"]
     load = params["load"]
+    if params.get("scenario"):
+        from .scenarios import load_with_scenario
+
+        try:
+            load = load_with_scenario(robot, load, params["scenario"])
+        except Exception as e:  # noqa: BLE001 - an infeasible scenario is an input problem
+            return [f"scenario: {e}"]
+        out.extend(_load_rules(load, "load (with scenario)"))
     nt, ns = robot.n_tendons, robot.n_sections
     for name in ("tensions", "length_changes", "start_delays", "ramp_durations"):
         v = load.get(name)
@@ -637,7 +690,8 @@ def _case_rules(params: dict[str, Any], study: Study) -> list[str]:
 # sweep checks
 # ---------------------------------------------------------------------------------------
 def _known_paths(base: dict[str, dict[str, Any]]) -> list[str]:
-    return [f"{s}.{k}" for s in SWEEP_SECTIONS for k in base[s] if not (s == "robot" and k == "preset")]
+    return [f"{s}.{k}" for s in SWEEP_SECTIONS for k in base.get(s, {})
+            if not (s == "robot" and k == "preset") and not (s == "scenario" and k == "name")]
 
 
 def check_override(path: str, value: Any, base: dict[str, dict[str, Any]],
@@ -646,6 +700,10 @@ def check_override(path: str, value: Any, base: dict[str, dict[str, Any]],
     section, _, key = path.partition(".")
     if section == "robot":
         return check_robot_value(key, value, preset_defaults[key])
+    if section == "scenario":
+        from .scenarios import scenario_parameters
+
+        return check_robot_value(key, value, scenario_parameters(base["scenario"]["name"])[key])
     model = _SECTION_MODELS[section]
     data = dict(base[section])
     data[key] = value
@@ -671,6 +729,9 @@ def _check_sweep(sw: SweepSection, base: dict[str, dict[str, Any]],
     def check_path(path: str, where: str) -> bool:
         if path == "robot.preset":
             problems.append(f'{where}["robot.preset"]: the preset cannot be swept (one study per preset)')
+            return False
+        if path == "scenario.name":
+            problems.append(f'{where}["scenario.name"]: the scenario cannot be swept (one study per scenario)')
             return False
         if path not in known:
             section = path.partition(".")[0]
