@@ -1183,6 +1183,32 @@ def _extrapolate_rot(R_prev, R_curr, c):
     return (b * Rotation.from_rotvec(c * d)).as_matrix().reshape(shp)
 
 
+def _presolve_legs(gs, Ls, B, poses, g, n_el, guess_pos, guess_rot):
+    """Leg shapes for a stack solve: each leg in equilibrium with its platform held at ``poses``."""
+    shapes = []
+    Tb = B.copy()
+    for k, geo in enumerate(gs):
+        P0, R0 = hole_frames(geo)
+        A = attachment_points(geo)
+        legs = []
+        for i in range(6):
+            pb = Tb[:3, :3] @ P0[i] + Tb[:3, 3]
+            Rb = Tb[:3, :3] @ R0[i]
+            Tt = np.eye(4)
+            Tt[:3, :3] = poses[k][:3, :3]
+            Tt[:3, 3] = poses[k][:3, :3] @ A[i] + poses[k][:3, 3]
+            guess = LegSolution(guess_pos[k, i], guess_rot[k, i], np.zeros(3), np.zeros(3), True, 0)
+            leg = leg_static(geo, pb, Rb, Ls[k, i], tip_pose=Tt, gravity=g, n_elements=n_el, initial_guess=guess,
+                             continuation=False)
+            if leg.converged:
+                legs.append(_ex.LegShape(positions=leg.positions, rotations=leg.rotations))
+            else:
+                legs.append(_ex.LegShape(positions=guess_pos[k, i], rotations=guess_rot[k, i]))
+        shapes.append(legs)
+        Tb = poses[k] @ geo.mount_transform()
+    return shapes
+
+
 def _stack_continuation(gs, Ls, B, g, wr, n_el, tol, max_it, last_out, min_step=1.0 / 256):
     """Length continuation from the home configuration for :func:`stack_forward`."""
     n = len(gs)
@@ -1216,7 +1242,10 @@ def _stack_continuation(gs, Ls, B, g, wr, n_el, tol, max_it, last_out, min_step=
             g_poses[:, :3, :3] = _extrapolate_rot(prev[1][:, :3, :3], poses[:, :3, :3], c)
             g_pos = legpos + c * (legpos - prev[2])
             g_rot = _extrapolate_rot(prev[3], legrot, c)
-        shapes = [[_ex.LegShape(positions=g_pos[k, i], rotations=g_rot[k, i]) for i in range(6)] for k in range(n)]
+        # every leg pre-solved with its new length at the predicted platform pose, warm-started from
+        # the previous equilibrium: the old leg shapes with the new stress-free lengths carry an
+        # axial misfit (EA dL / L, ~kN for 0.1 mm) that Newton on the whole module does not survive
+        shapes = _presolve_legs(gs, Lt, B, g_poses, g if g is None else lt * g, n_el, g_pos, g_rot)
         out, P_, F_, M_, (lp, lr) = _ex.solve_stack(specs, B, g_poses, shapes, g if lt == 1.0 or g is None else lt * g,
                                                      None if wr is None else (lt * wr[0], lt * wr[1]), tol, max_it, 1)
         if out.converged:
