@@ -810,7 +810,7 @@ def module_forward(
     )
 
 
-def _leg_solve(geometry, i, Li, T, gravity, n_el, tol, max_it, guess=None):
+def _leg_solve(geometry, i, Li, T, gravity, n_el, tol, max_it, guess=None, guess_length=None):
     P0, R0 = hole_frames(geometry)
     A = attachment_points(geometry)
     Tt = np.eye(4)
@@ -819,9 +819,44 @@ def _leg_solve(geometry, i, Li, T, gravity, n_el, tol, max_it, guess=None):
     kw = dict(tip_pose=Tt, free_base_twist=True, gravity=gravity, n_elements=n_el, tolerance=tol, max_iterations=max_it,
               continuation=False)  # the IK continues on the platform pose instead (cheaper)
     leg = leg_static(geometry, P0[i], R0[i], Li, initial_guess=guess, **kw)
+    if not leg.converged and guess is not None and guess.converged and guess_length is not None:
+        leg = _leg_homotopy(geometry, P0[i], R0[i], guess, float(guess_length), Li, Tt, kw)
     if not leg.converged and guess is not None:
         leg = leg_static(geometry, P0[i], R0[i], Li, **kw)
     return leg
+
+
+def _leg_homotopy(geometry, p0, R0, guess, L_start, L_end, T_end, kw, min_step=1.0 / 64):
+    """Walk one leg from a converged state (``guess`` at length ``L_start``) to (``L_end``, ``T_end``).
+
+    Tip position, tip rotation (slerp) and length are interpolated together, every step
+    warm-started from the last.  Needed where the legs are strongly S-bent (large platform
+    rotations): one Newton solve from the neighbouring state then diverges although the leg
+    problem is regular, because the change of the stress-free length enters through the stiff
+    axial direction (``EA dL / L``).
+    """
+    Tg = np.eye(4)
+    Tg[:3, :3] = guess.rotations[-1]
+    Tg[:3, 3] = guess.positions[-1]
+    slerp = Slerp([0.0, 1.0], Rotation.from_matrix(np.stack([Tg[:3, :3], T_end[:3, :3]])))
+    cur, lam, step = guess, 0.0, 0.25
+    kw = dict(kw)
+    kw.pop("tip_pose")
+    last = guess
+    while lam < 1.0:
+        lt = min(1.0, lam + step)
+        Tt = np.eye(4)
+        Tt[:3, :3] = slerp([lt]).as_matrix()[0]
+        Tt[:3, 3] = (1.0 - lt) * Tg[:3, 3] + lt * T_end[:3, 3]
+        last = leg_static(geometry, p0, R0, (1.0 - lt) * L_start + lt * L_end, tip_pose=Tt, initial_guess=cur, **kw)
+        if last.converged:
+            lam, cur = lt, last
+            step = min(2.0 * step, 0.5)
+        else:
+            step *= 0.5
+            if step < min_step:
+                return last
+    return cur
 
 
 def module_inverse(
@@ -906,7 +941,7 @@ def module_inverse(
             Tt[:3, 3] = (1 - lt) * H[:3, 3] + lt * T[:3, 3]
             # predictor: previous L shifted by the change of the Hermite lengths
             Lg = Lc + (_hermite_lengths(geometry, Tt) - _hermite_lengths(geometry, _interp_pose(H, T, slerp, lam)))
-            Ln, legs_n, okn, itn, rn, msgn = _ik_newton(geometry, Tt, Lg, legs_c, max_iterations=max_iterations, **kw)
+            Ln, legs_n, okn, itn, rn, msgn = _ik_newton(geometry, Tt, Lg, legs_c, legs0_L=Lc, max_iterations=max_iterations, **kw)
             total_its += itn
             if okn:
                 lam, Lc, legs_c = lt, Ln, legs_n
@@ -946,17 +981,18 @@ def _interp_pose(H, T, slerp, lam):
     return Tt
 
 
-def _ik_newton(geometry, T, L, legs0, *, w, g, n_el, length_tolerance, leg_tolerance, fd_step, max_iterations, counter):
+def _ik_newton(geometry, T, L, legs0, *, legs0_L=None, w, g, n_el, length_tolerance, leg_tolerance, fd_step, max_iterations, counter):
     """Newton over L for a fixed platform pose (Eq 22 with Eq 25-26), backtracking on the residual.
 
     Returns (L, legs, success, iterations, residual vector, message).
     """
 
-    def evaluate(Lv, guess_legs, only=None, base_legs=None):
+    def evaluate(Lv, guess_legs, only=None, base_legs=None, guess_L=None):
         legs = list(base_legs) if base_legs is not None else [None] * 6
         for i in range(6) if only is None else only:
             gl = None if guess_legs is None else guess_legs[i]
-            legs[i] = _leg_solve(geometry, i, Lv[i], T, g, n_el, leg_tolerance, 50, guess=gl)
+            gL = None if guess_L is None else guess_L[i]
+            legs[i] = _leg_solve(geometry, i, Lv[i], T, g, n_el, leg_tolerance, 50, guess=gl, guess_length=gL)
             counter[0] += 1
             if not legs[i].converged:
                 return None, legs, f"leg {i} static solve failed at L = {Lv[i]:.6g} m: {legs[i].reason}"
@@ -964,7 +1000,7 @@ def _ik_newton(geometry, T, L, legs0, *, w, g, n_el, length_tolerance, leg_toler
         M = np.stack([lg.tip_moment for lg in legs])
         return _balance(geometry, T, F, M, w, g), legs, ""
 
-    r, legs, msg = evaluate(L, legs0)
+    r, legs, msg = evaluate(L, legs0, guess_L=legs0_L)
     if r is None:
         return L, None, False, 0, None, msg
     J = None
@@ -975,7 +1011,7 @@ def _ik_newton(geometry, T, L, legs0, *, w, g, n_el, length_tolerance, leg_toler
             for i in range(6):
                 Lp = L.copy()
                 Lp[i] += fd_step
-                rp, _, msg = evaluate(Lp, legs, only=[i], base_legs=legs)
+                rp, _, msg = evaluate(Lp, legs, only=[i], base_legs=legs, guess_L=L)
                 if rp is None:
                     return L, legs, False, it, r, "Jacobian: " + msg
                 J[:, i] = (rp - r) / fd_step
@@ -989,7 +1025,7 @@ def _ik_newton(geometry, T, L, legs0, *, w, g, n_el, length_tolerance, leg_toler
             Ln = L + frac * dL
             if np.any(Ln <= 0):
                 continue
-            rn, legs_n, msg = evaluate(Ln, legs)
+            rn, legs_n, msg = evaluate(Ln, legs, guess_L=L)
             if rn is not None and (_resnorm(geometry, rn) < r0 or frac * np.max(np.abs(dL)) < length_tolerance):
                 break
         else:
