@@ -243,6 +243,32 @@ def _check_geometry(raw: dict[str, Any], defaults: dict[str, Any]) -> tuple[dict
     return out, problems
 
 
+_LIST_ITEM_MODELS = {("motions", "module"): _ModuleMotion, ("motions", "stack"): _StackMotion}
+
+
+def _validation_problems(exc: ValidationError) -> list[str]:
+    """pydantic errors -> one line each (the generic study's wording); a misspelt required key
+    gives one line (the unknown key with its suggestion), not also "missing required key"."""
+    lines = _pydantic_problems(exc, (), _MotionFile)
+    # unknown keys inside list items (motions.module[i]): suggest from the item's fields
+    out = []
+    suggested: set[str] = set()
+    for line in lines:
+        loc, _, msg = line.partition(": ")
+        if msg == "unknown key":
+            parts = loc.replace("]", "").split("[")
+            head = tuple(parts[0].split("."))
+            if head in _LIST_ITEM_MODELS and len(parts) == 2 and "." in parts[1]:
+                key = parts[1].split(".", 1)[1]
+                known = list(_LIST_ITEM_MODELS[head].model_fields)
+                line = f"{loc}: unknown key{_suggest(key, known)}"
+        if "did you mean '" in line:
+            target = line.split("did you mean '")[1].split("'")[0]
+            suggested.add(loc.rsplit(".", 1)[0] + "." + target)
+        out.append(line)
+    return [ln for ln in out if not (ln.endswith(": missing required key") and ln.partition(": ")[0] in suggested)]
+
+
 def load_motion_study(path: str | Path, *, max_cases: int | None = None) -> MotionStudy:
     """Read and validate a motion-study file; raise :class:`StudyError` listing every problem.
 
@@ -256,7 +282,7 @@ def load_motion_study(path: str | Path, *, max_cases: int | None = None) -> Moti
     try:
         model = _MotionFile.model_validate(data)
     except ValidationError as e:
-        problems += _pydantic_problems(e, (), _MotionFile)
+        problems += _validation_problems(e)
     geometry: dict[str, Any] = {}
     if isinstance(raw_geometry, dict):
         geometry, gp = _check_geometry(raw_geometry, _geometry_defaults())
