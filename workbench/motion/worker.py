@@ -115,6 +115,25 @@ def stack_targets(shape: str, value: float, n_modules: int, height: float, plane
     return out
 
 
+def _compression(geo, modules, targets, n, L) -> dict[str, float]:
+    """Largest axial leg compression at the platform and its ratio to the clamped-clamped Euler load.
+
+    ``n_i(L_i)`` is the force the platform exerts on rod i; the rod leaves the platform along the
+    platform normal, so its axial force there is ``N_i = n_i . z_platform`` (compression < 0).
+    Reference: ``P_cr = 4 pi^2 EI / L_i^2`` (both ends' tangents fixed).
+    """
+    EI = geo.rod_params().EI
+    comp, ratio = 0.0, 0.0
+    bases = [np.eye(4)] + [targets[k] @ geo.mount_transform() for k in range(n - 1)]
+    for k, m in enumerate(modules):
+        z = np.linalg.solve(bases[k], targets[k])[:3, 2]  # platform normal in the module base frame
+        N = m.tip_forces @ z
+        c = np.maximum(-N, 0.0)
+        comp = max(comp, float(c.max()))
+        ratio = max(ratio, float(np.max(c * L[k] ** 2 / (4.0 * math.pi**2 * EI))))
+    return {"x.max_leg_compression": comp, "x.buckling_ratio": ratio}
+
+
 def _twist(R: np.ndarray) -> float:
     """Twist angle about the base z axis (swing-twist decomposition) [rad]."""
     from scipy.spatial.transform import Rotation
@@ -224,6 +243,7 @@ def evaluate_motion_case(case_id: str, params: Mapping[str, Any]) -> list[dict[s
             for k in range(n):
                 for i in range(6):
                     extras[f"x.L{k + 1}_{i + 1}"] = float(L[k, i])
+            extras.update(_compression(geo, [ik] if n == 1 else list(ik.modules), targets, n, L))
             if not fk.converged:
                 sp.update(status="failed", error=f"FK of the IK lengths: {fk.reason}",
                           wall_time=time.perf_counter() - t0, converged=False, iterations=ik_its, **extras)
