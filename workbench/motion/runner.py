@@ -63,8 +63,16 @@ def run_motion_study(path: str | Path, out_dir: str | Path, executor: Executor |
 
 
 def run_loaded_motion_study(study: MotionStudy, out_dir: str | Path, executor: Executor | None = None, *,
-                            resume: bool = False, progress: bool | None = None) -> RunSummary:
-    """:func:`run_motion_study` for an already validated :class:`MotionStudy`."""
+                            resume: bool = False, progress: bool | None = None, flush_rows: int = 64,
+                            model_lookup=None, arc_actuation=None) -> RunSummary:
+    """:func:`run_motion_study` for an already validated :class:`MotionStudy`.
+
+    Takes the keyword arguments of :func:`workbench.study.run_study` so that a caller can
+    dispatch on the study type with the same call; ``model_lookup`` and ``arc_actuation`` have
+    no meaning here and must be None.
+    """
+    if model_lookup is not None or arc_actuation is not None:
+        raise StudyError([f"{study.path}: --model-lookup / --arc-actuation do not apply to a series_parallel motion study"])
     folder = Path(out_dir)
     cases = expand_motions(study)
     config_hash = study.config_hash
@@ -84,7 +92,7 @@ def run_loaded_motion_study(study: MotionStudy, out_dir: str | Path, executor: E
         manifest = {"study": study.resolved(), "study_file": study.path, "config_hash": config_hash,
                     "n_cases": len(cases), "versions": package_versions(), "git": git_commit(), "runs": []}
     folder.mkdir(parents=True, exist_ok=True)
-    store = ResultStore(folder, (flatten_params(c.params) for c in cases), flush_rows=64, flush_seconds=2.0)
+    store = ResultStore(folder, (flatten_params(c.params) for c in cases), flush_rows=flush_rows, flush_seconds=2.0)
     store.cleanup_temporaries()
     finished = store.finished_case_ids()
     todo = [c for c in cases if c.case_id not in finished]
