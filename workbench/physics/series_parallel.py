@@ -1019,6 +1019,12 @@ def _ik_newton(geometry, T, L, legs0, *, legs0_L=None, w, g, n_el, length_tolera
             dL = -np.linalg.solve(J, r)
         except np.linalg.LinAlgError:
             return L, legs, False, it, r, "singular IK Jacobian d(balance)/dL (module at a singular pose)"
+        # trust region: no leg changes by more than 5 % of the module height per step.  Far from
+        # the solution the chord Jacobian can ask for metre-long legs (seen: L = 1.69 m at a 22 deg
+        # tilt), where the leg solves fail and the pose continuation stalls for numerical reasons.
+        big = float(np.max(np.abs(dL)))
+        if big > 0.05 * geometry.height:
+            dL *= 0.05 * geometry.height / big
         # backtracking: accept the first fraction that lowers the scaled balance residual
         r0 = _resnorm(geometry, r)
         for frac in (1.0, 0.5, 0.25, 0.125):
