@@ -46,7 +46,30 @@ Paper errata / gaps (the extraction lost symbols; re-derived):
   transforms (global <- platform), ``M`` the constant mount (platform k-1 <- base k), ``T'_k``
   the module-local pose (Eq 29).  Inverse: ``T'_k = (T_{k-1} M)^{-1} T_k`` (Eq 31).
 * The paper gives no dimensions or materials.  The defaults of :class:`ModuleGeometry` are ours
-  (documented there), chosen so that the module reaches the paper's Fig 6 motions.
+  (documented there), chosen so that the module reaches the paper's Fig 6 translations (+-200 mm
+  along x, y, z) and twists (rz +-30 deg); rotations about x / y are limited, see below.
+
+Reachable range and solver notes (default geometry, 8 elements per leg, measured with
+``studies/series_parallel.toml`` and single runs):
+
+* FK of y +200 mm failed while y -200 mm worked: the Hermite predictor lands on a wrong branch
+  (the 6-6 crossing is chiral, +y and -y are not mirror images) and the length continuation from
+  home then stalled even at 1/256 of the way, because it reused the old leg shapes with the new
+  stress-free lengths (an axial misfit ``EA dL / L``, kN for 0.1 mm).  Fixed: every continuation
+  step pre-solves each leg at its new length (:func:`_presolve_legs`).  Numerical.
+* IK of rx / ry beyond ~17-19 deg failed in a leg solve started from the neighbouring state (same
+  axial-misfit mechanism, strongly S-bent legs).  Fixed: :func:`_leg_homotopy` walks the leg from
+  the neighbouring state; plus a trust region on the IK Newton step.  rx 26 deg now round-trips
+  (FK(IK) = target to 3e-14 m).  Numerical.
+* Remaining limit: the pose continuation home -> target stops at rx +-34 deg, ry -21.5 deg and
+  ry +37 deg ("line search failed to reduce the platform balance residual"); the stop point does
+  not move with the path step (ry -45 deg: 0.479 of the way with 8 steps, 0.483 with 40 steps).
+  Along the way leg forces grow smoothly (ry 0.4 rad: largest leg compression 792 N = 0.50 of the
+  clamped-clamped Euler load ``4 pi^2 EI / L^2``), so it is not Euler buckling of a leg; the
+  behaviour is that of a fold of the equilibrium manifold (no nearby IK solution beyond it), but
+  that was not proven (the conditioning of d(balance)/dL near the stop was not measured).  The
+  paper's +-45 deg about x / y is therefore not reached with this (assumed) geometry; the study
+  sweeps rx to +-0.5 rad and ry to +-0.35 rad.
 """
 
 from __future__ import annotations
@@ -93,7 +116,8 @@ class ModuleGeometry:
     """Plain parameters of one flexible six-rod parallel module (Huang et al. Fig 5).
 
     Huang et al. give no numbers for the prototype; every default below is our assumption,
-    sized so that the module reaches the paper's Fig 6 motions (+-200 mm, +-45 deg, +-30 deg).
+    sized so that the module reaches the paper's Fig 6 translations (+-200 mm) and twists (+-30 deg);
+    rotations about x / y reach about 21-34 deg, not the paper's 45 deg (see the module docstring).
 
     Parameters
     ----------
