@@ -90,3 +90,10 @@ def test_failed_ik_is_a_failed_row_with_reason(monkeypatch, tmp_path):
     assert rows["series_parallel"]["status"] == "failed"
     assert rows["series_parallel"]["error"] == "IK: leg 2 static solve failed (test)"
     assert rows["cc_fit"]["status"] == "failed"
+
+
+def test_overview_figure_is_written(tiny_run, tmp_path):
+    from workbench.motion.figures import motion_overview
+
+    out = motion_overview(tiny_run[1], tmp_path / "ov.png", dpi=40)
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
