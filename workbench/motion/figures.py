@@ -25,7 +25,7 @@ def motion_overview(folder: str | Path, out: str | Path, *, dpi: int = 100) -> P
     import pandas as pd
 
     df = pd.read_parquet(Path(folder))
-    fig, axs = plt.subplots(1, 3, figsize=(13, 4.3), gridspec_kw={"width_ratios": [1.25, 1, 1]})
+    fig, axs = plt.subplots(1, 3, figsize=(12, 4.3), gridspec_kw={"width_ratios": [0.8, 1, 1.1]})
     # (a) stack shapes
     ax = axs[0]
     st = df[df["p.motion.kind"] == "stack"]
@@ -51,7 +51,7 @@ def motion_overview(folder: str | Path, out: str | Path, *, dpi: int = 100) -> P
     ax.set_title("(a) 3 modules: target o, FK -, CC arc x", fontsize=10)
     for s, c in colors.items():
         ax.plot([], [], color=c, label=s)
-    ax.legend(fontsize=8, loc="upper left")
+    ax.legend(fontsize=7, loc="lower right")
     ax.grid(alpha=0.3)
     # (b) CC fit error vs amplitude (stack)
     ax = axs[1]
@@ -78,10 +78,10 @@ def motion_overview(folder: str | Path, out: str | Path, *, dpi: int = 100) -> P
                     label=f"{axis} (1 = {unit})")
         bad = g[g["status"] != "ok"]
         if len(bad):
-            ax.semilogy(bad["p.motion.value"] / amp, np.full(len(bad), 1e-16), "x", color=c, ms=10, mew=2)
+            ax.semilogy(bad["p.motion.value"] / amp, np.full(len(bad), 1e-17), "x", color=c, ms=10, mew=2)
     ax.set_xlabel("motion / Fig 6 amplitude")
     ax.set_ylabel("|FK(IK(T)) - T| [m]")
-    ax.set_title("(c) one module: IK->FK round trip\n(x at 1e-16: IK failed)", fontsize=10)
+    ax.set_title("(c) one module: IK->FK round trip\n(x at 1e-17: IK failed)", fontsize=10)
     ax.legend(fontsize=7, ncol=2)
     ax.grid(alpha=0.3)
     fig.tight_layout()
