@@ -59,11 +59,14 @@ Reachable range and solver notes (default geometry, 8 elements per leg, measured
   step pre-solves each leg at its new length (:func:`_presolve_legs`).  Numerical.
 * IK of rx / ry beyond ~17-19 deg failed in a leg solve started from the neighbouring state (same
   axial-misfit mechanism, strongly S-bent legs).  Fixed: :func:`_leg_homotopy` walks the leg from
-  the neighbouring state; plus a trust region on the IK Newton step.  rx 26 deg now round-trips
-  (FK(IK) = target to 3e-14 m).  Numerical.
+  the neighbouring state, and a line search that fails with a reused (chord) Jacobian rebuilds
+  it before giving up.  rx 26 and 29 deg now round-trip (FK(IK) = target to 5e-15 m).
+  Numerical.  (A trust region on the Newton step, 5 % of the height, was tried and removed: it
+  made rx stop at 26.5 deg.)
 * Remaining limit: the pose continuation home -> target stops at rx +-34 deg, ry -21.5 deg and
-  ry +37 deg ("line search failed to reduce the platform balance residual"); the stop point does
-  not move with the path step (ry -45 deg: 0.479 of the way with 8 steps, 0.483 with 40 steps).
+  ry +37 deg ("line search failed to reduce the platform balance residual", or at ry -21.5 deg a
+  Newton step to a 1.69 m leg whose solve fails); for ry -45 deg the stop point does not move
+  with the path step (0.479 of the way with 8 steps, 0.483 with 40 steps).
   Along the way leg forces grow smoothly (ry 0.4 rad: largest leg compression 792 N = 0.50 of the
   clamped-clamped Euler load ``4 pi^2 EI / L^2``), so it is not Euler buckling of a leg; the
   behaviour is that of a fold of the equilibrium manifold (no nearby IK solution beyond it), but
@@ -1030,6 +1033,7 @@ def _ik_newton(geometry, T, L, legs0, *, legs0_L=None, w, g, n_el, length_tolera
     J = None
     last_step = np.inf
     for it in range(1, max_iterations + 1):
+        fresh = J is None
         if J is None:
             J = np.empty((6, 6))
             for i in range(6):
@@ -1043,12 +1047,6 @@ def _ik_newton(geometry, T, L, legs0, *, legs0_L=None, w, g, n_el, length_tolera
             dL = -np.linalg.solve(J, r)
         except np.linalg.LinAlgError:
             return L, legs, False, it, r, "singular IK Jacobian d(balance)/dL (module at a singular pose)"
-        # trust region: no leg changes by more than 5 % of the module height per step.  Far from
-        # the solution the chord Jacobian can ask for metre-long legs (seen: L = 1.69 m at a 22 deg
-        # tilt), where the leg solves fail and the pose continuation stalls for numerical reasons.
-        big = float(np.max(np.abs(dL)))
-        if big > 0.05 * geometry.height:
-            dL *= 0.05 * geometry.height / big
         # backtracking: accept the first fraction that lowers the scaled balance residual
         r0 = _resnorm(geometry, r)
         for frac in (1.0, 0.5, 0.25, 0.125):
@@ -1059,6 +1057,9 @@ def _ik_newton(geometry, T, L, legs0, *, legs0_L=None, w, g, n_el, length_tolera
             if rn is not None and (_resnorm(geometry, rn) < r0 or frac * np.max(np.abs(dL)) < length_tolerance):
                 break
         else:
+            if not fresh:  # the reused (chord) Jacobian is stale: rebuild it before giving up
+                J = None
+                continue
             return L, legs, False, it, r, msg or "line search failed to reduce the platform balance residual"
         L, r, legs = Ln, rn, legs_n
         step = float(np.max(np.abs(frac * dL)))
