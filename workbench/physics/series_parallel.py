@@ -46,7 +46,33 @@ Paper errata / gaps (the extraction lost symbols; re-derived):
   transforms (global <- platform), ``M`` the constant mount (platform k-1 <- base k), ``T'_k``
   the module-local pose (Eq 29).  Inverse: ``T'_k = (T_{k-1} M)^{-1} T_k`` (Eq 31).
 * The paper gives no dimensions or materials.  The defaults of :class:`ModuleGeometry` are ours
-  (documented there), chosen so that the module reaches the paper's Fig 6 motions.
+  (documented there), chosen so that the module reaches the paper's Fig 6 translations (+-200 mm
+  along x, y, z) and twists (rz +-30 deg); rotations about x / y are limited, see below.
+
+Reachable range and solver notes (default geometry, 8 elements per leg, measured with
+``studies/series_parallel.toml`` and single runs):
+
+* FK of y +200 mm failed while y -200 mm worked: the Hermite predictor lands on a wrong branch
+  (the 6-6 crossing is chiral, +y and -y are not mirror images) and the length continuation from
+  home then stalled even at 1/256 of the way, because it reused the old leg shapes with the new
+  stress-free lengths (an axial misfit ``EA dL / L``, kN for 0.1 mm).  Fixed: every continuation
+  step pre-solves each leg at its new length (:func:`_presolve_legs`).  Numerical.
+* IK of rx / ry beyond ~17-19 deg failed in a leg solve started from the neighbouring state (same
+  axial-misfit mechanism, strongly S-bent legs).  Fixed: :func:`_leg_homotopy` walks the leg from
+  the neighbouring state, and a line search that fails with a reused (chord) Jacobian rebuilds
+  it before giving up.  rx 26 and 29 deg now round-trip (FK(IK) = target to 5e-15 m).
+  Numerical.  (A trust region on the Newton step, 5 % of the height, was tried and removed: it
+  made rx stop at 26.5 deg.)
+* Remaining limit: the pose continuation home -> target stops at rx +-34 deg, ry -21.5 deg and
+  ry +37 deg ("line search failed to reduce the platform balance residual", or at ry -21.5 deg a
+  Newton step to a 1.69 m leg whose solve fails); for ry -45 deg the stop point does not move
+  with the path step (0.479 of the way with 8 steps, 0.483 with 40 steps).
+  Along the way leg forces grow smoothly (ry 0.4 rad: largest leg compression 792 N = 0.50 of the
+  clamped-clamped Euler load ``4 pi^2 EI / L^2``), so it is not Euler buckling of a leg; the
+  behaviour is that of a fold of the equilibrium manifold (no nearby IK solution beyond it), but
+  that was not proven (the conditioning of d(balance)/dL near the stop was not measured).  The
+  paper's +-45 deg about x / y is therefore not reached with this (assumed) geometry; the study
+  sweeps rx to +-0.5 rad and ry to +-0.35 rad.
 """
 
 from __future__ import annotations
@@ -93,7 +119,8 @@ class ModuleGeometry:
     """Plain parameters of one flexible six-rod parallel module (Huang et al. Fig 5).
 
     Huang et al. give no numbers for the prototype; every default below is our assumption,
-    sized so that the module reaches the paper's Fig 6 motions (+-200 mm, +-45 deg, +-30 deg).
+    sized so that the module reaches the paper's Fig 6 translations (+-200 mm) and twists (+-30 deg);
+    rotations about x / y reach about 21-34 deg, not the paper's 45 deg (see the module docstring).
 
     Parameters
     ----------
@@ -810,7 +837,7 @@ def module_forward(
     )
 
 
-def _leg_solve(geometry, i, Li, T, gravity, n_el, tol, max_it, guess=None):
+def _leg_solve(geometry, i, Li, T, gravity, n_el, tol, max_it, guess=None, guess_length=None):
     P0, R0 = hole_frames(geometry)
     A = attachment_points(geometry)
     Tt = np.eye(4)
@@ -819,9 +846,44 @@ def _leg_solve(geometry, i, Li, T, gravity, n_el, tol, max_it, guess=None):
     kw = dict(tip_pose=Tt, free_base_twist=True, gravity=gravity, n_elements=n_el, tolerance=tol, max_iterations=max_it,
               continuation=False)  # the IK continues on the platform pose instead (cheaper)
     leg = leg_static(geometry, P0[i], R0[i], Li, initial_guess=guess, **kw)
+    if not leg.converged and guess is not None and guess.converged and guess_length is not None:
+        leg = _leg_homotopy(geometry, P0[i], R0[i], guess, float(guess_length), Li, Tt, kw)
     if not leg.converged and guess is not None:
         leg = leg_static(geometry, P0[i], R0[i], Li, **kw)
     return leg
+
+
+def _leg_homotopy(geometry, p0, R0, guess, L_start, L_end, T_end, kw, min_step=1.0 / 64):
+    """Walk one leg from a converged state (``guess`` at length ``L_start``) to (``L_end``, ``T_end``).
+
+    Tip position, tip rotation (slerp) and length are interpolated together, every step
+    warm-started from the last.  Needed where the legs are strongly S-bent (large platform
+    rotations): one Newton solve from the neighbouring state then diverges although the leg
+    problem is regular, because the change of the stress-free length enters through the stiff
+    axial direction (``EA dL / L``).
+    """
+    Tg = np.eye(4)
+    Tg[:3, :3] = guess.rotations[-1]
+    Tg[:3, 3] = guess.positions[-1]
+    slerp = Slerp([0.0, 1.0], Rotation.from_matrix(np.stack([Tg[:3, :3], T_end[:3, :3]])))
+    cur, lam, step = guess, 0.0, 0.25
+    kw = dict(kw)
+    kw.pop("tip_pose")
+    last = guess
+    while lam < 1.0:
+        lt = min(1.0, lam + step)
+        Tt = np.eye(4)
+        Tt[:3, :3] = slerp([lt]).as_matrix()[0]
+        Tt[:3, 3] = (1.0 - lt) * Tg[:3, 3] + lt * T_end[:3, 3]
+        last = leg_static(geometry, p0, R0, (1.0 - lt) * L_start + lt * L_end, tip_pose=Tt, initial_guess=cur, **kw)
+        if last.converged:
+            lam, cur = lt, last
+            step = min(2.0 * step, 0.5)
+        else:
+            step *= 0.5
+            if step < min_step:
+                return last
+    return cur
 
 
 def module_inverse(
@@ -906,7 +968,7 @@ def module_inverse(
             Tt[:3, 3] = (1 - lt) * H[:3, 3] + lt * T[:3, 3]
             # predictor: previous L shifted by the change of the Hermite lengths
             Lg = Lc + (_hermite_lengths(geometry, Tt) - _hermite_lengths(geometry, _interp_pose(H, T, slerp, lam)))
-            Ln, legs_n, okn, itn, rn, msgn = _ik_newton(geometry, Tt, Lg, legs_c, max_iterations=max_iterations, **kw)
+            Ln, legs_n, okn, itn, rn, msgn = _ik_newton(geometry, Tt, Lg, legs_c, legs0_L=Lc, max_iterations=max_iterations, **kw)
             total_its += itn
             if okn:
                 lam, Lc, legs_c = lt, Ln, legs_n
@@ -946,17 +1008,18 @@ def _interp_pose(H, T, slerp, lam):
     return Tt
 
 
-def _ik_newton(geometry, T, L, legs0, *, w, g, n_el, length_tolerance, leg_tolerance, fd_step, max_iterations, counter):
+def _ik_newton(geometry, T, L, legs0, *, legs0_L=None, w, g, n_el, length_tolerance, leg_tolerance, fd_step, max_iterations, counter):
     """Newton over L for a fixed platform pose (Eq 22 with Eq 25-26), backtracking on the residual.
 
     Returns (L, legs, success, iterations, residual vector, message).
     """
 
-    def evaluate(Lv, guess_legs, only=None, base_legs=None):
+    def evaluate(Lv, guess_legs, only=None, base_legs=None, guess_L=None):
         legs = list(base_legs) if base_legs is not None else [None] * 6
         for i in range(6) if only is None else only:
             gl = None if guess_legs is None else guess_legs[i]
-            legs[i] = _leg_solve(geometry, i, Lv[i], T, g, n_el, leg_tolerance, 50, guess=gl)
+            gL = None if guess_L is None else guess_L[i]
+            legs[i] = _leg_solve(geometry, i, Lv[i], T, g, n_el, leg_tolerance, 50, guess=gl, guess_length=gL)
             counter[0] += 1
             if not legs[i].converged:
                 return None, legs, f"leg {i} static solve failed at L = {Lv[i]:.6g} m: {legs[i].reason}"
@@ -964,18 +1027,19 @@ def _ik_newton(geometry, T, L, legs0, *, w, g, n_el, length_tolerance, leg_toler
         M = np.stack([lg.tip_moment for lg in legs])
         return _balance(geometry, T, F, M, w, g), legs, ""
 
-    r, legs, msg = evaluate(L, legs0)
+    r, legs, msg = evaluate(L, legs0, guess_L=legs0_L)
     if r is None:
         return L, None, False, 0, None, msg
     J = None
     last_step = np.inf
     for it in range(1, max_iterations + 1):
+        fresh = J is None
         if J is None:
             J = np.empty((6, 6))
             for i in range(6):
                 Lp = L.copy()
                 Lp[i] += fd_step
-                rp, _, msg = evaluate(Lp, legs, only=[i], base_legs=legs)
+                rp, _, msg = evaluate(Lp, legs, only=[i], base_legs=legs, guess_L=L)
                 if rp is None:
                     return L, legs, False, it, r, "Jacobian: " + msg
                 J[:, i] = (rp - r) / fd_step
@@ -989,10 +1053,13 @@ def _ik_newton(geometry, T, L, legs0, *, w, g, n_el, length_tolerance, leg_toler
             Ln = L + frac * dL
             if np.any(Ln <= 0):
                 continue
-            rn, legs_n, msg = evaluate(Ln, legs)
+            rn, legs_n, msg = evaluate(Ln, legs, guess_L=L)
             if rn is not None and (_resnorm(geometry, rn) < r0 or frac * np.max(np.abs(dL)) < length_tolerance):
                 break
         else:
+            if not fresh:  # the reused (chord) Jacobian is stale: rebuild it before giving up
+                J = None
+                continue
             return L, legs, False, it, r, msg or "line search failed to reduce the platform balance residual"
         L, r, legs = Ln, rn, legs_n
         step = float(np.max(np.abs(frac * dL)))
@@ -1183,6 +1250,32 @@ def _extrapolate_rot(R_prev, R_curr, c):
     return (b * Rotation.from_rotvec(c * d)).as_matrix().reshape(shp)
 
 
+def _presolve_legs(gs, Ls, B, poses, g, n_el, guess_pos, guess_rot):
+    """Leg shapes for a stack solve: each leg in equilibrium with its platform held at ``poses``."""
+    shapes = []
+    Tb = B.copy()
+    for k, geo in enumerate(gs):
+        P0, R0 = hole_frames(geo)
+        A = attachment_points(geo)
+        legs = []
+        for i in range(6):
+            pb = Tb[:3, :3] @ P0[i] + Tb[:3, 3]
+            Rb = Tb[:3, :3] @ R0[i]
+            Tt = np.eye(4)
+            Tt[:3, :3] = poses[k][:3, :3]
+            Tt[:3, 3] = poses[k][:3, :3] @ A[i] + poses[k][:3, 3]
+            guess = LegSolution(guess_pos[k, i], guess_rot[k, i], np.zeros(3), np.zeros(3), True, 0)
+            leg = leg_static(geo, pb, Rb, Ls[k, i], tip_pose=Tt, gravity=g, n_elements=n_el, initial_guess=guess,
+                             continuation=False)
+            if leg.converged:
+                legs.append(_ex.LegShape(positions=leg.positions, rotations=leg.rotations))
+            else:
+                legs.append(_ex.LegShape(positions=guess_pos[k, i], rotations=guess_rot[k, i]))
+        shapes.append(legs)
+        Tb = poses[k] @ geo.mount_transform()
+    return shapes
+
+
 def _stack_continuation(gs, Ls, B, g, wr, n_el, tol, max_it, last_out, min_step=1.0 / 256):
     """Length continuation from the home configuration for :func:`stack_forward`."""
     n = len(gs)
@@ -1216,7 +1309,10 @@ def _stack_continuation(gs, Ls, B, g, wr, n_el, tol, max_it, last_out, min_step=
             g_poses[:, :3, :3] = _extrapolate_rot(prev[1][:, :3, :3], poses[:, :3, :3], c)
             g_pos = legpos + c * (legpos - prev[2])
             g_rot = _extrapolate_rot(prev[3], legrot, c)
-        shapes = [[_ex.LegShape(positions=g_pos[k, i], rotations=g_rot[k, i]) for i in range(6)] for k in range(n)]
+        # every leg pre-solved with its new length at the predicted platform pose, warm-started from
+        # the previous equilibrium: the old leg shapes with the new stress-free lengths carry an
+        # axial misfit (EA dL / L, ~kN for 0.1 mm) that Newton on the whole module does not survive
+        shapes = _presolve_legs(gs, Lt, B, g_poses, g if g is None else lt * g, n_el, g_pos, g_rot)
         out, P_, F_, M_, (lp, lr) = _ex.solve_stack(specs, B, g_poses, shapes, g if lt == 1.0 or g is None else lt * g,
                                                      None if wr is None else (lt * wr[0], lt * wr[1]), tol, max_it, 1)
         if out.converged:

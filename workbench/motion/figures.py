@@ -1,0 +1,92 @@
+"""Overview figure of a series-parallel motion study (reads a result folder; plotting only).
+
+The generic report (:mod:`workbench.report`) plots errors against one numeric axis; a motion
+study mixes motion types (x/y/z translations, rx/ry/rz rotations, stack shapes), so this figure
+groups by ``p.motion.shape``: (a) the 3-module platform positions, target vs Exudyn FK vs the
+fitted CC arc; (b) CC-fit position error vs amplitude per stack shape; (c) single-module IK->FK
+round-trip error vs amplitude per axis, failed (unreached) poses marked with crosses.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["motion_overview"]
+
+
+def motion_overview(folder: str | Path, out: str | Path, *, dpi: int = 100) -> Path:
+    """Write the overview PNG of the study in ``folder`` to ``out``; returns ``out``."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import pandas as pd
+
+    df = pd.read_parquet(Path(folder))
+    fig, axs = plt.subplots(1, 3, figsize=(12, 4.3), gridspec_kw={"width_ratios": [0.8, 1, 1.1]})
+    # (a) stack shapes
+    ax = axs[0]
+    st = df[df["p.motion.kind"] == "stack"]
+    colors = {"translation": "C0", "s_shape": "C1", "bending": "C2"}
+    for (shape, value), g in st.groupby(["p.motion.shape", "p.motion.value"], sort=True):
+        rows = {r["model"]: r for _, r in g.iterrows()}
+        c = colors.get(shape, "k")
+        for model, style in (("target", dict(ls="none", marker="o", mfc="none", ms=8)),
+                             ("series_parallel", dict(ls="-", marker=".", lw=1.5)),
+                             ("cc_fit", dict(ls=":", marker="x", lw=1.0))):
+            r = rows.get(model)
+            if r is None or r["status"] != "ok":
+                continue
+            P = np.asarray(r["positions"]).reshape(-1, 3)
+            ax.plot(P[:, 0], P[:, 2], color=c, **style)
+        sp = rows.get("series_parallel")
+        if sp is not None and sp["status"] != "ok":
+            T = np.asarray(rows["target"]["positions"]).reshape(-1, 3)
+            ax.plot(T[-1, 0], T[-1, 2], "r+", ms=12)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("z [m]")
+    ax.set_title("(a) 3 modules: target o, FK -, CC arc x", fontsize=10)
+    for s, c in colors.items():
+        ax.plot([], [], color=c, label=s)
+    ax.legend(fontsize=7, loc="lower right")
+    ax.grid(alpha=0.3)
+    # (b) CC fit error vs amplitude (stack)
+    ax = axs[1]
+    cc = st[(st["model"] == "cc_fit") & (st["status"] == "ok")]
+    for shape, g in cc.groupby("p.motion.shape"):
+        g = g.sort_values("p.motion.value")
+        ax.plot(g["p.motion.value"], 1e3 * g["x.cc_max_error"], "o-", color=colors.get(shape, "k"), label=shape)
+    ax.set_xlabel("amplitude (translation [m], S / bend [rad])")
+    ax.set_ylabel("max platform distance from CC arc [mm]")
+    ax.set_title("(b) CC arc fit through FK platforms", fontsize=10)
+    if len(cc):
+        ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    # (c) single-module round trip and reach
+    ax = axs[2]
+    md = df[(df["p.motion.kind"] == "module") & (df["model"] == "series_parallel")]
+    for k, (axis, g) in enumerate(md.groupby("p.motion.shape", sort=False)):
+        g = g.sort_values("p.motion.value")
+        ok = g[g["status"] == "ok"]
+        amp = float(np.max(np.abs(g["p.motion.value"]))) or 1.0
+        unit = f"{np.degrees(amp):.0f} deg" if axis.startswith("r") else f"{1e3 * amp:.0f} mm"
+        c = f"C{k}"
+        ax.semilogy(ok["p.motion.value"] / amp, np.maximum(ok["x.fk_position_error"], 1e-16), "o-", color=c,
+                    label=f"{axis} (1 = {unit})")
+        bad = g[g["status"] != "ok"]
+        if len(bad):
+            ax.semilogy(bad["p.motion.value"] / amp, np.full(len(bad), 1e-17), "x", color=c, ms=10, mew=2)
+    ax.set_xlabel("motion / Fig 6 amplitude")
+    ax.set_ylabel("|FK(IK(T)) - T| [m]")
+    ax.set_title("(c) one module: IK->FK round trip\n(x at 1e-17: IK failed)", fontsize=10)
+    ax.legend(fontsize=7, ncol=2)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    out = Path(out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out, dpi=dpi)
+    plt.close(fig)
+    return out
