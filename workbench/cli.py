@@ -126,23 +126,31 @@ def _build_report(data_dir: Path, out_dir: Path) -> str:
 
 
 def _cmd_validate(args) -> int:
+    from .motion import expand_motions, is_motion_study, load_motion_study
     from .study import StudyError, count_cases, load_study
 
     try:
-        study = load_study(args.study, max_cases=args.max_cases)
+        if is_motion_study(args.study):
+            study = load_motion_study(args.study, max_cases=args.max_cases)
+            n_cases, models = len(expand_motions(study)), ("series_parallel", "cc_fit")
+        else:
+            study = load_study(args.study, max_cases=args.max_cases)
+            n_cases, models = count_cases(study), tuple(study.models)
     except StudyError as e:
         _err(e.problems)
         return 2
-    print(f"{args.study}: ok: study {study.name!r}, {count_cases(study)} cases x {len(study.models)} models "
-          f"({', '.join(study.models)}), config hash {study.config_hash}")
+    print(f"{args.study}: ok: study {study.name!r}, {n_cases} cases x {len(models)} models "
+          f"({', '.join(models)}), config hash {study.config_hash}")
     return 0
 
 
 def _cmd_run(args) -> int:
+    from .motion import MotionStudy, is_motion_study, load_motion_study, run_loaded_motion_study
     from .study import DaskExecutor, IsolatedExecutor, SerialExecutor, StudyError, load_study, run_study
 
     try:
-        study = load_study(args.study, max_cases=args.max_cases)
+        loader = load_motion_study if is_motion_study(args.study) else load_study
+        study = loader(args.study, max_cases=args.max_cases)
     except StudyError as e:
         _err(e.problems)
         return 2
@@ -162,7 +170,8 @@ def _cmd_run(args) -> int:
     arc = _resolve(args.arc_actuation) if args.arc_actuation else None
     progress = {"auto": None, "on": True, "off": False}[args.progress]
     try:
-        summary = run_study(study, folder, executor, resume=args.resume, model_lookup=lookup,
+        runner = run_loaded_motion_study if isinstance(study, MotionStudy) else run_study
+        summary = runner(study, folder, executor, resume=args.resume, model_lookup=lookup,
                              arc_actuation=arc, progress=progress, flush_rows=args.flush_rows)
     except StudyError as e:
         _err(e.problems)

@@ -55,8 +55,12 @@ def run_study_object(study, out_dir: str | Path) -> pd.DataFrame:
 
 def run_small_study(path: str | Path, out_dir: str | Path) -> pd.DataFrame:
     """Run the small study at ``path`` into ``out_dir`` (must not hold results); golden-form table."""
-    from workbench.study import load_study
+    from workbench.motion import is_motion_study, run_motion_study
+    from workbench.study import load_study, read_table
 
+    if is_motion_study(path):  # series-parallel motion studies have their own runner
+        run_motion_study(path, out_dir)
+        return golden_frame(read_table(out_dir))
     return golden_frame(run_study_object(load_study(str(path)), out_dir))
 
 
