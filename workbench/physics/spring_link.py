@@ -222,17 +222,35 @@ def is_planar(robot: Robot, load: LoadCase) -> tuple[bool, str]:
 class _Tendon:
     section: int
     sigma: float
-    end_eyelet: int          # index m of the terminating eyelet
-    offsets: np.ndarray      # (m + 1,) offset d at eyelets 0..m
+    end_eyelet: int          # index m of the terminating link eyelet (section end)
+    offsets: np.ndarray      # (m + 1,) offset d at link eyelets 0..m
     axial_stiffness: float
-    reference_length: float  # straight reference path length (eyelet 0 to m)
+    reference_length: float  # straight reference path length (eyelet 0 to m; eyelet ropes: disk path)
     tapered: bool
     moment_arm: np.ndarray   # (m,) d cos(alpha) at joints 1..m (continuum: internal moment / T)
     cos_alpha: np.ndarray    # (m,) cos of the tendon's reference slope angle at joints 1..m
+    eye_link: np.ndarray     # (n_eye,) int, link carrying each rope eyelet (-1: base plate)
+    eye_z: np.ndarray        # (n_eye,) axial position of the eyelet past that link's joint [m]
+    eye_d: np.ndarray        # (n_eye,) tendon offset at the eyelet [m]
 
 
-def _tendons(robot: Robot, geo: ChainGeometry) -> list[_Tendon]:
+def _eyelet_placement(geo: ChainGeometry, stations: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Link index (-1 = base plate) and axial position past its joint for arc-length ``stations``.
+
+    Link ``k`` spans ``[s_k, s_{k+1})`` (the last one up to the tip); a station below the first
+    joint lies on the base plate, at axial position equal to the station.
+    """
+    k = np.searchsorted(geo.joints, stations, side="right") - 1
+    z = np.where(k < 0, stations, stations - geo.joints[np.maximum(k, 0)])
+    return k.astype(int), z
+
+
+def _tendons(robot: Robot, geo: ChainGeometry, tendon_model: str = "continuum") -> list[_Tendon]:
+    """Tendon routing.  Eyelet ropes pass the robot's disks (``robot.disk_stations()``) of the
+    sections they cross and end at their section end (as in the ANCF model); the links may be
+    finer than the disks.  Continuum tendons use the link eyelets."""
     out = []
+    disks = robot.disk_stations()
     for j, sigma, grp in robot.tendon_table():
         m = int(geo.section_end_eyelet[j])
         e = geo.eyelets[: m + 1]
@@ -241,7 +259,23 @@ def _tendons(robot: Robot, geo: ChainGeometry) -> list[_Tendon]:
         L_ref = float(np.sum(np.hypot(np.diff(e), np.diff(d))))
         cos_a = 1.0 / np.hypot(1.0, np.diff(d) / np.diff(e))
         arm = 0.5 * (d[:-1] + d[1:]) * cos_a
-        out.append(_Tendon(j, float(sigma), m, d, grp.axial_stiffness, L_ref, grp.offset_tip is not None, arm, cos_a))
+        if tendon_model == "eyelets":
+            end = float(e[-1])
+            tol = 1e-9 * robot.length
+            st = disks[(disks > tol) & (disks < end - tol)]
+            st = np.concatenate([[0.0], st, [end]])
+            dd = np.array([grp.offset_at(x / end) for x in st])
+            L_ref = float(np.sum(np.hypot(np.diff(st), np.diff(dd))))
+            link, z = _eyelet_placement(geo, st)
+            link[-1] = m - 1                        # the terminating eyelet sits on link m - 1
+            z[-1] = float(e[-1] - geo.joints[m - 1])
+            link[0], z[0] = -1, 0.0
+        else:
+            dd = d
+            link = np.arange(-1, m)
+            z = np.concatenate([[0.0], e[1:] - geo.joints[:m]])
+        out.append(_Tendon(j, float(sigma), m, d, grp.axial_stiffness, L_ref, grp.offset_tip is not None, arm,
+                           cos_a, link, z, dd))
     return out
 
 
@@ -258,7 +292,7 @@ class _Planar:
 
         self.exu = exu
         self.robot, self.load, self.options, self.geo = robot, load, options, geo
-        self.tendons = _tendons(robot, geo)
+        self.tendons = _tendons(robot, geo, options.tendon_model)
         act = load.actuation
         if act is not None:
             act.check_against(robot)
@@ -360,13 +394,10 @@ class _Planar:
             c = 1.0 if c > 0 else -1.0
             marks = []
             _MK = eii.MarkerBodyRigid if (self.model == "eyelets" and self.mode == "length") else eii.MarkerBodyPosition
-            for k in range(t.end_eyelet + 1):
-                x = float(c * t.offsets[k])
-                if k == 0:
-                    marks.append(mbs.AddMarker(_MK(bodyNumber=ground, localPosition=[x, 0.0, 0.0])))
-                else:
-                    y = float(geo.eyelets[k] - geo.joints[k - 1])
-                    marks.append(mbs.AddMarker(_MK(bodyNumber=self.bodies[k - 1], localPosition=[x, y, 0.0])))
+            for lk, zk, dk in zip(t.eye_link, t.eye_z, t.eye_d):
+                x, y = float(c * dk), float(zk)
+                body = ground if lk < 0 else self.bodies[lk]
+                marks.append(mbs.AddMarker(_MK(bodyNumber=body, localPosition=[x, y, 0.0])))
             self.eyelet_markers.append(marks)
             items = []
             if self.mode is None:
@@ -564,7 +595,7 @@ class _PlanarTree(_Planar):
 
         self.exu = exu
         self.robot, self.load, self.options, self.geo = robot, load, options, geo
-        self.tendons = _tendons(robot, geo)
+        self.tendons = _tendons(robot, geo, options.tendon_model)
         act = load.actuation
         if act is not None:
             act.check_against(robot)
@@ -647,14 +678,13 @@ class _PlanarTree(_Planar):
         for i, t in enumerate(self.tendons):
             u = np.array([math.cos(t.sigma), math.sin(t.sigma)]) if self.spatial else np.array([self.sign[i], 0.0])
             marks = []
-            for k in range(t.end_eyelet + 1):
-                x, y = (t.offsets[k] * u).tolist()
-                if k == 0:
-                    marks.append(mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[x, y, 0.0])))
+            for lk, zk, dk in zip(t.eye_link, t.eye_z, t.eye_d):
+                x, y = (dk * u).tolist()
+                if lk < 0:
+                    marks.append(mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[x, y, float(zk)])))
                 else:
-                    z = float(geo.eyelets[k] - geo.joints[k - 1])
                     marks.append(mbs.AddMarker(eii.MarkerKinematicTreeRigid(
-                        objectNumber=self.tree, linkNumber=k * per - 1, localPosition=[x, y, z])))
+                        objectNumber=self.tree, linkNumber=int(lk + 1) * per - 1, localPosition=[x, y, float(zk)])))
             self.eyelet_markers.append(marks)
             items = []
             if self.mode is None:
@@ -766,7 +796,7 @@ class _Spatial(_Planar):
 
         self.exu = exu
         self.robot, self.load, self.options, self.geo = robot, load, options, geo
-        self.tendons = _tendons(robot, geo)
+        self.tendons = _tendons(robot, geo, options.tendon_model)
         act = load.actuation
         if act is not None:
             act.check_against(robot)
@@ -857,13 +887,10 @@ class _Spatial(_Planar):
             u = np.array([math.cos(t.sigma), math.sin(t.sigma)])
             marks = []
             MK = eii.MarkerBodyRigid if (self.model == "eyelets" and self.mode == "length") else eii.MarkerBodyPosition
-            for k in range(t.end_eyelet + 1):
-                x, y = (t.offsets[k] * u).tolist()
-                if k == 0:
-                    marks.append(mbs.AddMarker(MK(bodyNumber=ground, localPosition=[x, y, 0.0])))
-                else:
-                    z = float(geo.eyelets[k] - geo.joints[k - 1])
-                    marks.append(mbs.AddMarker(MK(bodyNumber=self.bodies[k - 1], localPosition=[x, y, z])))
+            for lk, zk, dk in zip(t.eye_link, t.eye_z, t.eye_d):
+                x, y = (dk * u).tolist()
+                body = ground if lk < 0 else self.bodies[lk]
+                marks.append(mbs.AddMarker(MK(bodyNumber=body, localPosition=[x, y, float(zk)])))
             self.eyelet_markers.append(marks)
             items = []
             if self.mode is None:
@@ -1083,8 +1110,10 @@ def solve(robot: Robot, load: LoadCase, options: SolverOptions,
         if params.backend == "tree" and not tree_ok:
             raise ModelFailure("spring_link: backend='tree' supports inextensible chains that are planar or have "
                                "torsion='locked' (Cardan joints) only")
-        reeving = options.tendon_model == "eyelets" and act_mode == "length"
-        auto_tree = params.backend == "auto" and reeving
+        # eyelet ropes (reeving or constant-force segments) on the rigid-body chain stall the static
+        # ramp (see Limitations); the constraint-free tree solves them in a few Newton iterations
+        ropes = options.tendon_model == "eyelets" and act_mode is not None
+        auto_tree = params.backend == "auto" and ropes
         if tree_ok and (params.backend == "tree" or auto_tree):
             model = _PlanarTree(robot, load, options, geo, spatial=not use_2d)
         elif use_2d:
