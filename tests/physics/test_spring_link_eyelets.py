@@ -86,3 +86,15 @@ def test_eyelet_count_effect_converges_to_continuum_like_ancf():
         eff.append(np.linalg.norm(e_sl))
     orders = np.log2(np.asarray(eff[:-1]) / np.asarray(eff[1:]))
     assert np.all((orders > 1.6) & (orders < 2.6)), orders
+
+
+def test_rigid_body_ramp_failure_names_the_numerical_cause():
+    """The rigid-body chain still stalls on this case; its failure says why and what to use."""
+    from workbench.models.result import ModelFailure
+    from workbench.physics.spring_link import SpringLinkParams, solve
+
+    robot = _rod(0.02, 8)
+    act = actuation_from_arc(robot, [np.pi / L], [0.0], "tension")
+    with pytest.raises(ModelFailure, match="converge only linearly.*backend='tree'"):
+        solve(robot, LoadCase(actuation=act), SolverOptions(n_elements=32, tendon_model="eyelets", max_load_steps=2),
+              SpringLinkParams(backend="bodies"))

@@ -37,18 +37,27 @@ The inextensible chain also exists as one ``ObjectKinematicTree`` (minimal coord
 ``RevoluteY`` joints, or ``RevoluteX`` + ``RevoluteY`` Cardan joints in 3-D with
 ``torsion="locked"``; springs as ``jointPControlVector``, eyelets as ``MarkerKinematicTreeRigid``;
 ``SpringLinkParams.backend``).  Both give the same statics to ~1e-10 (tested).  With eyelet ropes
-in length mode (reeving) the tree keeps Newton quadratic (3-4 iterations instead of ~100: the
-rigid-body chain's joint constraints, loaded by the rope forces, make it converge linearly) and
-is 2-4x faster, so ``backend="auto"`` uses it there; with constant-force rope chains it is much
-slower (each segment re-evaluates the tree), with continuum tendons / gravity the two are within
-a factor ~2 either way on this machine, so the rigid bodies stay the default elsewhere.  The
-benchmark also times a stripped tree chain (:mod:`._spring_link_tree`).
+(reeving in length mode, or constant-force segments in tension mode) the tree keeps Newton
+quadratic (3-4 iterations) while the rigid-body chain converges only linearly (Newton
+contraction 0.5-0.8 per iteration, see *Limitations*) and its static ramp stalls: in the bending
+study (steel rod, 32 links, tension from the CC command up to kappa L = 2 pi, up to 10.5 kN) it
+failed 15 of 15 eight-disk cases within 40 load steps (4.3-4.5 s each), the tree solves all 60
+eyelet cases in one load step (0.07-0.8 s; mean 0.27 s).  So ``backend="auto"`` uses the tree
+for every eyelet rope; with continuum tendons / gravity the two are within a factor ~2 either
+way on this machine, so the rigid bodies stay the default there.  The benchmark also times a
+stripped tree chain (:mod:`._spring_link_tree`).
 
 Tendons
 -------
-* ``tendon_model = "eyelets"``: one frictionless rope per tendon through eyelets at *every* link
-  (``e_0`` on the base plate up to the section-end eyelet), at offset ``d`` (``offset_at`` the
-  fraction of the tendon's own path, for tapered groups).  Tension control: one constant-force
+* ``tendon_model = "eyelets"``: one frictionless rope per tendon from the base plate through the
+  robot's disks (``robot.disk_stations()`` up to its section end; the section-end station is the
+  terminating eyelet), at offset ``d`` (``offset_at`` the fraction of the tendon's own path, for
+  tapered groups), as in the ANCF model.  A disk sits on the link whose span contains its
+  station (links may be finer than disks; several disks on one link are allowed).  The chain
+  converges to the ANCF rope model (same disks) as ``O(1/N^2)`` (measured tip errors
+  1.85e-2 / 4.5e-3 / 1.1e-3 m at N = 32 / 64 / 128, kappa L = pi, d/L = 0.025, 8 disks), and the
+  eyelet effect (eyelets vs continuum tendon) falls with order ~2 in the disk count and equals
+  ANCF's to the chain's discretisation error (tested).  Tension control: one constant-force
   ``ObjectConnectorSpringDamper`` (stiffness 0, ``force = T``) per straight rope segment, which is
   *exactly* a frictionless rope with uniform tension ``T``.  Length control:
   ``ObjectConnectorReevingSystemSprings`` (one rope, uniform tension ``T = EA_t (L - L_0) / L_0``)
@@ -99,12 +108,17 @@ Without ``SpringLinkParams(axial=True)`` the joints are inextensible and ``lengt
 With it, ``length_change`` is the sum of the axial joint gaps (shear gaps are not counted).
 Continuum tendons in length mode exist only in the planar inextensible chain (their length is
 taken as ``L_ref - d cos(sigma) beta_m``, which ignores backbone strain).  Eyelet tendons on the
-rigid-body chains converge only linearly in Newton (constant contraction ~0.47 per iteration;
-~100-125 iterations per static solve at N = 16 against 3-6 for continuum tendons, measured);
-numerical differentiation of connectors / AEs does not change that, while the same ropes on the
-constraint-free chains (kinematic tree, or ``axial=True``) need 3-19 iterations: the missing term
-is in the joint constraints loaded by the rope forces.  3-D eyelet solves are therefore slow
-(0.1-0.4 s at N = 16); ``axial=True`` makes them 6-10x faster.  Link masses come from the robot
+rigid-body chains converge only linearly in Newton (contraction ~0.47 per iteration at N = 16,
+~0.83 at N = 32, 8 disks, 250 N; ~100-125 iterations per static solve at N = 16 against 3-6 for
+continuum tendons, measured), so their load ramp stalls at large rope forces.  Neither
+``numericalDifferentiation.forODE2Connectors`` nor system-wide numerical differentiation (dense
+solver, incl. AEs) changes that (measured on the kappa L = pi bending case: same stall at load
+factor 0.23), and ``axial=True`` stalls too (load factor 0.67); the same ropes on the kinematic
+tree (minimal coordinates) need 4 iterations.  The failure is numerical, not physical: the tree
+solves the same cases up to 10.5 kN (kappa L = 2 pi, d = 0.01 m) and converges to ANCF under
+refinement.  Hence ``backend="auto"`` uses the tree for eyelet ropes; the 3-D chain with
+``torsion="spring"`` (no tree variant) still uses rigid bodies and is slow with eyelets
+(0.1-0.4 s at N = 16; ``axial=True`` makes them 6-10x faster).  Link masses come from the robot
 description (mass per length, disk masses, payload); per-link masses cannot be given directly.
 """
 
@@ -161,14 +175,16 @@ class SpringLinkParams:
         N = 16 / 64 (steel rod): with length-controlled eyelet ropes (reeving) the tree needs 3-4
         Newton iterations instead of ~100 and is 2-4x faster (36 vs 155 ms, 1.1 vs 2.4 s), and it
         solved a heavily loaded Hannan & Walker case on which the bodies' ramp gave up; with
-        constant-force rope chains (eyelets, tension control) it is 5-70x *slower* (every rope
-        segment on tree markers evaluates the tree's kinematics); with continuum tendons both are
-        within noise.  In 3-D the tree is a chain of Cardan joints (``RevoluteX`` + ``RevoluteY``,
+        constant-force rope chains (eyelets, tension control) it was 5-70x slower than the bodies
+        when a rope passed every link (every rope segment on tree markers evaluates the tree's
+        kinematics), but the bodies' ramp stalls under large rope forces (bending study: 0 of 15
+        solved within 40 steps) while the tree solves them in one load step; with continuum
+        tendons both are within noise.  In 3-D the tree is a chain of Cardan joints (``RevoluteX`` + ``RevoluteY``,
         springs on both Cardan angles), so it needs ``torsion="locked"``; it agrees with the
         rigid-body Cardan chain up to the spring law (rotation vector vs Cardan angles, second
         order in the joint angles: 2.8e-7 m at N = 16) and solved a 16-cable Hannan & Walker
         reeving case in 0.8 s where the bodies took 76 s (3330 Newton iterations).  ``"auto"``
-        (default) uses the tree for eyelet tendons in length mode (planar, or 3-D with
+        (default) uses the tree for eyelet tendons (length or tension mode; planar, or 3-D with
         ``torsion="locked"``) and bodies otherwise; ``axial=True`` always uses bodies.
     """
 
@@ -1029,9 +1045,13 @@ def _static_ramp(model: "_Planar", options: SolverOptions, params: SpringLinkPar
         target = min(1.0, lam + inc)
         attempts += 1
         if attempts > options.max_load_steps:
+            hint = ""
+            if model.model == "eyelets" and model.mode is not None and not isinstance(model, _PlanarTree):
+                hint = ("; eyelet ropes on the rigid-body chain converge only linearly in Newton (numerical, "
+                        "not a physical instability): use SpringLinkParams(backend='tree') where possible")
             raise ModelFailure(
                 f"spring_link: static load ramp exceeded options.max_load_steps={options.max_load_steps} "
-                f"(reached load factor {lam:.4g})"
+                f"(reached load factor {lam:.4g}){hint}"
             )
         q_save = mbs.systemData.GetODE2Coordinates(configuration=exu.ConfigurationType.Initial)
         active_save = list(model.tendon_active)
