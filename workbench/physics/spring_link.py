@@ -113,7 +113,12 @@ rigid-body chains converge only linearly in Newton (contraction ~0.47 per iterat
 continuum tendons, measured), so their load ramp stalls at large rope forces.  Neither
 ``numericalDifferentiation.forODE2Connectors`` nor system-wide numerical differentiation (dense
 solver, incl. AEs) changes that (measured on the kappa L = pi bending case: same stall at load
-factor 0.23), and ``axial=True`` stalls too (load factor 0.67); the same ropes on the kinematic
+factor 0.23), and ``axial=True`` stalls too (load factor 0.67).  With a rope eyelet at every link
+the rigid-body ramp stalled at a rope tension of 630-640 N in 14 bending cases regardless of the
+offset d (0.01-0.04 m) and of kappa L: the trouble scales with the backbone compression T carried
+by the joint reactions, not with the bending moment T d (a plausible reading: the constraint term
+d(C_q^T lambda)/dq, the compressed chain's geometric stiffness, is missing from the iteration
+matrix; not proven); the same ropes on the kinematic
 tree (minimal coordinates) need 4 iterations.  The failure is numerical, not physical: the tree
 solves the same cases up to 10.5 kN (kappa L = 2 pi, d = 0.01 m) and converges to ANCF under
 refinement.  Hence ``backend="auto"`` uses the tree for eyelet ropes; the 3-D chain with
