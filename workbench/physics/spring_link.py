@@ -41,7 +41,7 @@ The inextensible chain also exists as one ``ObjectKinematicTree`` (minimal coord
 quadratic (3-4 iterations) while the rigid-body chain converges only linearly (Newton
 contraction 0.5-0.8 per iteration, see *Limitations*) and its static ramp stalls: in the bending
 study (steel rod, 32 links, tension from the CC command up to kappa L = 2 pi, up to 10.5 kN) it
-failed 15 of 15 eight-disk cases within 40 load steps (4.3-4.5 s each), the tree solves all 60
+failed 14 of 15 eight-disk cases within 40 load steps (3-10 s each, 2 cores shared), the tree solves all 60
 eyelet cases in one load step (0.07-0.8 s; mean 0.27 s).  So ``backend="auto"`` uses the tree
 for every eyelet rope; with continuum tendons / gravity the two are within a factor ~2 either
 way on this machine, so the rigid bodies stay the default there.  The benchmark also times a
@@ -182,10 +182,10 @@ class SpringLinkParams:
         solved a heavily loaded Hannan & Walker case on which the bodies' ramp gave up; with
         constant-force rope chains (eyelets, tension control) it was 5-70x slower than the bodies
         when a rope passed every link (every rope segment on tree markers evaluates the tree's
-        kinematics), but the bodies' ramp stalls under large rope forces (bending study: 0 of 15
-        solved within 40 steps) while the tree solves them in one load step; with continuum
-        tendons both are within noise.  In 3-D the tree is a chain of Cardan joints (``RevoluteX`` + ``RevoluteY``,
-        springs on both Cardan angles), so it needs ``torsion="locked"``; it agrees with the
+        kinematics), but the bodies' ramp stalls under large rope forces (bending study, 8 disks: 1 of
+        15 solved within 40 steps) while the tree solves them in one load step; with continuum
+        tendons both are within noise.  In 3-D the tree is a chain of Cardan joints
+        (``RevoluteX`` + ``RevoluteY``, springs on both Cardan angles), so it needs ``torsion="locked"``; it agrees with the
         rigid-body Cardan chain up to the spring law (rotation vector vs Cardan angles, second
         order in the joint angles: 2.8e-7 m at N = 16) and solved a 16-cable Hannan & Walker
         reeving case in 0.8 s where the bodies took 76 s (3330 Newton iterations).  ``"auto"``
