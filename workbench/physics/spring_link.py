@@ -41,8 +41,8 @@ The inextensible chain also exists as one ``ObjectKinematicTree`` (minimal coord
 quadratic (3-4 iterations) while the rigid-body chain converges only linearly (Newton
 contraction 0.5-0.8 per iteration, see *Limitations*) and its static ramp stalls: in the bending
 study (steel rod, 32 links, tension from the CC command up to kappa L = 2 pi, up to 10.5 kN) it
-failed 14 of 15 eight-disk cases within 40 load steps (3-10 s each, 2 cores shared), the tree solves all 60
-eyelet cases in one load step (0.07-0.8 s; mean 0.27 s).  So ``backend="auto"`` uses the tree
+failed 14 of 15 eight-disk cases within 40 load steps (3-10 s each, 2 cores shared); the tree
+solves all 60 eyelet cases in one load step (0.07-0.8 s; mean 0.27 s).  So ``backend="auto"`` uses the tree
 for every eyelet rope; with continuum tendons / gravity the two are within a factor ~2 either
 way on this machine, so the rigid bodies stay the default there.  The benchmark also times a
 stripped tree chain (:mod:`._spring_link_tree`).
@@ -185,8 +185,8 @@ class SpringLinkParams:
         kinematics), but the bodies' ramp stalls under large rope forces (bending study, 8 disks: 1 of
         15 solved within 40 steps) while the tree solves them in one load step; with continuum
         tendons both are within noise.  In 3-D the tree is a chain of Cardan joints
-        (``RevoluteX`` + ``RevoluteY``, springs on both Cardan angles), so it needs ``torsion="locked"``; it agrees with the
-        rigid-body Cardan chain up to the spring law (rotation vector vs Cardan angles, second
+        (``RevoluteX`` + ``RevoluteY``, springs on both Cardan angles), so it needs
+        ``torsion="locked"``; it agrees with the rigid-body Cardan chain up to the spring law (rotation vector vs Cardan angles, second
         order in the joint angles: 2.8e-7 m at N = 16) and solved a 16-cable Hannan & Walker
         reeving case in 0.8 s where the bodies took 76 s (3330 Newton iterations).  ``"auto"``
         (default) uses the tree for eyelet tendons (length or tension mode; planar, or 3-D with
