@@ -186,8 +186,8 @@ class SpringLinkParams:
         15 solved within 40 steps) while the tree solves them in one load step; with continuum
         tendons both are within noise.  In 3-D the tree is a chain of Cardan joints
         (``RevoluteX`` + ``RevoluteY``, springs on both Cardan angles), so it needs
-        ``torsion="locked"``; it agrees with the rigid-body Cardan chain up to the spring law (rotation vector vs Cardan angles, second
-        order in the joint angles: 2.8e-7 m at N = 16) and solved a 16-cable Hannan & Walker
+        ``torsion="locked"``; it agrees with the rigid-body Cardan chain up to the spring law
+        (rotation vector vs Cardan angles, second order in the joint angles: 2.8e-7 m at N = 16) and solved a 16-cable Hannan & Walker
         reeving case in 0.8 s where the bodies took 76 s (3330 Newton iterations).  ``"auto"``
         (default) uses the tree for eyelet tendons (length or tension mode; planar, or 3-D with
         ``torsion="locked"``) and bodies otherwise; ``axial=True`` always uses bodies.
