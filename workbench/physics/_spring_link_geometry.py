@@ -12,9 +12,10 @@ Layout ("half-link" or tangent-polygon discretisation) for ``N`` links:
   ground (base plate) carries eyelet 0 and the rod piece ``[0, s_1]``.
 
 Under a pure end moment all joints turn by ``kappa ds``, so the tip orientation is exact and the
-positions converge as ``O(1/N^2)``.  Between two eyelets a straight tendon spans exactly one joint
-at half-distance ``ds/2`` either side, which is the joint geometry of Hannan & Walker's Eq (1) with
-``h = ds/2``.
+positions converge as ``O(1/N^2)``.  The link stations ``e_k`` carry continuum tendons; eyelet ropes
+pass the robot's disks instead (see :mod:`workbench.physics.spring_link`).  With one disk per link
+a straight rope segment spans exactly one joint at half-distance ``ds/2`` either side, which is
+the joint geometry of Hannan & Walker's Eq (1) with ``h = ds/2``.
 """
 
 from __future__ import annotations

@@ -37,18 +37,27 @@ The inextensible chain also exists as one ``ObjectKinematicTree`` (minimal coord
 ``RevoluteY`` joints, or ``RevoluteX`` + ``RevoluteY`` Cardan joints in 3-D with
 ``torsion="locked"``; springs as ``jointPControlVector``, eyelets as ``MarkerKinematicTreeRigid``;
 ``SpringLinkParams.backend``).  Both give the same statics to ~1e-10 (tested).  With eyelet ropes
-in length mode (reeving) the tree keeps Newton quadratic (3-4 iterations instead of ~100: the
-rigid-body chain's joint constraints, loaded by the rope forces, make it converge linearly) and
-is 2-4x faster, so ``backend="auto"`` uses it there; with constant-force rope chains it is much
-slower (each segment re-evaluates the tree), with continuum tendons / gravity the two are within
-a factor ~2 either way on this machine, so the rigid bodies stay the default elsewhere.  The
-benchmark also times a stripped tree chain (:mod:`._spring_link_tree`).
+(reeving in length mode, or constant-force segments in tension mode) the tree keeps Newton
+quadratic (3-4 iterations) while the rigid-body chain converges only linearly (Newton
+contraction 0.5-0.8 per iteration, see *Limitations*) and its static ramp stalls: in the bending
+study (steel rod, 32 links, tension from the CC command up to kappa L = 2 pi, up to 10.5 kN) it
+failed 14 of 15 eight-disk cases within 40 load steps (3-10 s each, 2 cores shared); the tree
+solves all 60 eyelet cases in one load step (0.07-0.8 s; mean 0.27 s).  So ``backend="auto"`` uses the tree
+for every eyelet rope; with continuum tendons / gravity the two are within a factor ~2 either
+way on this machine, so the rigid bodies stay the default there.  The benchmark also times a
+stripped tree chain (:mod:`._spring_link_tree`).
 
 Tendons
 -------
-* ``tendon_model = "eyelets"``: one frictionless rope per tendon through eyelets at *every* link
-  (``e_0`` on the base plate up to the section-end eyelet), at offset ``d`` (``offset_at`` the
-  fraction of the tendon's own path, for tapered groups).  Tension control: one constant-force
+* ``tendon_model = "eyelets"``: one frictionless rope per tendon from the base plate through the
+  robot's disks (``robot.disk_stations()`` up to its section end; the section-end station is the
+  terminating eyelet), at offset ``d`` (``offset_at`` the fraction of the tendon's own path, for
+  tapered groups), as in the ANCF model.  A disk sits on the link whose span contains its
+  station (links may be finer than disks; several disks on one link are allowed).  The chain
+  converges to the ANCF rope model (same disks) as ``O(1/N^2)`` (measured tip errors
+  1.85e-2 / 4.5e-3 / 1.1e-3 m at N = 32 / 64 / 128, kappa L = pi, d/L = 0.025, 8 disks), and the
+  eyelet effect (eyelets vs continuum tendon) falls with order ~2 in the disk count and equals
+  ANCF's to the chain's discretisation error (tested).  Tension control: one constant-force
   ``ObjectConnectorSpringDamper`` (stiffness 0, ``force = T``) per straight rope segment, which is
   *exactly* a frictionless rope with uniform tension ``T``.  Length control:
   ``ObjectConnectorReevingSystemSprings`` (one rope, uniform tension ``T = EA_t (L - L_0) / L_0``)
@@ -99,12 +108,22 @@ Without ``SpringLinkParams(axial=True)`` the joints are inextensible and ``lengt
 With it, ``length_change`` is the sum of the axial joint gaps (shear gaps are not counted).
 Continuum tendons in length mode exist only in the planar inextensible chain (their length is
 taken as ``L_ref - d cos(sigma) beta_m``, which ignores backbone strain).  Eyelet tendons on the
-rigid-body chains converge only linearly in Newton (constant contraction ~0.47 per iteration;
-~100-125 iterations per static solve at N = 16 against 3-6 for continuum tendons, measured);
-numerical differentiation of connectors / AEs does not change that, while the same ropes on the
-constraint-free chains (kinematic tree, or ``axial=True``) need 3-19 iterations: the missing term
-is in the joint constraints loaded by the rope forces.  3-D eyelet solves are therefore slow
-(0.1-0.4 s at N = 16); ``axial=True`` makes them 6-10x faster.  Link masses come from the robot
+rigid-body chains converge only linearly in Newton (contraction ~0.47 per iteration at N = 16,
+~0.83 at N = 32, 8 disks, 250 N; ~100-125 iterations per static solve at N = 16 against 3-6 for
+continuum tendons, measured), so their load ramp stalls at large rope forces.  Neither
+``numericalDifferentiation.forODE2Connectors`` nor system-wide numerical differentiation (dense
+solver, incl. AEs) changes that (measured on the kappa L = pi bending case: same stall at load
+factor 0.23), and ``axial=True`` stalls too (load factor 0.67).  With a rope eyelet at every link
+the rigid-body ramp stalled at a rope tension of 630-640 N in 14 bending cases regardless of the
+offset d (0.01-0.04 m) and of kappa L: the trouble scales with the backbone compression T carried
+by the joint reactions, not with the bending moment T d (a plausible reading: the constraint term
+d(C_q^T lambda)/dq, the compressed chain's geometric stiffness, is missing from the iteration
+matrix; not proven); the same ropes on the kinematic
+tree (minimal coordinates) need 4 iterations.  The failure is numerical, not physical: the tree
+solves the same cases up to 10.5 kN (kappa L = 2 pi, d = 0.01 m) and converges to ANCF under
+refinement.  Hence ``backend="auto"`` uses the tree for eyelet ropes; the 3-D chain with
+``torsion="spring"`` (no tree variant) still uses rigid bodies and is slow with eyelets
+(0.1-0.4 s at N = 16; ``axial=True`` makes them 6-10x faster).  Link masses come from the robot
 description (mass per length, disk masses, payload); per-link masses cannot be given directly.
 """
 
@@ -161,14 +180,16 @@ class SpringLinkParams:
         N = 16 / 64 (steel rod): with length-controlled eyelet ropes (reeving) the tree needs 3-4
         Newton iterations instead of ~100 and is 2-4x faster (36 vs 155 ms, 1.1 vs 2.4 s), and it
         solved a heavily loaded Hannan & Walker case on which the bodies' ramp gave up; with
-        constant-force rope chains (eyelets, tension control) it is 5-70x *slower* (every rope
-        segment on tree markers evaluates the tree's kinematics); with continuum tendons both are
-        within noise.  In 3-D the tree is a chain of Cardan joints (``RevoluteX`` + ``RevoluteY``,
-        springs on both Cardan angles), so it needs ``torsion="locked"``; it agrees with the
-        rigid-body Cardan chain up to the spring law (rotation vector vs Cardan angles, second
-        order in the joint angles: 2.8e-7 m at N = 16) and solved a 16-cable Hannan & Walker
+        constant-force rope chains (eyelets, tension control) it was 5-70x slower than the bodies
+        when a rope passed every link (every rope segment on tree markers evaluates the tree's
+        kinematics), but the bodies' ramp stalls under large rope forces (bending study, 8 disks: 1 of
+        15 solved within 40 steps) while the tree solves them in one load step; with continuum
+        tendons both are within noise.  In 3-D the tree is a chain of Cardan joints
+        (``RevoluteX`` + ``RevoluteY``, springs on both Cardan angles), so it needs
+        ``torsion="locked"``; it agrees with the rigid-body Cardan chain up to the spring law
+        (rotation vector vs Cardan angles, second order in the joint angles: 2.8e-7 m at N = 16) and solved a 16-cable Hannan & Walker
         reeving case in 0.8 s where the bodies took 76 s (3330 Newton iterations).  ``"auto"``
-        (default) uses the tree for eyelet tendons in length mode (planar, or 3-D with
+        (default) uses the tree for eyelet tendons (length or tension mode; planar, or 3-D with
         ``torsion="locked"``) and bodies otherwise; ``axial=True`` always uses bodies.
     """
 
@@ -222,17 +243,35 @@ def is_planar(robot: Robot, load: LoadCase) -> tuple[bool, str]:
 class _Tendon:
     section: int
     sigma: float
-    end_eyelet: int          # index m of the terminating eyelet
-    offsets: np.ndarray      # (m + 1,) offset d at eyelets 0..m
+    end_eyelet: int          # index m of the terminating link eyelet (section end)
+    offsets: np.ndarray      # (m + 1,) offset d at link eyelets 0..m
     axial_stiffness: float
-    reference_length: float  # straight reference path length (eyelet 0 to m)
+    reference_length: float  # straight reference path length (eyelet 0 to m; eyelet ropes: disk path)
     tapered: bool
     moment_arm: np.ndarray   # (m,) d cos(alpha) at joints 1..m (continuum: internal moment / T)
     cos_alpha: np.ndarray    # (m,) cos of the tendon's reference slope angle at joints 1..m
+    eye_link: np.ndarray     # (n_eye,) int, link carrying each rope eyelet (-1: base plate)
+    eye_z: np.ndarray        # (n_eye,) axial position of the eyelet past that link's joint [m]
+    eye_d: np.ndarray        # (n_eye,) tendon offset at the eyelet [m]
 
 
-def _tendons(robot: Robot, geo: ChainGeometry) -> list[_Tendon]:
+def _eyelet_placement(geo: ChainGeometry, stations: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Link index (-1 = base plate) and axial position past its joint for arc-length ``stations``.
+
+    Link ``k`` spans ``[s_k, s_{k+1})`` (the last one up to the tip); a station below the first
+    joint lies on the base plate, at axial position equal to the station.
+    """
+    k = np.searchsorted(geo.joints, stations, side="right") - 1
+    z = np.where(k < 0, stations, stations - geo.joints[np.maximum(k, 0)])
+    return k.astype(int), z
+
+
+def _tendons(robot: Robot, geo: ChainGeometry, tendon_model: str = "continuum") -> list[_Tendon]:
+    """Tendon routing.  Eyelet ropes pass the robot's disks (``robot.disk_stations()``) of the
+    sections they cross and end at their section end (as in the ANCF model); the links may be
+    finer than the disks.  Continuum tendons use the link eyelets."""
     out = []
+    disks = robot.disk_stations()
     for j, sigma, grp in robot.tendon_table():
         m = int(geo.section_end_eyelet[j])
         e = geo.eyelets[: m + 1]
@@ -241,7 +280,23 @@ def _tendons(robot: Robot, geo: ChainGeometry) -> list[_Tendon]:
         L_ref = float(np.sum(np.hypot(np.diff(e), np.diff(d))))
         cos_a = 1.0 / np.hypot(1.0, np.diff(d) / np.diff(e))
         arm = 0.5 * (d[:-1] + d[1:]) * cos_a
-        out.append(_Tendon(j, float(sigma), m, d, grp.axial_stiffness, L_ref, grp.offset_tip is not None, arm, cos_a))
+        if tendon_model == "eyelets":
+            end = float(e[-1])
+            tol = 1e-9 * robot.length
+            st = disks[(disks > tol) & (disks < end - tol)]
+            st = np.concatenate([[0.0], st, [end]])
+            dd = np.array([grp.offset_at(x / end) for x in st])
+            L_ref = float(np.sum(np.hypot(np.diff(st), np.diff(dd))))
+            link, z = _eyelet_placement(geo, st)
+            link[-1] = m - 1                        # the terminating eyelet sits on link m - 1
+            z[-1] = float(e[-1] - geo.joints[m - 1])
+            link[0], z[0] = -1, 0.0
+        else:
+            dd = d
+            link = np.arange(-1, m)
+            z = np.concatenate([[0.0], e[1:] - geo.joints[:m]])
+        out.append(_Tendon(j, float(sigma), m, d, grp.axial_stiffness, L_ref, grp.offset_tip is not None, arm,
+                           cos_a, link, z, dd))
     return out
 
 
@@ -258,7 +313,7 @@ class _Planar:
 
         self.exu = exu
         self.robot, self.load, self.options, self.geo = robot, load, options, geo
-        self.tendons = _tendons(robot, geo)
+        self.tendons = _tendons(robot, geo, options.tendon_model)
         act = load.actuation
         if act is not None:
             act.check_against(robot)
@@ -360,13 +415,10 @@ class _Planar:
             c = 1.0 if c > 0 else -1.0
             marks = []
             _MK = eii.MarkerBodyRigid if (self.model == "eyelets" and self.mode == "length") else eii.MarkerBodyPosition
-            for k in range(t.end_eyelet + 1):
-                x = float(c * t.offsets[k])
-                if k == 0:
-                    marks.append(mbs.AddMarker(_MK(bodyNumber=ground, localPosition=[x, 0.0, 0.0])))
-                else:
-                    y = float(geo.eyelets[k] - geo.joints[k - 1])
-                    marks.append(mbs.AddMarker(_MK(bodyNumber=self.bodies[k - 1], localPosition=[x, y, 0.0])))
+            for lk, zk, dk in zip(t.eye_link, t.eye_z, t.eye_d):
+                x, y = float(c * dk), float(zk)
+                body = ground if lk < 0 else self.bodies[lk]
+                marks.append(mbs.AddMarker(_MK(bodyNumber=body, localPosition=[x, y, 0.0])))
             self.eyelet_markers.append(marks)
             items = []
             if self.mode is None:
@@ -564,7 +616,7 @@ class _PlanarTree(_Planar):
 
         self.exu = exu
         self.robot, self.load, self.options, self.geo = robot, load, options, geo
-        self.tendons = _tendons(robot, geo)
+        self.tendons = _tendons(robot, geo, options.tendon_model)
         act = load.actuation
         if act is not None:
             act.check_against(robot)
@@ -647,14 +699,13 @@ class _PlanarTree(_Planar):
         for i, t in enumerate(self.tendons):
             u = np.array([math.cos(t.sigma), math.sin(t.sigma)]) if self.spatial else np.array([self.sign[i], 0.0])
             marks = []
-            for k in range(t.end_eyelet + 1):
-                x, y = (t.offsets[k] * u).tolist()
-                if k == 0:
-                    marks.append(mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[x, y, 0.0])))
+            for lk, zk, dk in zip(t.eye_link, t.eye_z, t.eye_d):
+                x, y = (dk * u).tolist()
+                if lk < 0:
+                    marks.append(mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[x, y, float(zk)])))
                 else:
-                    z = float(geo.eyelets[k] - geo.joints[k - 1])
                     marks.append(mbs.AddMarker(eii.MarkerKinematicTreeRigid(
-                        objectNumber=self.tree, linkNumber=k * per - 1, localPosition=[x, y, z])))
+                        objectNumber=self.tree, linkNumber=int(lk + 1) * per - 1, localPosition=[x, y, float(zk)])))
             self.eyelet_markers.append(marks)
             items = []
             if self.mode is None:
@@ -766,7 +817,7 @@ class _Spatial(_Planar):
 
         self.exu = exu
         self.robot, self.load, self.options, self.geo = robot, load, options, geo
-        self.tendons = _tendons(robot, geo)
+        self.tendons = _tendons(robot, geo, options.tendon_model)
         act = load.actuation
         if act is not None:
             act.check_against(robot)
@@ -857,13 +908,10 @@ class _Spatial(_Planar):
             u = np.array([math.cos(t.sigma), math.sin(t.sigma)])
             marks = []
             MK = eii.MarkerBodyRigid if (self.model == "eyelets" and self.mode == "length") else eii.MarkerBodyPosition
-            for k in range(t.end_eyelet + 1):
-                x, y = (t.offsets[k] * u).tolist()
-                if k == 0:
-                    marks.append(mbs.AddMarker(MK(bodyNumber=ground, localPosition=[x, y, 0.0])))
-                else:
-                    z = float(geo.eyelets[k] - geo.joints[k - 1])
-                    marks.append(mbs.AddMarker(MK(bodyNumber=self.bodies[k - 1], localPosition=[x, y, z])))
+            for lk, zk, dk in zip(t.eye_link, t.eye_z, t.eye_d):
+                x, y = (dk * u).tolist()
+                body = ground if lk < 0 else self.bodies[lk]
+                marks.append(mbs.AddMarker(MK(bodyNumber=body, localPosition=[x, y, float(zk)])))
             self.eyelet_markers.append(marks)
             items = []
             if self.mode is None:
@@ -1002,9 +1050,13 @@ def _static_ramp(model: "_Planar", options: SolverOptions, params: SpringLinkPar
         target = min(1.0, lam + inc)
         attempts += 1
         if attempts > options.max_load_steps:
+            hint = ""
+            if model.model == "eyelets" and model.mode is not None and not isinstance(model, _PlanarTree):
+                hint = ("; eyelet ropes on the rigid-body chain converge only linearly in Newton (numerical, "
+                        "not a physical instability): use SpringLinkParams(backend='tree') where possible")
             raise ModelFailure(
                 f"spring_link: static load ramp exceeded options.max_load_steps={options.max_load_steps} "
-                f"(reached load factor {lam:.4g})"
+                f"(reached load factor {lam:.4g}){hint}"
             )
         q_save = mbs.systemData.GetODE2Coordinates(configuration=exu.ConfigurationType.Initial)
         active_save = list(model.tendon_active)
@@ -1083,8 +1135,10 @@ def solve(robot: Robot, load: LoadCase, options: SolverOptions,
         if params.backend == "tree" and not tree_ok:
             raise ModelFailure("spring_link: backend='tree' supports inextensible chains that are planar or have "
                                "torsion='locked' (Cardan joints) only")
-        reeving = options.tendon_model == "eyelets" and act_mode == "length"
-        auto_tree = params.backend == "auto" and reeving
+        # eyelet ropes (reeving or constant-force segments) on the rigid-body chain stall the static
+        # ramp (see Limitations); the constraint-free tree solves them in a few Newton iterations
+        ropes = options.tendon_model == "eyelets" and act_mode is not None
+        auto_tree = params.backend == "auto" and ropes
         if tree_ok and (params.backend == "tree" or auto_tree):
             model = _PlanarTree(robot, load, options, geo, spatial=not use_2d)
         elif use_2d:
