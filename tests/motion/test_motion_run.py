@@ -92,8 +92,9 @@ def test_failed_ik_is_a_failed_row_with_reason(monkeypatch, tmp_path):
     assert rows["cc_fit"]["status"] == "failed"
 
 
-def test_overview_figure_is_written(tiny_run, tmp_path):
-    from workbench.motion.figures import motion_overview
+def test_report_of_a_motion_study_has_the_overview_figure(tiny_run, tmp_path):
+    from workbench.report import build_report
 
-    out = motion_overview(tiny_run[1], tmp_path / "ov.png", dpi=40)
-    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    html = build_report(tiny_run[1], tmp_path / "report").read_text()
+    assert 'id="motion_overview"' in html or "motion_overview" in html
+    assert (tmp_path / "report" / "figures" / "motion_overview.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -29,6 +29,7 @@ from .figures import (
     time_series_figures,
     validity_map_figures,
 )
+from ._motion import motion_figures
 from ._studies_b import study_figures
 from .load import Study, load_study, numeric
 
@@ -57,6 +58,7 @@ def _all_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]:
     figs: list[ReportFigure] = []
     with matplotlib.rc_context(STYLE):
         figs += study_figures(study, cmp)  # study-specific key figures (wire delay, H&W, harvester)
+        figs += motion_figures(study.results)  # series-parallel motion studies
         for builder in (
             shape_overlay_figures,
             error_vs_parameter_figures,

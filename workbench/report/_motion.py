@@ -1,31 +1,27 @@
-"""Overview figure of a series-parallel motion study (reads a result folder; plotting only).
+"""Key figure of a series-parallel motion study (``[study] kind = "series_parallel"``).
 
-The generic report (:mod:`workbench.report`) plots errors against one numeric axis; a motion
-study mixes motion types (x/y/z translations, rx/ry/rz rotations, stack shapes), so this figure
-groups by ``p.motion.shape``: (a) the 3-module platform positions, target vs Exudyn FK vs the
-fitted CC arc; (b) CC-fit position error vs amplitude per stack shape; (c) single-module IK->FK
-round-trip error vs amplitude per axis, failed (unreached) poses marked with crosses.
+The generic figures plot errors against one numeric axis; a motion study mixes motion types
+(x/y/z translations, rx/ry/rz rotations, stack shapes), so this figure groups by
+``p.motion.shape``: (a) the 3-module platform positions, target vs Exudyn FK vs the fitted CC
+arc; (b) CC-fit position error vs amplitude per stack shape; (c) single-module IK->FK round-trip
+error vs amplitude per axis, failed (unreached) poses marked with crosses.
 """
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
+import pandas as pd
+from matplotlib.figure import Figure
 
-__all__ = ["motion_overview"]
+from .figures import ReportFigure
+
+__all__ = ["motion_figures", "motion_overview_figure"]
 
 
-def motion_overview(folder: str | Path, out: str | Path, *, dpi: int = 100) -> Path:
-    """Write the overview PNG of the study in ``folder`` to ``out``; returns ``out``."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    import pandas as pd
-
-    df = pd.read_parquet(Path(folder))
-    fig, axs = plt.subplots(1, 3, figsize=(12, 4.3), gridspec_kw={"width_ratios": [0.8, 1, 1.1]})
+def motion_overview_figure(df: pd.DataFrame) -> Figure:
+    """The three-panel overview of a motion-study result table (all rows, failed included)."""
+    fig = Figure(figsize=(12, 4.3), layout="constrained")
+    axs = fig.subplots(1, 3, gridspec_kw={"width_ratios": [0.8, 1, 1.1]})
     # (a) stack shapes
     ax = axs[0]
     st = df[df["p.motion.kind"] == "stack"]
@@ -84,9 +80,16 @@ def motion_overview(folder: str | Path, out: str | Path, *, dpi: int = 100) -> P
     ax.set_title("(c) one module: IK->FK round trip\n(x at 1e-17: IK failed)", fontsize=10)
     ax.legend(fontsize=7, ncol=2)
     ax.grid(alpha=0.3)
-    fig.tight_layout()
-    out = Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out, dpi=dpi)
-    plt.close(fig)
-    return out
+    return fig
+
+
+def motion_figures(results: pd.DataFrame) -> list[ReportFigure]:
+    """``[ReportFigure]`` for a motion-study table, ``[]`` for any other study."""
+    if "p.motion.kind" not in results.columns:
+        return []
+    fig = motion_overview_figure(results)
+    summary = ("Series-parallel trunk (Huang et al.): (a) platform origins of the 3-module motions, target, "
+               "Exudyn FK after IK and the constant-curvature arc fitted through them; (b) how far the platforms "
+               "sit from that arc per motion amplitude; (c) single-module IK->FK round-trip error along each "
+               "Fig 6 motion (crosses: poses the IK did not reach).")
+    return [ReportFigure("motion_overview", "Series-parallel motions and the CC arc fit", fig, summary)]
