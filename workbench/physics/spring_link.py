@@ -266,6 +266,28 @@ def _eyelet_placement(geo: ChainGeometry, stations: np.ndarray) -> tuple[np.ndar
     return k.astype(int), z
 
 
+
+def _add_eyelet_rope(mbs, marks: list, tendon: "_Tendon", mode: str, damping: float) -> list:
+    """Exudyn items of one frictionless eyelet rope through ``marks`` (base anchor first).
+
+    Tension mode: one constant-force spring-damper per straight segment (stiffness 0, the force is
+    set by the load ramp), i.e. the same tension in every segment.  Length mode: one
+    ``ObjectConnectorReevingSystemSprings`` rope with the tendon's EA_t and rest length.
+    """
+    import exudyn as exu
+    import exudyn.itemInterface as eii
+
+    if mode == "tension":
+        return [mbs.AddObject(eii.ObjectConnectorSpringDamper(
+            markerNumbers=[a, b], referenceLength=0.0, stiffness=0.0, force=0.0))
+            for a, b in zip(marks[:-1], marks[1:])]
+    n = len(marks)
+    return [mbs.AddObject(eii.ObjectConnectorReevingSystemSprings(
+        markerNumbers=marks, stiffnessPerLength=float(tendon.axial_stiffness),
+        dampingPerLength=float(damping * tendon.axial_stiffness),
+        referenceLength=float(tendon.reference_length), regularizationForce=-1.0,
+        sheavesRadii=[0.0] * n, sheavesAxes=exu.Vector3DList([[0.0, 0.0, 1.0]] * n)))]
+
 def _tendons(robot: Robot, geo: ChainGeometry, tendon_model: str = "continuum") -> list[_Tendon]:
     """Tendon routing.  Eyelet ropes pass the robot's disks (``robot.disk_stations()``) of the
     sections they cross and end at their section end (as in the ANCF model); the links may be
@@ -710,17 +732,8 @@ class _PlanarTree(_Planar):
             items = []
             if self.mode is None:
                 pass
-            elif self.model == "eyelets" and self.mode == "tension":
-                for a, b in zip(marks[:-1], marks[1:]):
-                    items.append(mbs.AddObject(eii.ObjectConnectorSpringDamper(
-                        markerNumbers=[a, b], referenceLength=0.0, stiffness=0.0, force=0.0)))
             elif self.model == "eyelets":
-                n = len(marks)
-                items.append(mbs.AddObject(eii.ObjectConnectorReevingSystemSprings(
-                    markerNumbers=marks, stiffnessPerLength=float(t.axial_stiffness),
-                    dampingPerLength=float(options.damping * t.axial_stiffness),
-                    referenceLength=float(t.reference_length), regularizationForce=-1.0,
-                    sheavesRadii=[0.0] * n, sheavesAxes=exu.Vector3DList([[0.0, 0.0, 1.0]] * n))))
+                items += _add_eyelet_rope(mbs, marks, t, self.mode, options.damping)
             elif self.mode == "length":  # continuum: rotational spring on the terminating link's angle
                 mg = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0.0, 0.0, 0.0]))
                 mt = mbs.AddMarker(eii.MarkerKinematicTreeRigid(objectNumber=self.tree, linkNumber=t.end_eyelet - 1,
@@ -916,17 +929,8 @@ class _Spatial(_Planar):
             items = []
             if self.mode is None:
                 pass
-            elif self.model == "eyelets" and self.mode == "tension":
-                for a, b in zip(marks[:-1], marks[1:]):
-                    items.append(mbs.AddObject(eii.ObjectConnectorSpringDamper(
-                        markerNumbers=[a, b], referenceLength=0.0, stiffness=0.0, force=0.0)))
             elif self.model == "eyelets":
-                n = len(marks)
-                items.append(mbs.AddObject(eii.ObjectConnectorReevingSystemSprings(
-                    markerNumbers=marks, stiffnessPerLength=float(t.axial_stiffness),
-                    dampingPerLength=float(options.damping * t.axial_stiffness),
-                    referenceLength=float(t.reference_length), regularizationForce=-1.0,
-                    sheavesRadii=[0.0] * n, sheavesAxes=exu.Vector3DList([[0.0, 0.0, 1.0]] * n))))
+                items += _add_eyelet_rope(mbs, marks, t, self.mode, options.damping)
             else:  # continuum, tension: body-fixed torque T d (-sin s, cos s, 0) on the end link
                 mt = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=self.bodies[t.end_eyelet - 1]))
                 items.append(mbs.AddLoad(eii.LoadTorqueVector(markerNumber=mt, loadVector=[0.0, 0.0, 0.0], bodyFixed=True)))
