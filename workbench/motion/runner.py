@@ -17,9 +17,9 @@ from typing import Any
 
 from ..study.executors import Executor, SerialExecutor, WorkerCrash
 from ..study.expand import flatten_params
-from ..study.runner import RunSummary, _now, _write_manifest, git_commit, package_versions, read_manifest, summarize
+from ..study.runner import RunSummary, _now, _write_manifest, git_commit, open_run_manifest, package_versions, summarize
 from ..study.spec import StudyError
-from ..study.store import MANIFEST, ResultStore
+from ..study.store import ResultStore
 from .expand import expand_motions
 from .spec import MotionStudy, is_motion_study, load_motion_study
 from .worker import MODELS, evaluate_motion_batch
@@ -76,21 +76,9 @@ def run_loaded_motion_study(study: MotionStudy, out_dir: str | Path, executor: E
     folder = Path(out_dir)
     cases = expand_motions(study)
     config_hash = study.config_hash
-    man_path = folder / MANIFEST
-    if man_path.exists():
-        old = read_manifest(folder)
-        if not resume:
-            raise StudyError([f"{folder}: already holds results of study {old.get('study', {}).get('study', {}).get('name')!r}; "
-                              f"use --resume to continue it or --out to choose another folder"])
-        if old.get("config_hash") != config_hash:
-            raise StudyError([f"{folder}: --resume refused: the study's config hash {config_hash} differs from "
-                              f"the stored run's {old.get('config_hash')}; use another --out"])
-        manifest = old
-    else:
-        if folder.exists() and any(folder.glob("part-*.parquet")):
-            raise StudyError([f"{folder}: holds Parquet parts but no {MANIFEST}; refusing to mix results"])
-        manifest = {"study": study.resolved(), "study_file": study.path, "config_hash": config_hash,
-                    "n_cases": len(cases), "versions": package_versions(), "git": git_commit(), "runs": []}
+    manifest = open_run_manifest(folder, config_hash, resume, lambda: {
+        "study": study.resolved(), "study_file": study.path, "config_hash": config_hash,
+        "n_cases": len(cases), "versions": package_versions(), "git": git_commit(), "runs": []})
     folder.mkdir(parents=True, exist_ok=True)
     store = ResultStore(folder, (flatten_params(c.params) for c in cases), flush_rows=flush_rows, flush_seconds=2.0)
     store.cleanup_temporaries()

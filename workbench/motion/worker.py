@@ -184,7 +184,6 @@ def evaluate_motion_case(case_id: str, params: Mapping[str, Any]) -> list[dict[s
     from ..physics.series_parallel import (
         ModuleGeometry,
         fit_constant_curvature,
-        module_forward,
         module_inverse,
         stack_forward,
         stack_inverse,

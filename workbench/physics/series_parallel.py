@@ -1488,7 +1488,6 @@ def fit_constant_curvature(platform_poses, base_pose=None) -> ArcFit:
     T = np.einsum("ij,njk->nik", np.linalg.inv(B), T)
     P = T[:, :3, 3]
     Z = T[:, :3, 2]
-    n = P.shape[0]
     tip = P[-1]
     phi0 = math.atan2(tip[1], tip[0]) if np.hypot(tip[0], tip[1]) > 1e-12 else 0.0
     s0 = np.cumsum(np.linalg.norm(np.diff(np.vstack([np.zeros(3), P]), axis=0), axis=1))

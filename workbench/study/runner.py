@@ -21,7 +21,7 @@ from .expand import expand, flatten_params
 from .spec import Study, StudyError
 from .store import MANIFEST, ResultStore, atomic_write_bytes
 
-__all__ = ["RunSummary", "run_study", "read_manifest", "package_versions", "git_commit"]
+__all__ = ["RunSummary", "open_run_manifest", "run_study", "read_manifest", "package_versions", "git_commit"]
 
 _PACKAGES = ("trunk-workbench", "exudyn", "numpy", "scipy", "pandas", "pyarrow", "dask",
              "distributed", "pydantic", "tqdm")
@@ -89,6 +89,32 @@ def _write_manifest(folder: Path, manifest: dict[str, Any]) -> None:
     atomic_write_bytes(folder / MANIFEST, lambda f: f.write(data))
 
 
+
+def open_run_manifest(folder: Path, config_hash: str, resume: bool,
+                      fresh: Callable[[], dict[str, Any]]) -> dict[str, Any]:
+    """The manifest a run continues (``resume``) or starts (``fresh()``); refuses to mix runs.
+
+    Raises
+    ------
+    StudyError
+        The folder holds results and ``resume`` is off; the stored config hash differs; or
+        the folder holds Parquet parts without a manifest.
+    """
+    if (folder / MANIFEST).exists():
+        old = read_manifest(folder)
+        name = (old.get("study") or {}).get("study", {}).get("name")
+        if not resume:
+            raise StudyError([f"{folder}: already holds results of study {name!r}; "
+                              f"use --resume to continue it or --out to choose another folder"])
+        if old.get("config_hash") != config_hash:
+            raise StudyError([f"{folder}: --resume refused: the study's config hash {config_hash} differs from "
+                              f"the stored run's {old.get('config_hash')} (parameters, sweep, seed or models "
+                              f"changed); use another --out"])
+        return old
+    if folder.exists() and any(folder.glob("part-*.parquet")):
+        raise StudyError([f"{folder}: holds Parquet parts but no {MANIFEST}; refusing to mix results"])
+    return fresh()
+
 def run_study(
     study: Study,
     folder: str | Path,
@@ -133,24 +159,10 @@ def run_study(
     folder = Path(folder)
     cases = expand(study)
     config_hash = study.config_hash
-    man_path = folder / MANIFEST
-    if man_path.exists():
-        old = read_manifest(folder)
-        if not resume:
-            raise StudyError([f"{folder}: already holds results of study {old.get('study', {}).get('name')!r}; "
-                              f"use --resume to continue it or --out to choose another folder"])
-        if old.get("config_hash") != config_hash:
-            raise StudyError([f"{folder}: --resume refused: the study's config hash {config_hash} differs from "
-                              f"the stored run's {old.get('config_hash')} (parameters, sweep, seed or models "
-                              f"changed); use another --out"])
-        manifest = old
-    else:
-        if folder.exists() and any(folder.glob("part-*.parquet")):
-            raise StudyError([f"{folder}: holds Parquet parts but no {MANIFEST}; refusing to mix results"])
-        manifest = {
-            "study": study.resolved(), "study_file": study.path, "config_hash": config_hash,
-            "n_cases": len(cases), "versions": package_versions(), "git": git_commit(), "runs": [],
-        }
+    manifest = open_run_manifest(folder, config_hash, resume, lambda: {
+        "study": study.resolved(), "study_file": study.path, "config_hash": config_hash,
+        "n_cases": len(cases), "versions": package_versions(), "git": git_commit(), "runs": [],
+    })
     folder.mkdir(parents=True, exist_ok=True)
 
     store = ResultStore(folder, (flatten_params(c.params) for c in cases), flush_rows, flush_seconds)

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 
 from ..description import CrossSection, Payload, Robot, Section, TendonGroup
 from ..orientation import base_rotation_for
