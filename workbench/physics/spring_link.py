@@ -598,14 +598,8 @@ class _Planar:
         geo, robot = self.geo, self.robot
         P, beta = self.link_states()
         stations = np.linspace(0.0, robot.length, self.options.n_stations)
-        pos = np.zeros((stations.size, 3))
-        for i, s in enumerate(stations):
-            if s < geo.joints[0]:
-                pos[i] = [0.0, 0.0, s]
-                continue
-            k = int(np.searchsorted(geo.joints, s, side="right") - 1)
-            u = s - geo.joints[k]
-            pos[i] = P[k] + u * np.array([math.sin(beta[k]), 0.0, math.cos(beta[k])])
+        link_axes = np.stack([np.sin(beta), np.zeros_like(beta), np.cos(beta)], axis=1)
+        pos = _points_on_links(geo, stations, np.asarray(P, dtype=float), link_axes)
         b = beta[-1]
         T = np.eye(4)
         T[:3, 0] = [math.cos(b), 0.0, -math.sin(b)]
@@ -965,13 +959,7 @@ class _Spatial(_Planar):
         geo, robot = self.geo, self.robot
         P, R = self.link_frames()
         stations = np.linspace(0.0, robot.length, self.options.n_stations)
-        pos = np.zeros((stations.size, 3))
-        for i, s in enumerate(stations):
-            if s < geo.joints[0]:
-                pos[i] = [0.0, 0.0, s]
-                continue
-            k = int(np.searchsorted(geo.joints, s, side="right") - 1)
-            pos[i] = P[k] + (s - geo.joints[k]) * R[k][:, 2]
+        pos = _points_on_links(geo, stations, np.asarray(P, dtype=float), R[:, :, 2])
         T = np.eye(4)
         T[:3, :3] = R[-1]
         T[:3, 3] = P[-1] + geo.link_lengths[-1] * R[-1][:, 2]
@@ -993,6 +981,23 @@ class _Spatial(_Planar):
             extras={"n_links": float(geo.n_links), "dimension": 3.0},
         )
 
+
+
+def _points_on_links(geo: ChainGeometry, stations: np.ndarray, P: np.ndarray, link_axes: np.ndarray) -> np.ndarray:
+    """Backbone points ``(m, 3)`` at reference arc lengths ``stations`` on a chain of straight links.
+
+    ``P[k]`` is the position of joint ``k`` (at reference arc length ``geo.joints[k]``) and
+    ``link_axes[k]`` the unit axis of the link after it; before the first joint the backbone is
+    the clamped base segment along +z.
+    """
+    pos = np.zeros((stations.size, 3))
+    for i, s in enumerate(stations):
+        if s < geo.joints[0]:
+            pos[i] = [0.0, 0.0, s]
+            continue
+        k = int(np.searchsorted(geo.joints, s, side="right") - 1)
+        pos[i] = P[k] + (s - geo.joints[k]) * link_axes[k]
+    return pos
 
 def _rotation_vectors(R: np.ndarray) -> np.ndarray:
     """Rotation vectors (k, 3) of rotation matrices (k, 3, 3) (angles below pi)."""
