@@ -11,7 +11,6 @@ from workbench.physics.ancf import PlanarModelError, _problem, _System, run
 from workbench.reference.elastica import clamped_elastica
 from workbench.robot import CrossSection, LoadCase, Payload, Robot, Section, TendonActuation, TendonGroup
 from workbench.robot.orientation import base_rotation_for
-from workbench.robot.presets.steel_rod import steel_rod
 
 L = 0.8
 STEEL = CrossSection.circular(6e-3)

@@ -11,7 +11,6 @@ from workbench.physics.hannan_walker_trajectory import (
     joint_angles_from_cable_changes,
     replay_hannan_walker,
 )
-from workbench.physics.spring_link import run
 from workbench.robot import LoadCase, TendonActuation
 from workbench.robot.presets import build_preset, get_preset
 from workbench.robot.presets.hannan_walker import hannan_walker

@@ -15,7 +15,6 @@ import dataclasses
 import tempfile
 from pathlib import Path
 
-import numpy as np
 import pandas as pd
 
 from .golden import KEY_COLUMNS, STUDIES_DIR, golden_frame, run_study_object, small_study_paths
