@@ -1071,6 +1071,28 @@ def _ik_newton(geometry, T, L, legs0, *, legs0_L=None, w, g, n_el, length_tolera
     return L, legs, False, max_iterations, r, f"no convergence in {max_iterations} Newton iterations (last update {step:.3g} m)"
 
 
+def _ik_jacobian(geometry, T, L, legs, *, wrench=None, gravity=None, n_elements=8, leg_tolerance=1e-11, fd_step=1e-7):
+    """``(6, 6)`` Jacobian ``d(balance)/dL`` (Eq 22) at a converged IK state, by forward differences.
+
+    ``legs`` are the converged :class:`LegSolution` of the six legs at pose ``T`` and lengths
+    ``L``; column i re-solves leg i at ``L_i + fd_step`` warm-started from ``legs[i]``.  Used to
+    locate folds (turning points) of the IK solution branch, where this matrix is singular.
+    """
+    F = np.stack([lg.tip_force for lg in legs])
+    M = np.stack([lg.tip_moment for lg in legs])
+    r = _balance(geometry, T, F, M, wrench, gravity)
+    J = np.empty((6, 6))
+    for i in range(6):
+        lg = _leg_solve(geometry, i, L[i] + fd_step, T, gravity, n_elements, leg_tolerance, 50, guess=legs[i],
+                        guess_length=L[i])
+        if not lg.converged:
+            raise RuntimeError(f"leg {i} solve failed at L = {L[i] + fd_step:.6g} m: {lg.reason}")
+        F2, M2 = F.copy(), M.copy()
+        F2[i], M2[i] = lg.tip_force, lg.tip_moment
+        J[:, i] = (_balance(geometry, T, F2, M2, wrench, gravity) - r) / fd_step
+    return J
+
+
 def _base_reaction_lumped(geometry, i, leg: LegSolution, Li, gravity):
     """``n_i(0)``, ``m_i(0)`` (about the hole): force and moment rod i exerts on the base.
 
