@@ -243,7 +243,6 @@ def test_three_module_round_trip_with_gravity():
     assert fk.residual < 1e-6
 
 
-@pytest.mark.slow
 def test_rx_limit_is_a_fold_of_the_ik_branch():
     """rx limit: the IK branch connected to home has a fold (turning point) at rx ~ 26.8 deg.
 
