@@ -241,3 +241,50 @@ def test_three_module_round_trip_with_gravity():
     assert fk.converged, fk.reason
     assert np.max(np.abs(fk.poses[:, :3, 3] - poses[:, :3, 3])) < 1e-6
     assert fk.residual < 1e-6
+
+
+def test_rx_limit_is_a_fold_of_the_ik_branch():
+    """rx limit: the IK branch connected to home has a fold (turning point) at rx ~ 26.8 deg.
+
+    Pose continuation along rx with a secant predictor in L; at every converged state the
+    scaled IK Jacobian ``d(balance)/dL`` is built.  On the way to the fold its determinant keeps
+    its sign and goes to zero linearly in the angle (a regular turning point), while the
+    compression-side leg 1 (it buckles into a loop) lengthens ever faster (L ~ sqrt(theta* - theta)).
+    A numerical stall (Newton losing a regular branch) would show neither.
+    """
+    from scipy.spatial.transform import Rotation
+
+    from workbench.physics import series_parallel as sp
+
+    H = home_pose(GEO)
+    S = np.diag([1.0, 1.0, 1.0] + [1.0 / GEO.platform_radius] * 3)
+    kw = dict(w=None, g=None, n_el=8, length_tolerance=1e-10, leg_tolerance=1e-11, fd_step=1e-7, counter=[0])
+    lams = [0.1, 0.2, 0.3, 0.4, 0.45, 0.5, 0.53, 0.56, 0.58, 0.585, 0.59, 0.5925, 0.595]
+    angles = [0.785 * lam for lam in lams]
+    L, legs, L_prev, a_prev, a_cur = sp._hermite_lengths(GEO, H), None, None, None, 0.0
+    dets, L1 = [], []
+    for a in angles:
+        T = H.copy()
+        T[:3, :3] = Rotation.from_rotvec([a, 0.0, 0.0]).as_matrix()
+        if L_prev is None:
+            Lg = L + (sp._hermite_lengths(GEO, T) - sp._hermite_lengths(GEO, H if legs is None else T_cur))
+        else:
+            Lg = L + (L - L_prev) * (a - a_cur) / (a_cur - a_prev)
+        Ln, legs_n, ok, _, _, msg = sp._ik_newton(GEO, T, Lg, legs, legs0_L=L, max_iterations=30, **kw)
+        assert ok, f"rx = {math.degrees(a):.2f} deg: {msg}"
+        if legs is not None:
+            L_prev, a_prev = L, a_cur
+        L, legs, a_cur, T_cur = Ln, legs_n, a, T
+        dets.append(np.linalg.det(S @ sp._ik_jacobian(GEO, T, L, legs)))
+        L1.append(L[1])
+    dets = np.array(dets)
+    assert np.all(dets < 0), dets  # one branch, no sign change before the fold
+    # linear extrapolation of det from the last two states: zero within 0.5 deg past the last one
+    a_zero = angles[-1] - dets[-1] * (angles[-1] - angles[-2]) / (dets[-1] - dets[-2])
+    assert angles[-1] < a_zero < angles[-1] + math.radians(0.5), math.degrees(a_zero)
+    # |det| falls by > 3x over the last 0.45 deg (measured 4.2x)
+    assert abs(dets[-1]) < 0.3 * abs(dets[-4])
+    # leg 1 lengthens ever faster towards the fold
+    rate = np.diff(L1) / np.diff(angles)
+    assert rate[-1] > 2.0 * rate[-4] > 0  # measured 2.8x
+    assert L1[-1] > 1.7 * GEO.height  # a 0.5 m module needs a > 0.85 m leg 1 here

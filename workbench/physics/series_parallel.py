@@ -60,19 +60,55 @@ Reachable range and solver notes (default geometry, 8 elements per leg, measured
 * IK of rx / ry beyond ~17-19 deg failed in a leg solve started from the neighbouring state (same
   axial-misfit mechanism, strongly S-bent legs).  Fixed: :func:`_leg_homotopy` walks the leg from
   the neighbouring state, and a line search that fails with a reused (chord) Jacobian rebuilds
-  it before giving up.  rx 26 and 29 deg now round-trip (FK(IK) = target to 5e-15 m).
-  Numerical.  (A trust region on the Newton step, 5 % of the height, was tried and removed: it
-  made rx stop at 26.5 deg.)
+  it before giving up.  rx 26 and 29 deg now round-trip (FK(IK) = target to 5e-15 m; 29 deg
+  lies on a second branch, see below).  Numerical.  (A trust region on the Newton step, 5 % of
+  the height, was tried and removed: it made rx stop at 26.5 deg -- i.e. at the fold.)
 * Remaining limit: the pose continuation home -> target stops at rx +-34 deg, ry -21.5 deg and
   ry +37 deg ("line search failed to reduce the platform balance residual", or at ry -21.5 deg a
   Newton step to a 1.69 m leg whose solve fails); for ry -45 deg the stop point does not move
   with the path step (0.479 of the way with 8 steps, 0.483 with 40 steps).
-  Along the way leg forces grow smoothly (ry 0.4 rad: largest leg compression 792 N = 0.50 of the
-  clamped-clamped Euler load ``4 pi^2 EI / L^2``), so it is not Euler buckling of a leg; the
-  behaviour is that of a fold of the equilibrium manifold (no nearby IK solution beyond it), but
-  that was not proven (the conditioning of d(balance)/dL near the stop was not measured).  The
-  paper's +-45 deg about x / y is therefore not reached with this (assumed) geometry; the study
-  sweeps rx to +-0.5 rad and ry to +-0.35 rad.
+
+Diagnosis of the rx / ry limit (measured; ``_ik_jacobian``, test
+``test_rx_limit_is_a_fold_of_the_ik_branch``).  It is a property of the model with this assumed
+geometry (a fold of the IK solution branch, i.e. the workspace boundary of that branch), not a
+Newton failure of a leg solve:
+
+* rx: the compression-side leg 1 (leg 0 for -rx, mirror image) carries its compression near its
+  limit and buckles into a growing loop.  Along rx its length goes 0.545 m (18 deg), 0.598
+  (22.5), 0.768 (25.2), 0.817 (26.1), 0.887 m (26.76 deg); ``dL_1/drx`` grows without bound.  The
+  scaled IK Jacobian ``diag(1,1,1,1/r,1/r,1/r) d(balance)/dL`` keeps the sign of its determinant
+  and its determinant goes to zero linearly (-3.3e28 at 26.1 deg, -1.1e28 at 26.65, -5.4e27 at
+  26.76, extrapolated zero at 26.9 deg); smallest singular value 5.1e5 (4.5 deg), 1.1e3 (22.5),
+  3.6e2 (26.1), 81 (26.76 deg), null vector ~ leg 1 (0.99) with some leg 4.  That is a regular
+  turning point: on the branch connected to home no rx beyond ~26.8 deg exists.  Actuated from
+  home (FK) the module would snap through there.  The pose continuation in ``module_inverse``
+  jumps over the fold with a large step and lands on a second branch (determinant positive:
+  +5.6e27 at 28.1 deg), on which leg 1 is a 1.10 m loop bulging 0.37 m (3x the platform radius)
+  from its chord and leg 4 a 0.85 m loop bulging 0.28 m; that branch ends at 33.7 deg with its
+  smallest singular value falling again (3.4e2 at 28.1-32.3 deg, 1.2e2 at 33.7 deg).
+* At the 33.7 deg stop pose every single-leg solve converges over a wide length range (leg 4:
+  0.46-1.24 m, leg 1: 0.71-1.49 m, warm-started 10 mm steps): no leg has a fold in L.  Leg 4's
+  axial compression there peaks at 1008 N at L = 0.564 m and decreases for longer L (post-buckled
+  loop), i.e. the legs the IK needs are far past their own force maximum.
+* ry -: legs 2 and 5 (a mirror-symmetric pair, L_2 = L_5 along the path) are the compressed
+  ones (1216 N at L = 0.55-0.58 m).  Secant continuation with the IK Jacobian: smallest singular
+  value 1.0e4 (18 deg), 2.9e3 (20.2), 1.2e3 (21.1), 37 (21.6 deg); from 21.1 deg on its null
+  vector is antisymmetric, (leg 2 - leg 5) / sqrt 2, and the determinant changes sign between
+  21.6 and 21.7 deg (-9.9e27 -> +3.4e28) while the path stays symmetric: a symmetry-breaking
+  (pitchfork) bifurcation at ~21.6 deg, after which the symmetric branch is lost at 21.8 deg
+  (the stop at 21.5 deg of ``module_inverse``).  The asymmetric branches born there were not
+  followed.
+* ry +: legs 0, 1, 3, 4 are compressed (700-1050 N), legs 2 and 5 tensioned (1800 N), the path
+  stays symmetric; the determinant keeps its sign and falls (-4.6e26 at 36.0 deg, -2.0e26 at 36.9,
+  -1.1e26 at 37.3 deg, linear extrapolation to zero at ~37.9 deg) while L_0 = L_1 turns from
+  shrinking to growing ever faster (0.493 at 33.7 deg, then 0.505, 0.513, 0.521 m at 36.0, 36.9,
+  37.3 deg), but the smallest singular value does not drop (1.5e3) and Newton fails at 37.8 deg.
+  This points to a fold near 38 deg, but, unlike rx and ry -, it was not settled.
+* So the paper's +-45 deg about x / y cannot be reached with this assumed geometry by any solver
+  on the branch connected to home; the paper's (unknown) prototype dimensions must differ
+  (e.g. longer or stiffer legs relative to the platform radius).  Not modelled either: contact
+  between legs, which the loops of the second branch would need.  The study sweeps rx to +-0.45
+  rad (25.8 deg, home branch; FK(IK) = target to 4e-15 m) and ry to +-0.35 rad.
 """
 
 from __future__ import annotations
@@ -120,7 +156,9 @@ class ModuleGeometry:
 
     Huang et al. give no numbers for the prototype; every default below is our assumption,
     sized so that the module reaches the paper's Fig 6 translations (+-200 mm) and twists (+-30 deg);
-    rotations about x / y reach about 21-34 deg, not the paper's 45 deg (see the module docstring).
+    rotations about x / y do not reach the paper's 45 deg: the IK branch connected to home ends at
+    rx +-26.8 deg (fold), ry -21.6 deg (symmetry-breaking bifurcation) and ry ~+38 deg (see the
+    module docstring).
 
     Parameters
     ----------
@@ -1069,6 +1107,28 @@ def _ik_newton(geometry, T, L, legs0, *, legs0_L=None, w, g, n_el, length_tolera
             J = None  # slow contraction or damped step: refresh the Jacobian
         last_step = step
     return L, legs, False, max_iterations, r, f"no convergence in {max_iterations} Newton iterations (last update {step:.3g} m)"
+
+
+def _ik_jacobian(geometry, T, L, legs, *, wrench=None, gravity=None, n_elements=8, leg_tolerance=1e-11, fd_step=1e-7):
+    """``(6, 6)`` Jacobian ``d(balance)/dL`` (Eq 22) at a converged IK state, by forward differences.
+
+    ``legs`` are the converged :class:`LegSolution` of the six legs at pose ``T`` and lengths
+    ``L``; column i re-solves leg i at ``L_i + fd_step`` warm-started from ``legs[i]``.  Used to
+    locate folds (turning points) of the IK solution branch, where this matrix is singular.
+    """
+    F = np.stack([lg.tip_force for lg in legs])
+    M = np.stack([lg.tip_moment for lg in legs])
+    r = _balance(geometry, T, F, M, wrench, gravity)
+    J = np.empty((6, 6))
+    for i in range(6):
+        lg = _leg_solve(geometry, i, L[i] + fd_step, T, gravity, n_elements, leg_tolerance, 50, guess=legs[i],
+                        guess_length=L[i])
+        if not lg.converged:
+            raise RuntimeError(f"leg {i} solve failed at L = {L[i] + fd_step:.6g} m: {lg.reason}")
+        F2, M2 = F.copy(), M.copy()
+        F2[i], M2[i] = lg.tip_force, lg.tip_moment
+        J[:, i] = (_balance(geometry, T, F2, M2, wrench, gravity) - r) / fd_step
+    return J
 
 
 def _base_reaction_lumped(geometry, i, leg: LegSolution, Li, gravity):
