@@ -17,7 +17,7 @@ from typing import Any
 
 from ..study.executors import Executor, SerialExecutor, WorkerCrash
 from ..study.expand import flatten_params
-from ..study.runner import RunSummary, _now, _write_manifest, git_commit, open_run_manifest, package_versions, summarize
+from ..study.runner import RunSummary, _now, _write_manifest, finish_run, git_commit, open_run_manifest, package_versions, summarize
 from ..study.spec import StudyError
 from ..study.store import ResultStore
 from .expand import expand_motions
@@ -108,10 +108,5 @@ def run_loaded_motion_study(study: MotionStudy, out_dir: str | Path, executor: E
                 if bar is not None:
                     bar.update(1)
     finally:
-        store.close()
-        if bar is not None:
-            bar.close()
-        run_rec["end"] = _now()
-        run_rec["wall_time"] = round(time.perf_counter() - t0, 3)
-        _write_manifest(folder, manifest)
+        finish_run(folder, manifest, run_rec, store, bar, t0)
     return summarize(folder, n_cases=len(cases), n_run=len(todo), wall_time=time.perf_counter() - t0)

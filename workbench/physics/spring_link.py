@@ -328,19 +328,23 @@ def _tendons(robot: Robot, geo: ChainGeometry, tendon_model: str = "continuum") 
 class _Planar:
     """Builds and drives the planar chain; holds Exudyn handles for one solve (not module state)."""
 
+    def _bind(self, robot: Robot, load: LoadCase, options: SolverOptions, geo: ChainGeometry) -> None:
+        """Store the inputs and the tendon routing shared by every chain variant."""
+        import exudyn as exu
+
+        check_model_inputs(robot, load, options)
+        self.exu = exu
+        self.robot, self.load, self.options, self.geo = robot, load, options, geo
+        self.tendons = _tendons(robot, geo, options.tendon_model)
+        self.mode = None if load.actuation is None else load.actuation.mode
+        self.model = options.tendon_model
+
     def __init__(self, robot: Robot, load: LoadCase, options: SolverOptions, geo: ChainGeometry,
                  axial: bool = False) -> None:
         import exudyn as exu
         import exudyn.itemInterface as eii
 
-        self.exu = exu
-        self.robot, self.load, self.options, self.geo = robot, load, options, geo
-        self.tendons = _tendons(robot, geo, options.tendon_model)
-        act = load.actuation
-        if act is not None:
-            act.check_against(robot)
-        self.mode = None if act is None else act.mode
-        self.model = options.tendon_model
+        self._bind(robot, load, options, geo)
         self.axial = bool(axial)
         if self.axial and self.mode == "length" and self.model == "continuum":
             raise ModelFailure("spring_link: axial=True with continuum tendons in length mode is not supported; "
@@ -630,14 +634,7 @@ class _PlanarTree(_Planar):
         import exudyn as exu
         import exudyn.itemInterface as eii
 
-        self.exu = exu
-        self.robot, self.load, self.options, self.geo = robot, load, options, geo
-        self.tendons = _tendons(robot, geo, options.tendon_model)
-        act = load.actuation
-        if act is not None:
-            act.check_against(robot)
-        self.mode = None if act is None else act.mode
-        self.model = options.tendon_model
+        self._bind(robot, load, options, geo)
         self.axial = False
         self.spatial = bool(spatial)
         self.torsion = "locked"
@@ -822,14 +819,7 @@ class _Spatial(_Planar):
         import exudyn as exu
         import exudyn.itemInterface as eii
 
-        self.exu = exu
-        self.robot, self.load, self.options, self.geo = robot, load, options, geo
-        self.tendons = _tendons(robot, geo, options.tendon_model)
-        act = load.actuation
-        if act is not None:
-            act.check_against(robot)
-        self.mode = None if act is None else act.mode
-        self.model = options.tendon_model
+        self._bind(robot, load, options, geo)
         self.axial = bool(axial)
         if self.mode == "length" and self.model == "continuum":
             raise ModelFailure(

@@ -21,7 +21,7 @@ from .expand import expand, flatten_params
 from .spec import Study, StudyError
 from .store import MANIFEST, ResultStore, atomic_write_bytes
 
-__all__ = ["RunSummary", "open_run_manifest", "run_study", "read_manifest", "package_versions", "git_commit"]
+__all__ = ["RunSummary", "finish_run", "open_run_manifest", "run_study", "read_manifest", "package_versions", "git_commit"]
 
 _PACKAGES = ("trunk-workbench", "exudyn", "numpy", "scipy", "pandas", "pyarrow", "dask",
              "distributed", "pydantic", "tqdm")
@@ -114,6 +114,20 @@ def open_run_manifest(folder: Path, config_hash: str, resume: bool,
     if folder.exists() and any(folder.glob("part-*.parquet")):
         raise StudyError([f"{folder}: holds Parquet parts but no {MANIFEST}; refusing to mix results"])
     return fresh()
+
+
+def finish_run(folder: Path, manifest: dict[str, Any], run_rec: dict[str, Any], store: ResultStore,
+               bar: Any, t0: float) -> None:
+    """Flush the store, close the progress bar and record the run's end in the manifest.
+
+    Called from a ``finally`` block, so an interrupted run still leaves a consistent folder.
+    """
+    store.close()
+    if bar is not None:
+        bar.close()
+    run_rec["end"] = _now()
+    run_rec["wall_time"] = round(time.perf_counter() - t0, 3)
+    _write_manifest(folder, manifest)
 
 def run_study(
     study: Study,
@@ -214,12 +228,7 @@ def run_study(
                         bar.update(len(batch))
                 pending = retry
     finally:
-        store.close()
-        if bar is not None:
-            bar.close()
-        run_rec["end"] = _now()
-        run_rec["wall_time"] = round(time.perf_counter() - t0, 3)
-        _write_manifest(folder, manifest)
+        finish_run(folder, manifest, run_rec, store, bar, t0)
 
     return summarize(folder, n_cases=len(cases), n_run=len(todo), wall_time=time.perf_counter() - t0)
 
