@@ -58,6 +58,10 @@ def test_generic_and_broken_files_are_not_motion_studies(tmp_path):
         (("n_elements = 4", "n_elemnts = 4"), r"solver\.n_elemnts: unknown key; did you mean 'n_elements'\?"),
         (("shape = \"bending\"", "shape = \"twist\""), r"motions\.stack\[0\]\.shape: must be 'translation', 's_shape' or 'bending'"),
         (("kind = \"series_parallel\"\n", ""), r"study\.kind: missing required key"),
+        (("axis = \"x\", amplitude = 0.1", "axis = \"x\", pivot = 0.5, amplitude = 0.1"),
+         r"motions\.module\[0\]\.pivot: applies to axis 'rx' or 'ry' only .*, not to axis 'x'$"),
+        (("axis = \"x\", amplitude = 0.1", "axis = \"rx\", pivot = -0.5, amplitude = 0.1"),
+         r"motions\.module\[0\]\.pivot: must be >= 0"),
     ],
 )
 def test_bad_files_give_one_line_errors(tmp_path, edit, expected):
@@ -130,3 +134,35 @@ def test_stack_targets_geometry():
     assert np.allclose(T[:, :3, 3], [[0.1, 0, 0.5], [0.2, 0, 1.0], [0.3, 0, 1.5]])
     with pytest.raises(ValueError, match="shape must be"):
         stack_targets("twist", 0.1, 2, h)
+
+
+def test_pivot_is_part_of_tilt_cases_only(tmp_path):
+    """rx / ry with a pivot are their own cases (own ids, ``motion.pivot`` column); without one the
+    motion dict has no pivot key, so the ids of earlier studies do not change."""
+    text = GOOD.replace('module = [ { axis = "x", amplitude = 0.1, samples = 3 } ]',
+                        'module = [ { axis = "rx", amplitude = 0.5, samples = 1 }, '
+                        '{ axis = "rx", amplitude = 0.5, samples = 1, pivot = 0.5 } ]')
+    cases = expand_motions(load_motion_study(_write(tmp_path, text)))
+    mods = [c for c in cases if c.params["motion"]["kind"] == "module"]
+    assert len(mods) == 2 and mods[0].case_id != mods[1].case_id
+    assert "pivot" not in mods[0].params["motion"]
+    assert mods[1].params["motion"]["pivot"] == 0.5 and mods[1].swept["motion.pivot"] == 0.5
+
+
+def test_module_target_rotates_about_the_pivot():
+    from scipy.spatial.transform import Rotation
+
+    from workbench.motion import module_target
+
+    h, a = 0.5, 0.7
+    R = Rotation.from_rotvec([a, 0.0, 0.0]).as_matrix()
+    top = module_target(h, "rx", a)  # default: about the platform centre, the platform stays put
+    assert np.allclose(top[:3, 3], [0, 0, h]) and np.allclose(top[:3, :3], R)
+    mid = module_target(h, "rx", a, pivot=0.5)
+    c = np.array([0, 0, h / 2])
+    assert np.allclose(mid[:3, 3], c + R @ (np.array([0, 0, h]) - c)) and np.allclose(mid[:3, :3], R)
+    assert np.linalg.norm(mid[:3, 3] - c) == pytest.approx(h / 2)
+    # a positive rx tilts the platform normal towards -y and swings the platform that way
+    assert mid[1, 2] < 0 and mid[1, 3] < 0
+    # rz about any centre on the axis is the same pose
+    assert np.allclose(module_target(h, "rz", a, pivot=0.3), module_target(h, "rz", a))

@@ -42,7 +42,10 @@ def expand_motions(study: MotionStudy) -> list[Case]:
 
     for m in study.motions.get("module", []):
         for v in motion_values(m["amplitude"], m["samples"], m["symmetric"]):
-            add({"kind": "module", "shape": m["axis"], "value": v, "n_modules": 1, "plane": 0.0})
+            motion = {"kind": "module", "shape": m["axis"], "value": v, "n_modules": 1, "plane": 0.0}
+            if m.get("pivot") is not None:  # rx / ry about a centre on the module axis (absent: platform centre)
+                motion["pivot"] = float(m["pivot"])
+            add(motion)
     for m in study.motions.get("stack", []):
         for v in motion_values(m["amplitude"], m["samples"], m["symmetric"]):
             add({"kind": "stack", "shape": m["shape"], "value": v, "n_modules": m["n_modules"], "plane": m["plane"]})

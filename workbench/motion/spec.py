@@ -28,11 +28,12 @@ Annotated example (``studies/series_parallel.toml`` is the runnable one)::
 
     [motions]
     # single module (Fig 6): platform pose = home pose moved along / rotated about one base axis
-    # (rotations about the platform origin at its home position); values
+    # (rotations about the platform origin at its home position; for rx / ry, pivot = p puts
+    # the rotation centre at p * height on the module axis instead, e.g. 0.5 = mid-height); values
     # linspace(-amplitude, amplitude, samples), or linspace(amplitude/samples, amplitude, samples)
     # with symmetric = false.  Units: m for x/y/z, rad for rx/ry/rz.
     module = [ { axis = "x", amplitude = 0.2, samples = 5 },
-               { axis = "rx", amplitude = 0.785, samples = 5 } ]
+               { axis = "rx", amplitude = 0.785, samples = 5, pivot = 0.5 } ]
     # n modules in series (Fig 10): platform k on a prescribed backbone (see stack_targets):
     # "translation" (amplitude = lateral tip offset [m], platforms stay parallel to the base),
     # "s_shape" (amplitude = tangent angle at mid-length [rad], tip parallel to the base),
@@ -54,7 +55,7 @@ from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationInfo, field_validator
 
 from ..study.spec import StudyError, _pydantic_problems, _suggest, canonical_json
 
@@ -87,6 +88,17 @@ class _ModuleMotion(BaseModel):
     amplitude: float = Field(gt=0.0)
     samples: int = Field(ge=1, le=101)
     symmetric: bool = True
+    # rx / ry only: rotation centre on the module axis at pivot * height (1 = platform centre)
+    pivot: float | None = Field(default=None, ge=0.0, le=2.0)
+
+    @field_validator("pivot")
+    @classmethod
+    def _pivot_only_for_tilts(cls, v: float | None, info: ValidationInfo) -> float | None:
+        axis = info.data.get("axis")
+        if v is not None and axis is not None and axis not in ("rx", "ry"):
+            raise ValueError(f"applies to axis 'rx' or 'ry' only (a rotation centre on the module axis), "
+                             f"not to axis {axis!r}")
+        return v
 
 
 class _StackMotion(BaseModel):
@@ -148,7 +160,7 @@ class MotionStudy:
         All ModuleGeometry fields (defaults filled in; angle tuples as lists).
     solver : dict
     motions : dict
-        ``{"module": [ {axis, amplitude, samples, symmetric}, ...], "stack": [...]}``.
+        ``{"module": [ {axis, amplitude, samples, symmetric, pivot}, ...], "stack": [...]}``.
     report : dict
     """
 
@@ -301,7 +313,7 @@ def load_motion_study(path: str | Path, *, max_cases: int | None = None) -> Moti
         path=str(p), name=model.study.name, description=model.study.description, seed=model.study.seed,
         max_cases=model.study.max_cases if max_cases is None else max_cases, geometry=geometry,
         solver=model.solver.model_dump(),
-        motions={"module": [m.model_dump() for m in model.motions.module],
+        motions={"module": [m.model_dump(exclude_none=True) for m in model.motions.module],
                  "stack": [m.model_dump() for m in model.motions.stack]},
         report=model.report.model_dump(exclude_defaults=True),
     )

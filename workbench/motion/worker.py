@@ -36,20 +36,35 @@ __all__ = ["stack_targets", "module_target", "evaluate_motion_case", "evaluate_m
 MODELS = ("target", "series_parallel", "cc_fit")
 
 
-def module_target(height: float, axis: str, value: float) -> np.ndarray:
+def module_target(height: float, axis: str, value: float, pivot: float = 1.0) -> np.ndarray:
     """``(4, 4)`` single-module target: home pose moved along / rotated about a base axis (Fig 6).
 
-    Rotations are about the platform origin at its home position ``(0, 0, height)``.
+    Parameters
+    ----------
+    height : float
+        Module height [m]; the home platform origin is ``(0, 0, height)``.
+    axis : {"x", "y", "z", "rx", "ry", "rz"}
+    value : float
+        Translation [m] or rotation angle [rad].
+    pivot : float
+        Rotations turn the platform about an axis parallel to the base axis through
+        ``(0, 0, pivot * height)``: 1 (default) is the platform centre (the rigid Stewart
+        platform's convention, the platform does not move), 0.5 the module's mid-height (the
+        platform also swings sideways, as in bending).  Irrelevant for ``rz`` and translations.
     """
     from ..physics.series_parallel import pose_from_xyz_rotvec
 
-    xyz = np.array([0.0, 0.0, height])
+    home = np.array([0.0, 0.0, height])
     rv = np.zeros(3)
     k = "xyz".index(axis[-1])
     if axis.startswith("r"):
         rv[k] = value
-    else:
-        xyz[k] += value
+        T = pose_from_xyz_rotvec(home, rv)
+        c = np.array([0.0, 0.0, pivot * height])
+        T[:3, 3] = c + T[:3, :3] @ (home - c)
+        return T
+    xyz = home.copy()
+    xyz[k] += value
     return pose_from_xyz_rotvec(xyz, rv)
 
 
@@ -200,7 +215,7 @@ def evaluate_motion_case(case_id: str, params: Mapping[str, Any]) -> list[dict[s
     t0 = time.perf_counter()
     try:
         if m["kind"] == "module":
-            targets = module_target(h, m["shape"], m["value"])[None]
+            targets = module_target(h, m["shape"], m["value"], m.get("pivot", 1.0))[None]
         else:
             targets = stack_targets(m["shape"], m["value"], n, h, m["plane"])
     except Exception as e:  # noqa: BLE001 - recorded as a failed case

@@ -104,11 +104,24 @@ Newton failure of a leg solve:
   shrinking to growing ever faster (0.493 at 33.7 deg, then 0.505, 0.513, 0.521 m at 36.0, 36.9,
   37.3 deg), but the smallest singular value does not drop (1.5e3) and Newton fails at 37.8 deg.
   This points to a fold near 38 deg, but, unlike rx and ry -, it was not settled.
-* So the paper's +-45 deg about x / y cannot be reached with this assumed geometry by any solver
-  on the branch connected to home; the paper's (unknown) prototype dimensions must differ
-  (e.g. longer or stiffer legs relative to the platform radius).  Not modelled either: contact
-  between legs, which the loops of the second branch would need.  The study sweeps rx to +-0.45
-  rad (25.8 deg, home branch; FK(IK) = target to 4e-15 m) and ry to +-0.35 rad.
+* So the paper's +-45 deg about x / y, read as rotations about the platform centre, cannot be
+  reached with this assumed geometry by any solver on the branch connected to home.  Not
+  modelled either: contact between legs, which the loops of the second branch would need.
+* The paper does not say about which point Fig 6 rotates.  About a centre lower on the module
+  axis the legs bend instead of buckling (traced with the same continuation, default geometry):
+  rotation centre at 0.75 h: fold at ~41 deg (leg 1 lengthens to 1.09 m); at 0.5 h (the
+  platform tilts and swings sideways, close to a constant-curvature bend of the module): +-45 deg
+  is reached by a direct Newton solve (7-8 iterations, 0.5 s; leg axial forces <= 0.41 kN,
+  smallest singular value of the scaled IK Jacobian 1.25e4) and the branch folds only at ~77 deg
+  (leg 2 loops out to 1.56 m).  ``workbench.motion.worker.module_target`` takes this centre as
+  ``pivot`` (fraction of the height).
+* Geometry (rotation about the platform centre, rx fold): platform / base radius 0.12 -> 0.25 m
+  moves it from 26.8 to 29.5 deg only; a 1.0 m tall module folds at 13.9 deg; a 10 deg
+  hole-to-attachment angle (instead of 30 deg) at 15.5 deg; 5 deg hole pairs with 50 deg legs
+  (r = 0.25 m) at 37.6 deg (ry -: 39.5 deg).  Hole-to-attachment angles above 45 deg with the
+  default 30 deg pair spacing make the legs of neighbouring pairs intersect.
+* The study sweeps rx / ry to +-45 deg about mid-height, and about the platform centre rx to
+  +-0.45 rad (25.8 deg, home branch; FK(IK) = target to 4e-15 m) and ry to +-0.35 rad.
 """
 
 from __future__ import annotations
@@ -155,8 +168,9 @@ class ModuleGeometry:
     """Plain parameters of one flexible six-rod parallel module (Huang et al. Fig 5).
 
     Huang et al. give no numbers for the prototype; every default below is our assumption,
-    sized so that the module reaches the paper's Fig 6 translations (+-200 mm) and twists (+-30 deg);
-    rotations about x / y do not reach the paper's 45 deg: the IK branch connected to home ends at
+    sized so that the module reaches the paper's Fig 6 translations (+-200 mm) and twists (+-30 deg),
+    and +-45 deg about x / y as tilts about the module's mid-height point.  Rotations about x / y
+    about the platform centre stop short of 45 deg: the IK branch connected to home ends at
     rx +-26.8 deg (fold), ry -21.6 deg (symmetry-breaking bifurcation) and ry ~+38 deg (see the
     module docstring).
 

@@ -63,8 +63,13 @@ def motion_overview_figure(df: pd.DataFrame) -> Figure:
     ax.grid(alpha=0.3)
     # (c) single-module round trip and reach
     ax = axs[2]
-    md = df[(df["p.motion.kind"] == "module") & (df["model"] == "series_parallel")]
-    for k, (axis, g) in enumerate(md.groupby("p.motion.shape", sort=False)):
+    md = df[(df["p.motion.kind"] == "module") & (df["model"] == "series_parallel")].copy()
+    # rx / ry about another centre than the platform (p.motion.pivot) are separate curves
+    md["_curve"] = md["p.motion.shape"]
+    if "p.motion.pivot" in md.columns:
+        piv = md["p.motion.pivot"].notna()
+        md.loc[piv, "_curve"] = [f"{a} @ {p:g} h" for a, p in zip(md.loc[piv, "p.motion.shape"], md.loc[piv, "p.motion.pivot"])]
+    for k, (axis, g) in enumerate(md.groupby("_curve", sort=False)):
         g = g.sort_values("p.motion.value")
         ok = g[g["status"] == "ok"]
         amp = float(np.max(np.abs(g["p.motion.value"]))) or 1.0
@@ -91,5 +96,6 @@ def motion_figures(results: pd.DataFrame) -> list[ReportFigure]:
     summary = ("Series-parallel trunk (Huang et al.): (a) platform origins of the 3-module motions, target, "
                "Exudyn FK after IK and the constant-curvature arc fitted through them; (b) how far the platforms "
                "sit from that arc per motion amplitude; (c) single-module IK->FK round-trip error along each "
-               "Fig 6 motion (crosses: poses the IK did not reach).")
+               "Fig 6 motion (crosses: poses the IK did not reach; 'rx @ 0.5 h': rotation about the point at "
+               "half the module height instead of the platform centre).")
     return [ReportFigure("motion_overview", "Series-parallel motions and the CC arc fit", fig, summary)]

@@ -327,6 +327,8 @@ def _translate(err: dict, prefix: tuple, model: type[BaseModel] | None) -> str:
         return f"{_fmt_loc(full)}: {err['msg'].lower()}"
     if typ == "string_pattern_mismatch":
         return f"{_fmt_loc(full)}: must match {err['ctx']['pattern']} (letters, digits, '_' and '-'), got {inp!r}"
+    if typ == "value_error" and "error" in err.get("ctx", {}):  # a validator's own message
+        return f"{_fmt_loc(full)}: {err['ctx']['error']}"
     return f"{_fmt_loc(full)}: {err['msg'][0].lower() + err['msg'][1:]}, got {type(inp).__name__} {inp!r}"
 
 
