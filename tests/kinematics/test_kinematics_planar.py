@@ -105,7 +105,7 @@ def test_appendix_b_erratum_exactly_three_entries_wrong():
         ok[0, 1] = ok[1, 0] = ok[1, 1] = True
         assert ok.all()
         w = k * ELL_HW
-        W1, W2 = w[0], w[0] + w[1]
+        W1 = w[0]
         fixed = printed.copy()
         fixed[0, 1] += 2 * np.cos(W1) / k[1] ** 2
         fixed[1, 0] += 2 * ELL_HW[0] * np.cos(W1) / k[0]

@@ -38,7 +38,7 @@ def _reeving_equilibrium(robot, load, options):
         sysm = _System(pb, options, "continuum", 0.0)  # plain rod: tendon curvature stays 0
         mbs = sysm.mbs
         ground = mbs.AddObject(ObjectGround())
-        ropes, l0s = [], []
+        ropes = []
         lref = sysm.reference_path_lengths()
         l0 = tendon_rest_lengths(lref, act.values, act.pretension, [t.EAt for t in pb.tendons])
         for i, td in enumerate(pb.tendons):

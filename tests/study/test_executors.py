@@ -14,7 +14,7 @@ import pandas as pd
 import pytest
 
 import study_fakes as fakes
-from workbench.study import (DaskExecutor, IsolatedExecutor, SerialExecutor, WorkerCrash, expand,
+from workbench.study import (DaskExecutor, IsolatedExecutor, SerialExecutor, WorkerCrash,
                              load_study, run_study)
 
 HERE = Path(__file__).parent
