@@ -309,3 +309,21 @@ def test_rx_limit_is_a_fold_of_the_ik_branch():
     rate = np.diff(L1) / np.diff(angles)
     assert rate[-1] > 2.0 * rate[-4] > 0  # measured 2.8x
     assert L1[-1] > 1.7 * GEO.height  # a 0.5 m module needs a > 0.85 m leg 1 here
+
+
+@pytest.mark.slow
+def test_ik_stops_at_the_fold_instead_of_changing_branch():
+    """rx = 29 deg about the platform centre lies past the fold of the home branch (26.8 deg).
+    Without the branch check the pose continuation jumps the fold and returns lengths of another
+    branch (leg 1 a 0.95 m loop in a 0.5 m module); with it (default) the IK fails, says where
+    (26.x deg) and that the IK Jacobian is nearly singular there (a fold, not a solver stall)."""
+    import re
+
+    T = pose_from_xyz_rotvec([0.0, 0.0, GEO.height], [math.radians(29.0), 0.0, 0.0])
+    loose = module_inverse(GEO, T, check_branch=False)
+    assert loose.success and loose.lengths[1] > 1.8 * GEO.height
+    checked = module_inverse(GEO, T)
+    assert not checked.success
+    assert "rotation 26." in checked.reason, checked.reason
+    ratio = float(re.search(r"smallest singular value of the IK Jacobian there ([0-9.e+-]+) x", checked.reason).group(1))
+    assert ratio < 1e-2 and "near a fold" in checked.reason, checked.reason

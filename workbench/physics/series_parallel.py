@@ -60,8 +60,8 @@ Reachable range and solver notes (default geometry, 8 elements per leg, measured
 * IK of rx / ry beyond ~17-19 deg failed in a leg solve started from the neighbouring state (same
   axial-misfit mechanism, strongly S-bent legs).  Fixed: :func:`_leg_homotopy` walks the leg from
   the neighbouring state, and a line search that fails with a reused (chord) Jacobian rebuilds
-  it before giving up.  rx 26 and 29 deg now round-trip (FK(IK) = target to 5e-15 m; 29 deg
-  lies on a second branch, see below).  Numerical.  (A trust region on the Newton step, 5 % of
+  it before giving up.  rx 26 and 29 deg now round-trip (FK(IK) = target to 5e-15 m; but 29 deg
+  lies on a second branch, see below, and is rejected by the branch check).  Numerical.  (A trust region on the Newton step, 5 % of
   the height, was tried and removed: it made rx stop at 26.5 deg -- i.e. at the fold.)
 * Remaining limit: the pose continuation home -> target stops at rx +-34 deg, ry -21.5 deg and
   ry +37 deg ("line search failed to reduce the platform balance residual", or at ry -21.5 deg a
@@ -81,8 +81,9 @@ Newton failure of a leg solve:
   26.76, extrapolated zero at 26.9 deg); smallest singular value 5.1e5 (4.5 deg), 1.1e3 (22.5),
   3.6e2 (26.1), 81 (26.76 deg), null vector ~ leg 1 (0.99) with some leg 4.  That is a regular
   turning point: on the branch connected to home no rx beyond ~26.8 deg exists.  Actuated from
-  home (FK) the module would snap through there.  The pose continuation in ``module_inverse``
-  jumps over the fold with a large step and lands on a second branch (determinant positive:
+  home (FK) the module would snap through there.  Without a branch check (``check_branch=False``)
+  the pose continuation in ``module_inverse`` jumps over the fold with a large step and lands on
+  a second branch (determinant positive:
   +5.6e27 at 28.1 deg), on which leg 1 is a 1.10 m loop bulging 0.37 m (3x the platform radius)
   from its chord and leg 4 a 0.85 m loop bulging 0.28 m; that branch ends at 33.7 deg with its
   smallest singular value falling again (3.4e2 at 28.1-32.3 deg, 1.2e2 at 33.7 deg).
@@ -104,6 +105,13 @@ Newton failure of a leg solve:
   shrinking to growing ever faster (0.493 at 33.7 deg, then 0.505, 0.513, 0.521 m at 36.0, 36.9,
   37.3 deg), but the smallest singular value does not drop (1.5e3) and Newton fails at 37.8 deg.
   This points to a fold near 38 deg, but, unlike rx and ry -, it was not settled.
+* Branch check (default ``check_branch=True``): ``module_inverse`` accepts a solution only if the
+  sign of ``det d(balance)/dL`` equals its sign at home, at the solution and at every continuation
+  step (a step that converges on another branch is retried smaller).  rx 29 deg about the platform
+  centre now fails with "stalled at ... rotation 26.6 deg ...; smallest singular value of the IK
+  Jacobian there 0.00021 x its home value (near a fold ...)" instead of returning the looped legs
+  of the second branch.  Cost: one home IK plus one Jacobian (6 leg solves) per check, e.g. the
+  45 deg mid-height tilt 0.5 -> 0.9 s.
 * So the paper's +-45 deg about x / y, read as rotations about the platform centre, cannot be
   reached with this assumed geometry by any solver on the branch connected to home.  Not
   modelled either: contact between legs, which the loops of the second branch would need.
@@ -709,7 +717,7 @@ class ModuleIK:
     Parameters
     ----------
     lengths : ndarray, shape (6,)
-        Insertion lengths L_i [m].
+        Insertion lengths L_i [m] (NaN when the IK failed: no partial answer is passed off as one).
     success : bool
         Newton converged (length update below ``length_tolerance``) and every leg solve converged.
     iterations : int
@@ -951,6 +959,7 @@ def module_inverse(
     leg_tolerance: float = 1e-11,
     fd_step: float = 1e-7,
     path_steps: int | None = None,
+    check_branch: bool = True,
 ) -> ModuleIK:
     """Inverse kinematics of one module: insertion lengths that hold the platform at a pose (Eq 25-28).
 
@@ -987,6 +996,13 @@ def module_inverse(
         If Newton from the start fails, continue along the SE(3) path from the home pose to the
         target in this many steps (adaptive halving; default: about one step per 40 mm and
         0.1 rad); 0 disables the fallback.
+    check_branch : bool
+        Accept only solutions on the IK solution branch connected to the home pose (under the same
+        loads): the sign of ``det d(balance)/dL`` must equal its sign at home, at the solution and
+        at every continuation step (one extra Jacobian, six leg solves, per check).  A sign change
+        marks a fold or bifurcation of the branch (measured for the default module: rx 26.8 deg
+        about the platform centre); beyond it the legs only close on other branches (buckled,
+        looped legs), so the IK fails there with that reason instead of returning them.
 
     Returns
     -------
@@ -1004,16 +1020,38 @@ def module_inverse(
     direct_cap = max_iterations if path_steps == 0 else min(max_iterations, 8)
     L, legs, ok, its, r, msg = _ik_newton(geometry, T, L0, None, max_iterations=direct_cap, **kw)
     total_its = its
+    H = home_pose(geometry)
+    home: list = []  # lazily: [L, legs, det sign] of the home pose
+
+    def home_state():
+        if not home:
+            Lh, legs_h, okh, _, _, msgh = _ik_newton(geometry, H, _hermite_lengths(geometry, H), None,
+                                                    max_iterations=max(max_iterations, 20), **kw)
+            if not okh:
+                raise _BranchCheckError(f"branch check: IK of the home pose failed: {msgh}")
+            home.extend([Lh, legs_h, *_branch_sign(geometry, H, Lh, legs_h, kw, counter, with_smin=True)])
+        return home
+
+    at_home = bool(np.allclose(T, H, rtol=0.0, atol=1e-12))
+    direct_off_branch = False
+    try:
+        if ok and check_branch and not at_home and _branch_sign(geometry, T, L, legs, kw, counter) != home_state()[2]:
+            ok, msg, direct_off_branch = False, "", True
+    except _BranchCheckError as e:
+        ok, msg, path_steps = False, str(e), 0
     if not ok and path_steps != 0:
         # continuation along the SE(3) path home -> target, warm-starting L and the legs
-        H = home_pose(geometry)
         slerp = Slerp([0.0, 1.0], Rotation.from_matrix(np.stack([H[:3, :3], T[:3, :3]])))
         n_steps = path_steps if path_steps else max(
             2, int(math.ceil(np.linalg.norm(T[:3, 3] - H[:3, 3]) / 0.04 + np.linalg.norm(rotation_vector(H[:3, :3].T @ T[:3, :3])) / 0.1))
         )
         lam, step = 0.0, 1.0 / n_steps
-        Lc, legs_c = _hermite_lengths(geometry, H), None
-        while lam < 1.0:
+        try:
+            Lc, legs_c, s_home, smin_home = home_state() if check_branch else (_hermite_lengths(geometry, H), None, 0.0, 0.0)
+        except _BranchCheckError as e:
+            lam, msg = -1.0, str(e)
+        off_branch_seen = False  # a step from the current state converged on another branch
+        while 0.0 <= lam < 1.0:
             lt = min(1.0, lam + step)
             Tt = np.eye(4)
             Tt[:3, :3] = slerp([lt]).as_matrix()[0]
@@ -1022,19 +1060,46 @@ def module_inverse(
             Lg = Lc + (_hermite_lengths(geometry, Tt) - _hermite_lengths(geometry, _interp_pose(H, T, slerp, lam)))
             Ln, legs_n, okn, itn, rn, msgn = _ik_newton(geometry, Tt, Lg, legs_c, legs0_L=Lc, max_iterations=max_iterations, **kw)
             total_its += itn
+            if okn and check_branch:
+                # a converged step on another branch is a failed step: a smaller one may stay on ours
+                try:
+                    if _branch_sign(geometry, Tt, Ln, legs_n, kw, counter) != s_home:
+                        okn, msgn, off_branch_seen = False, "converged on another branch", True
+                except _BranchCheckError as e:
+                    msg = str(e)
+                    break
             if okn:
-                lam, Lc, legs_c = lt, Ln, legs_n
+                lam, Lc, legs_c, off_branch_seen = lt, Ln, legs_n, False
                 step = min(1.5 * step, 2.0 / n_steps)
             else:
                 step *= 0.5
                 if step < 1.0 / (16 * n_steps):
-                    msg = f"pose continuation stalled at {lam:.3f} of the way from home: {msgn}"
+                    where = (f"{lam:.3f} of the way from home to the target (rotation "
+                             f"{math.degrees(lam * np.linalg.norm(rotation_vector(H[:3, :3].T @ T[:3, :3]))):.1f} deg, "
+                             f"translation {1e3 * lam * np.linalg.norm(T[:3, 3] - H[:3, 3]):.0f} mm)")
+                    if off_branch_seen:
+                        msg = (f"the IK solution branch connected to home ends near {where}: det d(balance)/dL changes "
+                               f"sign (fold or bifurcation), the target lies outside the workspace of that branch")
+                    else:
+                        msg = f"pose continuation stalled at {where}: {msgn}"
+                        if check_branch and legs_c is not None:
+                            try:
+                                _, smin = _branch_sign(geometry, _interp_pose(H, T, slerp, lam), Lc, legs_c, kw, counter,
+                                                       with_smin=True)
+                                msg += (f"; smallest singular value of the IK Jacobian there {smin / smin_home:.2g} x its "
+                                        f"home value" + (" (near a fold of the IK branch: workspace boundary)"
+                                                         if smin < 1e-2 * smin_home else ""))
+                            except _BranchCheckError:
+                                pass
                     break
         if lam >= 1.0:
             L, legs, ok, r, msg = Lc, legs_c, True, rn, ""
+    if not ok and direct_off_branch:
+        msg = ((msg + "; ") if msg else "") + ("direct Newton converged on another IK solution branch (sign of det "
+                                               "d(balance)/dL differs from home's: buckled or looped legs), rejected")
     if not ok or legs is None or any(lg is None or not lg.converged for lg in legs):
         nan = np.full((6, 3), np.nan)
-        return ModuleIK(L, False, total_its, float("nan") if r is None else _resnorm(geometry, r), msg or "IK failed",
+        return ModuleIK(np.full(6, np.nan), False, total_its, float("nan") if r is None else _resnorm(geometry, r), msg or "IK failed",
                         nan, nan, nan, nan, np.full((6, n_el + 1, 3), np.nan), counter[0], time.perf_counter() - t_start)
     F = np.stack([lg.tip_force for lg in legs])
     M = np.stack([lg.tip_moment for lg in legs])
@@ -1121,6 +1186,26 @@ def _ik_newton(geometry, T, L, legs0, *, legs0_L=None, w, g, n_el, length_tolera
             J = None  # slow contraction or damped step: refresh the Jacobian
         last_step = step
     return L, legs, False, max_iterations, r, f"no convergence in {max_iterations} Newton iterations (last update {step:.3g} m)"
+
+
+class _BranchCheckError(RuntimeError):
+    pass
+
+
+def _branch_sign(geometry, T, L, legs, kw, counter, with_smin=False):
+    """Sign of ``det d(balance)/dL`` at a converged IK state (which IK solution branch it is on);
+    with ``with_smin`` also the smallest singular value of ``diag(1, 1, 1, 1/r, 1/r, 1/r) J`` [N/m]."""
+    try:
+        J = _ik_jacobian(geometry, T, L, legs, wrench=kw["w"], gravity=kw["g"], n_elements=kw["n_el"],
+                         leg_tolerance=kw["leg_tolerance"], fd_step=kw["fd_step"])
+    except RuntimeError as e:
+        raise _BranchCheckError(f"branch check: Jacobian at a converged state: {e}") from None
+    counter[0] += 6
+    sign, _ = np.linalg.slogdet(J)
+    if not with_smin:
+        return float(sign)
+    S = np.diag([1.0, 1.0, 1.0] + [1.0 / geometry.platform_radius] * 3)
+    return float(sign), float(np.linalg.svd(S @ J, compute_uv=False)[-1])
 
 
 def _ik_jacobian(geometry, T, L, legs, *, wrench=None, gravity=None, n_elements=8, leg_tolerance=1e-11, fd_step=1e-7):
