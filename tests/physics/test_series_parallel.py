@@ -15,6 +15,7 @@ from workbench.physics.series_parallel import (
     home_pose,
     leg_lengths_from_pose_hermite,
     leg_static,
+    min_leg_gap,
     module_forward,
     module_inverse,
     pose_from_xyz_rotvec,
@@ -156,6 +157,45 @@ def test_fig6_tilts_of_45_degrees_about_mid_height_round_trip(axis, sign):
     assert np.linalg.norm(rotation_log(fk.pose[:3, :3].T @ T[:3, :3])) < 1e-6
     axial = np.einsum("ij,j->i", ik.tip_forces, T[:3, 2])
     assert np.max(np.abs(axial)) < 1000.0, axial
+
+
+def test_segment_distance_is_exact():
+    """Closed-form segment-segment distance: known cases, and never above a dense sampling of the
+    two segments, nor more than its grid error below it (random, parallel and degenerate pairs)."""
+    from workbench.physics.series_parallel import _segment_distances
+
+    z = np.zeros(3)
+    ex, ey, ez = np.eye(3)
+    assert _segment_distances(z, ex, ey, ey + ex) == pytest.approx(1.0)  # parallel, offset 1
+    assert _segment_distances(z, ex, 0.5 * ex + ez - ey, 0.5 * ex + ez + ey) == pytest.approx(1.0)  # skew, crossing
+    assert _segment_distances(z, ex, 2 * ex, 3 * ex) == pytest.approx(1.0)  # collinear, end to end
+    rng = np.random.default_rng(7)
+    u = np.linspace(0.0, 1.0, 1001)
+    for k in range(60):
+        P0, P1, Q0, Q1 = rng.normal(size=(4, 3))
+        if k % 3 == 0:
+            Q1 = Q0 + 0.7 * (P1 - P0)
+        if k % 5 == 0:
+            Q1 = Q0.copy()
+        d = float(_segment_distances(P0, P1, Q0, Q1))
+        A, B = P0 + u[:, None] * (P1 - P0), Q0 + u[:, None] * (Q1 - Q0)
+        brute = float(np.min(np.linalg.norm(A[:, None] - B[None], axis=-1)))
+        grid = 1e-3 * (np.linalg.norm(P1 - P0) + np.linalg.norm(Q1 - Q0))
+        assert d <= brute + 1e-12 and brute - d <= grid
+
+
+def test_min_leg_gap(home_ik):
+    """Straight vertical legs on the hole circle: the gap is the nearest holes' distance minus d;
+    the S-bent legs at the home pose do not touch (the paper's 'no interference')."""
+    P0, _ = hole_frames(GEO)
+    straight = P0[:, None, :] + np.linspace(0.0, 0.5, 9)[None, :, None] * np.array([0.0, 0.0, 1.0])
+    gap, pair = min_leg_gap(straight, 0.006)
+    assert gap == pytest.approx(2 * GEO.base_radius * math.sin(math.radians(15.0)) - 0.006, rel=1e-12)
+    assert pair in ((0, 1), (2, 3), (4, 5))
+    gap_home, _ = min_leg_gap(home_ik.leg_positions, GEO.rod_diameter)
+    assert 0.0 < gap_home < gap + 1e-9  # the legs converge towards the platform pairs
+    with pytest.raises(ValueError, match=r"shape \(6, N\+1, 3\)"):
+        min_leg_gap(straight[:5], 0.006)
 
 
 def test_symmetric_extension_is_pure_translation(home_ik):

@@ -9,7 +9,9 @@ Models (one row each, the row schema of ``docs/architecture.md``):
     :func:`stack_inverse`), then forward kinematics (:func:`module_forward` /
     :func:`stack_forward`) of those insertion lengths from the home predictor: the row holds the
     FK platform poses, ``x.L<k>_<i>`` the insertion lengths [m] of leg i of module k, the IK
-    residual and the FK-vs-target errors.  A failed IK or FK is a failed row with the reason.
+    residual, the FK-vs-target errors, the largest leg compression (``x.max_leg_compression`` [N],
+    ``x.buckling_ratio``) and ``x.min_leg_gap``, the smallest surface gap between two legs of a
+    module in the FK state [m] (negative: the rods would intersect; contact is not modelled).  A failed IK or FK is a failed row with the reason.
 ``cc_fit``
     The constant-curvature arc from the base, fitted through the FK platform origins
     (:func:`fit_constant_curvature`); ``x.cc_*`` its curvature, plane and fit errors.
@@ -199,6 +201,7 @@ def evaluate_motion_case(case_id: str, params: Mapping[str, Any]) -> list[dict[s
     from ..physics.series_parallel import (
         ModuleGeometry,
         fit_constant_curvature,
+        min_leg_gap,
         module_inverse,
         stack_forward,
         stack_inverse,
@@ -262,6 +265,7 @@ def evaluate_motion_case(case_id: str, params: Mapping[str, Any]) -> list[dict[s
                 extras["x.fk_position_error"] = float(np.max(np.linalg.norm(fk.poses[:, :3, 3] - targets[:, :3, 3], axis=1)))
                 extras["x.fk_rotation_error"] = float(max(_rot_angle(a[:3, :3], b[:3, :3]) for a, b in zip(fk.poses, targets)))
                 extras["x.fk_residual"] = float(fk.residual)
+                extras["x.min_leg_gap"] = float(min(min_leg_gap(fk.leg_positions[k], geo.rod_diameter)[0] for k in range(n)))
                 sp.update(status="ok", error="", wall_time=time.perf_counter() - t0, converged=True,
                           iterations=ik_its + int(fk.iterations), **extras, **_shape_row(fk.poses, h))
     except Exception as e:  # noqa: BLE001
