@@ -1,7 +1,8 @@
 """Timing of the series-parallel module (Huang et al.): one FK static solve and one IK.
 
 Run: ``/work/venv/bin/python benchmarks/bench_series_parallel.py``.  Prints wall times measured in
-this run (best of ``--repeat``) and their ratios; no assertions.
+this run (best of ``--repeat``) and their ratios, including the cost of the IK branch check
+(``check_branch=True`` vs ``False``); no assertions.
 """
 
 from __future__ import annotations
@@ -39,13 +40,16 @@ def main(argv=None) -> None:
     args = ap.parse_args(argv)
     geo = ModuleGeometry()
     target = home_pose(geo) @ pose_from_xyz_rotvec([0.05, -0.03, 0.05], [0.1, 0.2, 0.15])
-    print(f"{'n_el':>5} {'IK [s]':>9} {'IK its':>7} {'leg solves':>10} {'FK [s]':>9} {'FK its':>7} {'IK/FK':>6}")
+    print(f"{'n_el':>5} {'IK [s]':>9} {'IK its':>7} {'leg solves':>10} {'FK [s]':>9} {'FK its':>7} {'IK/FK':>6}"
+          f" {'IK unchecked [s]':>17} {'check cost':>10}")
     for n in args.elements:
         t_ik, ik = _best(lambda: module_inverse(geo, target, n_elements=n), args.repeat)
+        t_raw, _ = _best(lambda: module_inverse(geo, target, n_elements=n, check_branch=False), args.repeat)
         t_fk, fk = _best(lambda: module_forward(geo, ik.lengths, n_elements=n), args.repeat)
         ok = ik.success and fk.converged
         print(f"{n:>5} {t_ik:>9.3f} {ik.iterations:>7} {ik.leg_solves:>10} {t_fk:>9.3f} {fk.iterations:>7} "
-              f"{t_ik / t_fk:>6.2f}{'' if ok else '  (FAILED: ' + (ik.reason or fk.reason) + ')'}")
+              f"{t_ik / t_fk:>6.2f} {t_raw:>17.3f} {t_ik / t_raw:>9.2f}x"
+              f"{'' if ok else '  (FAILED: ' + (ik.reason or fk.reason) + ')'}")
     if args.stack:
         geos = [geo] * 3
         poses = np.stack([home_pose(geo)] * 3)

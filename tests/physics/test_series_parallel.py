@@ -367,3 +367,15 @@ def test_ik_stops_at_the_fold_instead_of_changing_branch():
     assert "rotation 26." in checked.reason, checked.reason
     ratio = float(re.search(r"smallest singular value of the IK Jacobian there ([0-9.e+-]+) x", checked.reason).group(1))
     assert ratio < 1e-2 and "near a fold" in checked.reason, checked.reason
+
+
+def test_home_cache_gives_the_same_answer_with_fewer_leg_solves():
+    """The branch check's home reference, kept in a caller-owned dict, is reused, not recomputed."""
+    T = pose_from_xyz_rotvec([0.03, 0.0, 0.52], [0.0, 0.1, 0.0])
+    cache: dict = {}
+    first = module_inverse(GEO, T, home_cache=cache)
+    second = module_inverse(GEO, T, home_cache=cache)
+    plain = module_inverse(GEO, T)
+    assert first.success and second.success and len(cache) == 1
+    assert np.array_equal(first.lengths, second.lengths) and np.array_equal(first.lengths, plain.lengths)
+    assert second.leg_solves < first.leg_solves == plain.leg_solves

@@ -961,6 +961,7 @@ def module_inverse(
     fd_step: float = 1e-7,
     path_steps: int | None = None,
     check_branch: bool = True,
+    home_cache: dict | None = None,
 ) -> ModuleIK:
     """Inverse kinematics of one module: insertion lengths that hold the platform at a pose (Eq 25-28).
 
@@ -1004,6 +1005,10 @@ def module_inverse(
         marks a fold or bifurcation of the branch (measured for the default module: rx 26.8 deg
         about the platform centre); beyond it the legs only close on other branches (buckled,
         looped legs), so the IK fails there with that reason instead of returning them.
+    home_cache : dict, optional
+        Caller-owned dict in which the home-pose reference of the branch check is kept, keyed by
+        geometry, loads and solver settings; pass the same dict to repeated calls (a sweep, the
+        modules of a stack) to solve the home pose once instead of per call.
 
     Returns
     -------
@@ -1024,13 +1029,20 @@ def module_inverse(
     H = home_pose(geometry)
     home: list = []  # lazily: [L, legs, det sign] of the home pose
 
+    cache_key = (geometry, None if w is None else w.tobytes(), None if g is None else g.tobytes(), n_el,
+                 length_tolerance, leg_tolerance, fd_step)
+
     def home_state():
+        if not home and home_cache is not None and cache_key in home_cache:
+            home.extend(home_cache[cache_key])
         if not home:
             Lh, legs_h, okh, _, _, msgh = _ik_newton(geometry, H, _hermite_lengths(geometry, H), None,
                                                     max_iterations=max(max_iterations, 20), **kw)
             if not okh:
                 raise _BranchCheckError(f"branch check: IK of the home pose failed: {msgh}")
             home.extend([Lh, legs_h, *_branch_sign(geometry, H, Lh, legs_h, kw, counter, with_smin=True)])
+            if home_cache is not None:
+                home_cache[cache_key] = tuple(home)
         return home
 
     at_home = bool(np.allclose(T, H, rtol=0.0, atol=1e-12))
@@ -1537,6 +1549,7 @@ def stack_inverse(
     B = np.eye(4) if base_pose is None else _check_pose(base_pose, "base_pose")
     bases = [B] + [Tp[k] @ gs[k].mount_transform() for k in range(n - 1)]
     results: list = [None] * n
+    home_cache: dict = {}  # the branch check's home reference, shared by modules with equal geometry and loads
     # global wrench acting on the current platform from above, as (F, M about global origin)
     # the wrench is given about the last platform origin; M_above_o is about the stack origin
     F_above = np.zeros(3) if w is None else w[:3].copy()
@@ -1552,7 +1565,7 @@ def stack_inverse(
         wk = np.concatenate([Rb.T @ F_above, Rb.T @ M_pk])
         gk = None if Bg is None else Rb.T @ Bg
         r = module_inverse(gs[k], local, wrench=wk if np.any(wk) else None, gravity=gk, n_elements=n_elements,
-                           length_tolerance=length_tolerance, max_iterations=max_iterations)
+                           length_tolerance=length_tolerance, max_iterations=max_iterations, home_cache=home_cache)
         results[k] = r
         if not r.success:
             return StackIK(np.stack([x.lengths if x is not None else np.full(6, np.nan) for x in results]), False,
