@@ -61,8 +61,9 @@ Reachable range and solver notes (default geometry, 8 elements per leg, measured
   axial-misfit mechanism, strongly S-bent legs).  Fixed: :func:`_leg_homotopy` walks the leg from
   the neighbouring state, and a line search that fails with a reused (chord) Jacobian rebuilds
   it before giving up.  rx 26 and 29 deg now round-trip (FK(IK) = target to 5e-15 m; but 29 deg
-  lies on a second branch, see below, and is rejected by the branch check).  Numerical.  (A trust region on the Newton step, 5 % of
-  the height, was tried and removed: it made rx stop at 26.5 deg -- i.e. at the fold.)
+  lies on a second branch, see below, and is rejected by the branch check).  Numerical.  (A
+  trust region on the Newton step, 5 % of the height, was tried and removed: it made rx stop at
+  26.5 deg -- i.e. at the fold.)
 * Remaining limit: the pose continuation home -> target stops at rx +-34 deg, ry -21.5 deg and
   ry +37 deg ("line search failed to reduce the platform balance residual", or at ry -21.5 deg a
   Newton step to a 1.69 m leg whose solve fails); for ry -45 deg the stop point does not move
@@ -1637,9 +1638,11 @@ def _arc_points(k, phi, s):
 def _segment_distances(P0, P1, Q0, Q1) -> np.ndarray:
     """Minimum distances between segments ``P0-P1`` and ``Q0-Q1``, broadcast over leading axes.
 
-    Closest points of two segments: minimise over ``s, t in [0, 1]``; the unconstrained optimum is
-    clamped to the square, then each parameter re-optimised for the other clamped one (exact for
-    convex quadratics on a box: the minimum lies on the boundary edge found this way).
+    Closest points of two segments: minimise ``|P(s) - Q(t)|`` over ``s, t in [0, 1]``.  The
+    unconstrained optimum ``s`` is clamped, then ``t``, ``s`` and ``t`` are each re-optimised for
+    the other one and clamped.  The first steps are the exact closest-point construction for
+    segments (Ericson, Real-Time Collision Detection, 2005, sec 5.1.9), and each further step can
+    only lower the distance, so the result is the minimum (parallel segments: ``s = 0`` first).
     """
     d1, d2, r = P1 - P0, Q1 - Q0, P0 - Q0
     a = np.einsum("...i,...i", d1, d1)
