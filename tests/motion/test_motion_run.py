@@ -98,3 +98,17 @@ def test_report_of_a_motion_study_has_the_overview_figure(tiny_run, tmp_path):
     html = build_report(tiny_run[1], tmp_path / "report").read_text()
     assert 'id="motion_overview"' in html or "motion_overview" in html
     assert (tmp_path / "report" / "figures" / "motion_overview.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_report_legs_figure_names_the_extremes_of_the_table(tiny_run, tmp_path):
+    """The legs figure's sentence quotes the largest compression ratio and smallest gap of the table."""
+    from workbench.report._motion import motion_figures
+
+    df = pd.read_parquet(tiny_run[1])
+    figs = {f.name: f for f in motion_figures(df)}
+    assert "motion_legs" in figs
+    sp = df[(df["model"] == "series_parallel") & (df["status"] == "ok")]
+    text = figs["motion_legs"].summary
+    assert f"{sp['x.buckling_ratio'].max():.2f} x the clamped-clamped Euler load" in text
+    assert f"Smallest gap between two legs: {1e3 * sp['x.min_leg_gap'].min():.1f} mm" in text
+    assert 0.0 < sp["x.min_leg_gap"].min() < 0.1  # rz 0.1 rad: legs apart, less than the module size
