@@ -183,6 +183,63 @@ def test_free_vibration_first_frequency():
     assert f == pytest.approx(f_ref, rel=1e-2)
 
 
+def _ge_cantilever_tip_history(beta: float) -> np.ndarray:
+    """Tip displacement history of a 4-element Exudyn GE-beam cantilever under a suddenly applied
+    tip force, with section damping ``beta * K`` (plain Exudyn, independent of beam3d)."""
+    import exudyn as exu
+    from exudyn.itemInterface import (CoordinateConstraint, LoadForceVector, MarkerNodeCoordinate, MarkerNodeRigid,
+                                      NodePointGround, NodeRigidBodyEP, ObjectBeamGeometricallyExact)
+
+    from workbench.physics._exudyn import dynamic_settings, quiet_exudyn
+
+    L, n, EI, EA, mu = 0.5, 4, 13.36, 5.94e6, 0.222
+    K = np.diag([EA, EA / 2.6, EA / 2.6, EI / 1.3, EI, EI])
+    with quiet_exudyn():
+        sc = exu.SystemContainer()
+        mbs = sc.AddSystem()
+        nodes = [mbs.AddNode(NodeRigidBodyEP(referenceCoordinates=[L * k / n, 0, 0, 1, 0, 0, 0])) for k in range(n + 1)]
+        for a, b in zip(nodes[:-1], nodes[1:]):
+            bs = exu.BeamSection()
+            bs.stiffnessMatrix = K
+            bs.dampingMatrix = beta * K
+            bs.massPerLength = mu
+            bs.inertia = mu * EI / EA * np.diag([2.0, 1.0, 1.0])
+            mbs.AddObject(ObjectBeamGeometricallyExact(nodeNumbers=[a, b], length=L / n, sectionData=bs))
+        mg = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=mbs.AddNode(NodePointGround()), coordinate=0))
+        for c in (0, 1, 2, 4, 5, 6):  # clamp: position and e1..e3 of node 0 (e0 follows from |e| = 1)
+            m = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nodes[0], coordinate=c))
+            mbs.AddObject(CoordinateConstraint(markerNumbers=[mg, m]))
+        tip = mbs.AddMarker(MarkerNodeRigid(nodeNumber=nodes[-1]))
+        mbs.AddLoad(LoadForceVector(markerNumber=tip, loadVector=[0.0, 2.0, 0.0]))
+        mbs.Assemble()
+        opts = SolverOptions(n_elements=n, time_step=1e-3, spectral_radius=1.0)
+        sim = dynamic_settings(opts, 0.05)
+        out = []
+        mbs.SetPreStepUserFunction(lambda mbs_, t: out.append(mbs_.GetNodeOutput(nodes[-1], exu.OutputVariableType.Position)[1]) or True)
+        exu.SolveDynamic(mbs, sim, solverType=exu.DynamicSolverType.GeneralizedAlpha)
+    return np.asarray(out)
+
+
+def test_exudyn_ge_beam_ignores_section_damping():
+    """Why beam3d rejects options.damping in dynamics: Exudyn 1.13.6's geometrically exact beam
+    gives the same trajectory with and without a (large) section damping matrix.  If a future
+    Exudyn applies it, this test fails: then beam3d can accept damping again."""
+    free = _ge_cantilever_tip_history(0.0)
+    damped = _ge_cantilever_tip_history(1e-2)
+    assert np.ptp(free) > 1e-4  # the tip does vibrate (mm scale)
+    np.testing.assert_array_equal(free, damped)
+
+
+def test_dynamic_damping_is_rejected_not_dropped():
+    rod = steel_rod(tendon_count=1, disks_per_section=4)
+    act = TendonActuation("tension", (1.0,))
+    with pytest.raises(ModelFailure, match="ignores the section damping matrix"):
+        beam3d.run(rod, LoadCase(actuation=act, analysis="dynamic", duration=0.01),
+                   SolverOptions(n_elements=4, tendon_model="eyelets", time_step=1e-3, damping=1e-3))
+    # static analysis has no velocities: damping is irrelevant there and still accepted
+    beam3d.run(rod, LoadCase(actuation=act), SolverOptions(n_elements=4, tendon_model="eyelets", damping=1e-3))
+
+
 def test_continuum_tendons_rejected_and_tendon_free_cases_run_with_it():
     rod = steel_rod(tendon_count=3)
     with pytest.raises(ModelFailure, match="eyelets"):

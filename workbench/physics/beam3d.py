@@ -77,8 +77,13 @@ Structure
   ``TendonActuation.command_at(t, load.ramp_time)`` and are set in a
   ``preStepUserFunction`` (Exudyn calls it with t = the *end* of the coming step, measured;
   the commands are set to their value at that time, constant within the step, and the
-  state recorded there is labelled t - h_cur).  Damping: ``options.damping`` = beta [s], stiffness-proportional
-  (Rayleigh) damping: the beam's ``dampingMatrix`` is beta times its stiffness matrix.
+  state recorded there is labelled t - h_cur).  Damping: none in the material.  Exudyn
+  1.13.6's ``ObjectBeamGeometricallyExact`` ignores ``BeamSection.dampingMatrix`` (measured:
+  bit-identical trajectories for a section damping of 0 and of 1e-2 s times the stiffness, test
+  ``test_exudyn_ge_beam_ignores_section_damping``), so ``options.damping > 0`` is rejected with
+  :class:`ModelFailure` in dynamic analysis instead of being silently dropped; the only
+  dissipation is the integrator's (``options.spectral_radius``).  Until the second session the
+  wire-delay defaults set ``damping = 1e-3`` and it had no effect.
   The tendons are undamped: Exudyn's reeving damping acts on the rate of the rope's
   geometric length, not on its stretch rate, so with a moving rest length (a motor reeling
   in) it adds a spurious force ``beta EA_t v_wire / L`` (measured ~3 N, 5 % of the
@@ -158,6 +163,12 @@ def _check(robot: Robot, load: LoadCase, options: SolverOptions) -> None:
     check_model_inputs(robot, load, options)
     if load.analysis == "dynamic" and robot.payload.mass > 0 and any(robot.payload.offset):
         raise ModelFailure("beam3d: a payload with non-zero offset is supported in static analysis only")
+    if load.analysis == "dynamic" and options.damping > 0:
+        raise ModelFailure(
+            f"beam3d: options.damping = {options.damping:g} s is not supported: Exudyn's geometrically exact beam "
+            f"ignores the section damping matrix, so it would have no effect; use damping = 0 (dissipation only "
+            f"through options.spectral_radius)"
+        )
 
 
 def _tendons_active(robot: Robot, load: LoadCase) -> str:
@@ -203,7 +214,7 @@ def _beam_section(cs, damping: float):
     K = np.diag([cs.EA, GA, GA, cs.GJ, cs.EI, cs.EI])
     bs = exu.BeamSection()
     bs.stiffnessMatrix = K
-    bs.dampingMatrix = damping * K
+    bs.dampingMatrix = damping * K  # ignored by Exudyn 1.13.6 (see the module docstring); 0 in dynamics
     bs.massPerLength = cs.mass_per_length
     bs.inertia = cs.mass_per_length * (cs.EI / cs.EA) * np.diag([2.0, 1.0, 1.0])
     return bs
