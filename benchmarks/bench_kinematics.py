@@ -23,27 +23,15 @@ for _v in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
 import argparse  # noqa: E402
 import platform  # noqa: E402
 import sys  # noqa: E402
-import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from workbench.kinematics import forward_kinematics, jacobian  # noqa: E402
+from _timing import best_of as _best  # noqa: E402
 
 N_SECTIONS = 3
-
-
-def _best(fn, repeat):
-    """Best wall time, best CPU time (this process) and the last result."""
-    wall, cpu = [], []
-    out = None
-    for _ in range(repeat):
-        c0, t0 = time.process_time(), time.perf_counter()
-        out = fn()
-        wall.append(time.perf_counter() - t0)
-        cpu.append(time.process_time() - c0)
-    return min(wall), min(cpu), out
 
 
 def main(argv=None) -> int:

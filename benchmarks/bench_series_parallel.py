@@ -8,7 +8,6 @@ this run (best of ``--repeat``) and their ratios, including the cost of the IK b
 from __future__ import annotations
 
 import argparse
-import time
 
 import numpy as np
 
@@ -21,15 +20,12 @@ from workbench.physics.series_parallel import (
     stack_forward,
     stack_inverse,
 )
+from _timing import best_of
 
 
 def _best(fn, repeat):
-    best, out = np.inf, None
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
+    wall, _, out = best_of(fn, repeat)
+    return wall, out
 
 
 def main(argv=None) -> None:

@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import argparse
 import math
-import time
 
 import numpy as np
 
@@ -36,18 +35,10 @@ from workbench.physics.spring_link import SpringLinkParams, solve
 from workbench.reference.elastica import clamped_elastica
 from workbench.robot import LoadCase, TendonActuation
 from workbench.robot.presets.steel_rod import steel_rod
+from _timing import best_of
 
 L = 0.8
 D = 0.02
-
-
-def _best(fn, repeats):
-    best, out = math.inf, None
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
 
 
 def _cases():
@@ -67,6 +58,11 @@ def _cases():
     sag_tip = np.array([ref.tip[1], 0.0, ref.tip[0]])
     sag = (heavy, LoadCase(), sag_tip)
     return {"arc": arc, "sag": sag}
+
+
+def _best(fn, repeat):
+    wall, _, out = best_of(fn, repeat)
+    return wall, out
 
 
 def main() -> None:
