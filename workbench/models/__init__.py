@@ -7,9 +7,9 @@ Exudyn.  A model signals an untrustworthy solve by raising
 
 from __future__ import annotations
 
-import importlib
 from typing import Callable, Protocol
 
+from .. import registry
 from ..robot import LoadCase, Robot
 from .result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 
@@ -28,14 +28,9 @@ class Model(Protocol):
     def __call__(self, robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult: ...
 
 
-# name -> "module:function"; resolved on demand by get_model (no import work here).
-_MODEL_PATHS: dict[str, str] = {
-    "cc": "workbench.models.cc:run",
-    "ancf": "workbench.physics.ancf:run",
-    "beam3d": "workbench.physics.beam3d:run",
-    "ancf3d": "workbench.physics.ancf3d:run",
-    "spring_link": "workbench.physics.spring_link:run",
-}
+# name -> "module:function" (the rows of workbench.registry.MODELS that are run models);
+# resolved on demand by get_model (no import work here).
+_MODEL_PATHS: dict[str, str] = {n: m.target for n, m in registry.MODELS.items() if m.target is not None}
 
 MODEL_NAMES: tuple[str, ...] = tuple(_MODEL_PATHS)
 
@@ -52,5 +47,4 @@ def get_model(name: str) -> Callable[[Robot, LoadCase, SolverOptions], PhysicsRe
         path = _MODEL_PATHS[name]
     except KeyError:
         raise KeyError(f"unknown model {name!r}; known models: {', '.join(MODEL_NAMES)}") from None
-    module, func = path.split(":")
-    return getattr(importlib.import_module(module), func)
+    return registry.resolve(path)

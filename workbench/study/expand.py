@@ -8,14 +8,14 @@ reruns and resumes match cases exactly.
 
 from __future__ import annotations
 
-import hashlib
 import itertools
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from .spec import Study, canonical_json
+from .params import case_id_for, flatten_params
+from .spec import Study
 
 __all__ = ["Case", "expand", "count_cases", "case_id_for", "flatten_params"]
 
@@ -41,11 +41,6 @@ class Case:
     index: int
     params: dict[str, dict[str, Any]]
     swept: dict[str, Any]
-
-
-def case_id_for(params: dict[str, Any]) -> str:
-    """Stable id of a resolved parameter set (16 hex digits of SHA-256 of canonical JSON)."""
-    return hashlib.sha256(canonical_json(params).encode()).hexdigest()[:16]
 
 
 def _blocks(study: Study) -> list[list[dict[str, Any]]]:
@@ -116,12 +111,3 @@ def expand(study: Study) -> list[Case]:
             params[section][key] = value
         cases.append(Case(case_id=case_id_for(params), index=i, params=params, swept=swept))
     return cases
-
-
-def flatten_params(params: dict[str, dict[str, Any]]) -> dict[str, Any]:
-    """``{"robot": {"length": 0.8}}`` -> ``{"p.robot.length": 0.8}``; lists become JSON strings."""
-    out: dict[str, Any] = {}
-    for section, d in params.items():
-        for k, v in d.items():
-            out[f"p.{section}.{k}"] = canonical_json(v) if isinstance(v, (list, tuple, dict)) else v
-    return out

@@ -83,7 +83,6 @@ from __future__ import annotations
 
 import difflib
 import hashlib
-import json
 import math
 import re
 import tomllib
@@ -92,6 +91,8 @@ from pathlib import Path
 from typing import Any, Literal, Mapping
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
+
+from .params import canonical_json
 
 __all__ = [
     "Study",
@@ -265,11 +266,6 @@ class Study:
         """Hash of everything that changes results (not name/description/max_cases)."""
         payload = {"models": list(self.models), "seed": self.seed, "base": self.base, "sweep": self.sweep}
         return hashlib.sha256(canonical_json(payload).encode()).hexdigest()[:16]
-
-
-def canonical_json(obj: Any) -> str:
-    """Deterministic JSON (sorted keys, exact float repr) used for hashes."""
-    return json.dumps(obj, sort_keys=True, separators=(",", ":"), allow_nan=False)
 
 
 # ---------------------------------------------------------------------------------------

@@ -7,20 +7,15 @@ imported lazily by name.
 
 from __future__ import annotations
 
-import importlib
 import inspect
 from typing import Any, Callable
 
+from ... import registry
 from ..description import Robot
 
 __all__ = ["PRESET_NAMES", "get_preset", "preset_parameters", "build_preset"]
 
-_PRESET_PATHS: dict[str, str] = {
-    "steel_rod": "workbench.robot.presets.steel_rod:steel_rod",
-    "hannan_walker": "workbench.robot.presets.hannan_walker:hannan_walker",
-    "cojocaru_tronconic": "workbench.robot.presets.cojocaru:cojocaru_tronconic",
-    "shao_harvester": "workbench.robot.presets.shao:shao_harvester",
-}
+_PRESET_PATHS: dict[str, str] = dict(registry.PRESETS)  # name -> "module:function"
 
 PRESET_NAMES: tuple[str, ...] = tuple(_PRESET_PATHS)
 
@@ -31,8 +26,7 @@ def get_preset(name: str) -> Callable[..., Robot]:
         path = _PRESET_PATHS[name]
     except KeyError:
         raise KeyError(f"unknown robot preset {name!r}; known presets: {', '.join(PRESET_NAMES)}") from None
-    module, func = path.split(":")
-    return getattr(importlib.import_module(module), func)
+    return registry.resolve(path)
 
 
 def preset_parameters(name: str) -> dict[str, Any]:

@@ -1,0 +1,33 @@
+"""Flat ``p.*`` columns round-trip to the parameters they came from (workbench.study.params)."""
+
+import numpy as np
+
+from workbench.study.params import canonical_json, case_id_for, flatten_params, section_params, unflatten_params
+
+
+def test_flatten_unflatten_round_trip():
+    params = {"robot": {"preset": "steel_rod", "length": 0.8, "n_disks": 8, "offsets": [0.01, 0.02]},
+              "load": {"bend_angle": [1.0, 0.5], "tip_force": None, "mode": "tension"},
+              "derived": {"gravity_parameter": 1.0}}
+    flat = flatten_params(params)
+    assert flat["p.load.bend_angle"] == "[1.0,0.5]"
+    back = unflatten_params(flat)
+    params["load"].pop("tip_force")  # None cells are "not set" in a table
+    assert back == params
+
+
+def test_section_params_unwraps_numpy_and_skips_nan():
+    row = {"p.robot.length": np.float64(0.8), "p.robot.n_disks": np.int64(8), "p.robot.taper": float("nan"),
+           "p.load.bend_angle": "[1.0]", "tip_x": 0.1}
+    out = section_params(row, "robot")
+    assert out == {"length": 0.8, "n_disks": 8}
+    assert type(out["length"]) is float and type(out["n_disks"]) is int
+    assert section_params(row, "load") == {"bend_angle": [1.0]}
+
+
+def test_case_id_depends_only_on_values():
+    a = {"robot": {"x": 1.0, "y": 2}, "load": {}}
+    b = {"load": {}, "robot": {"y": 2, "x": 1.0}}
+    assert canonical_json(a) == canonical_json(b)
+    assert case_id_for(a) == case_id_for(b)
+    assert case_id_for(a) != case_id_for({"robot": {"x": 1.0, "y": 3}, "load": {}})
