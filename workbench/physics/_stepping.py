@@ -1,0 +1,160 @@
+"""Adaptive load stepping: the one load ramp every static Exudyn model uses.
+
+Exudyn ramps only load objects by itself; connector forces, reference curvatures, kinematic-tree
+gravity and user-function loads are applied at once (``../shared/notes/exudyn-facts.md``).  So
+the models ramp a load factor ``lam`` from 0 to 1 themselves: each attempt applies ``lam`` and
+solves from the last converged state; a failed attempt restores that state and halves the
+increment; successes grow it again.  :class:`RampPolicy` holds the rules in which the models
+differ (when the increment grows, what caps it, when to give up), so each model keeps exactly
+its step sequence.  Pure Python (no Exudyn import).
+
+Checked by ``tests/physics/test_stepping.py`` (step sequences of each policy, limits, state
+restore) and, through the models, by their validation tests.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, Literal
+
+__all__ = ["RampExhausted", "RampInfo", "RampPolicy", "RampStalled", "ramp"]
+
+
+@dataclass(frozen=True)
+class RampPolicy:
+    """How the load-factor increment evolves.
+
+    Attributes
+    ----------
+    first_increment : float
+        First trial increment (0 < . <= 1).
+    growth : float
+        Factor applied to the increment after ``grow_after`` successes in a row.
+    grow_after : int
+        Consecutive successes before the increment grows (a failure resets the count).
+    cap : {"one", "remaining"}
+        After growing, the increment is capped at 1 (``"one"``) or at the load still to go,
+        ``1 - lam`` (``"remaining"``).  Trial factors are always capped at 1.
+    min_increment : float or None
+        Give up (:class:`RampStalled`) when a failure halves the increment below this;
+        ``None``: only the attempt cap stops the ramp.
+    end_tolerance : float
+        The ramp is done once ``lam >= 1 - end_tolerance``.
+    """
+
+    first_increment: float = 1.0
+    growth: float = 2.0
+    grow_after: int = 1
+    cap: Literal["one", "remaining"] = "one"
+    min_increment: float | None = 1e-6
+    end_tolerance: float = 0.0
+
+    def __post_init__(self) -> None:
+        if not 0.0 < self.first_increment:
+            raise ValueError(f"first_increment must be > 0, got {self.first_increment}")
+        if self.growth < 1.0 or self.grow_after < 1:
+            raise ValueError(f"growth must be >= 1 and grow_after >= 1, got {self.growth}, {self.grow_after}")
+        if self.cap not in ("one", "remaining"):
+            raise ValueError(f"cap must be 'one' or 'remaining', got {self.cap!r}")
+
+
+@dataclass(frozen=True)
+class RampInfo:
+    """Outcome of :func:`ramp`: attempts made, attempts accepted, failures, smallest increment tried."""
+
+    attempts: int
+    accepted: int
+    failed: int
+    smallest_increment: float
+
+
+class RampExhausted(RuntimeError):
+    """The ramp needed more than ``max_attempts`` attempts; ``lam`` is the factor reached."""
+
+    def __init__(self, lam: float, attempts: int):
+        super().__init__(f"load ramp exceeded {attempts} attempts at load factor {lam:.6g}")
+        self.lam = lam
+        self.attempts = attempts
+
+
+class RampStalled(RuntimeError):
+    """The increment fell below ``min_increment`` at load factor ``lam``; ``cause`` is the last failure."""
+
+    def __init__(self, lam: float, increment: float, cause: BaseException | None):
+        super().__init__(f"load ramp stalled at load factor {lam:.6g} (increment {increment:.3g})")
+        self.lam = lam
+        self.increment = increment
+        self.cause = cause
+
+
+def ramp(
+    attempt: Callable[[float], bool | None],
+    save: Callable[[], object],
+    restore: Callable[[object], None],
+    *,
+    max_attempts: int,
+    policy: RampPolicy = RampPolicy(),
+    failure: type[BaseException] | tuple[type[BaseException], ...] = (),
+) -> RampInfo:
+    """Ramp a load factor from 0 to 1 with adaptive increments.
+
+    Parameters
+    ----------
+    attempt : callable
+        ``lam -> bool | None``: apply load factor ``lam`` and solve from the current state.
+        Returning ``False`` or raising one of ``failure`` marks the attempt failed; any other
+        return value accepts it; other exceptions propagate (the state is not restored).
+    save, restore : callable
+        ``save()`` is called before every attempt; ``restore(saved)`` after a failed one.
+    max_attempts : int
+        Cap on attempts (accepted plus failed).
+    policy : RampPolicy
+        Growth, cap and stopping rules.
+    failure : exception type(s)
+        What a failed solve raises.
+
+    Returns
+    -------
+    RampInfo
+
+    Raises
+    ------
+    RampExhausted
+        Attempt number ``max_attempts + 1`` would be needed.
+    RampStalled
+        A failure halved the increment below ``policy.min_increment``.
+    """
+    p = policy
+    lam, inc = 0.0, min(1.0, float(p.first_increment))
+    attempts = accepted = failed = in_row = 0
+    smallest = inc
+    while lam < 1.0 - p.end_tolerance:
+        if attempts >= max_attempts:
+            raise RampExhausted(lam, max_attempts)
+        trial = min(1.0, lam + inc)
+        state = save()
+        attempts += 1
+        cause: BaseException | None = None
+        try:
+            ok = attempt(trial) is not False
+        except failure as err:  # type: ignore[misc] - an empty tuple catches nothing
+            ok, cause = False, err
+        if not ok:
+            failed += 1
+            restore(state)
+            inc *= 0.5
+            smallest = min(smallest, inc)
+            in_row = 0
+            if p.min_increment is not None and inc < p.min_increment:
+                raise RampStalled(lam, inc, cause) from cause
+            continue
+        lam = trial
+        accepted += 1
+        in_row += 1
+        if in_row >= p.grow_after:
+            in_row = 0
+            if p.cap == "one":
+                inc = min(1.0, p.growth * inc)
+            elif lam < 1.0:
+                inc = min(1.0 - lam, p.growth * inc)
+    return RampInfo(attempts=attempts, accepted=accepted, failed=failed, smallest_increment=smallest)
