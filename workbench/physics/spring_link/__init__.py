@@ -130,10 +130,15 @@ description (mass per length, disk masses, payload); per-link masses cannot be g
 from __future__ import annotations
 
 from ...models.result import SolverInfo
-from .chains import _Planar, _PlanarTree, _Spatial
+from .chain import _Chain
+from .planar import _Planar
+from .spatial import _Spatial
+from .tree import _Tree, tree_tip_position
 from .geometry import ChainGeometry, chain_geometry_from_robot
 from .params import SpringLinkParams, is_planar
 from .routing import _add_eyelet_rope, _eyelet_placement, _Tendon, _tendons
 from .solve import _static_ramp, _use_sparse, run, solve
+
+_PlanarTree = _Tree  # deprecated name of the kinematic-tree chain (it is planar or 3-D)
 
 __all__ = ["SpringLinkParams", "run", "solve", "is_planar", "chain_geometry_from_robot"]

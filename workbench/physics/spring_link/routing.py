@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -93,3 +94,10 @@ def _tendons(robot: Robot, geo: ChainGeometry, tendon_model: str = "continuum") 
         out.append(_Tendon(j, float(sigma), m, d, grp.axial_stiffness, L_ref, grp.offset_tip is not None, arm,
                            cos_a, link, z, dd))
     return out
+
+
+def _end_link_torque(tendon: _Tendon, tension: float) -> list[float]:
+    """Body-fixed torque ``T d (-sin sigma, cos sigma, 0)`` of a constant-offset continuum tendon
+    on its terminating link (3-D chains; the reaction acts on the base)."""
+    d = float(tendon.moment_arm[-1])
+    return [-tension * d * math.sin(tendon.sigma), tension * d * math.cos(tendon.sigma), 0.0]

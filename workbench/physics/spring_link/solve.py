@@ -10,7 +10,10 @@ import numpy as np
 from ...models.inputs import check_model_inputs
 from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ...robot import LoadCase, Robot
-from .chains import _Planar, _PlanarTree, _Spatial
+from .chain import _Chain
+from .planar import _Planar
+from .spatial import _Spatial
+from .tree import _Tree
 from .geometry import chain_geometry_from_robot
 from .params import SpringLinkParams, is_planar
 
@@ -27,7 +30,7 @@ def _use_sparse(settings, model) -> None:  # noqa: ANN001
         settings.linearSolver.solverType = exu.LinearSolverType.EigenSparse
 
 
-def _static_ramp(model: "_Planar", options: SolverOptions, params: SpringLinkParams,
+def _static_ramp(model: _Chain, options: SolverOptions, params: SpringLinkParams,
                  apply: Callable[[float], None]) -> tuple[int, int]:
     """Ramp ``apply(lam)`` from 0 to 1 with repeated static solves; returns (steps, newton its)."""
     from .._exudyn import static_settings
@@ -48,7 +51,7 @@ def _static_ramp(model: "_Planar", options: SolverOptions, params: SpringLinkPar
         attempts += 1
         if attempts > options.max_load_steps:
             hint = ""
-            if model.model == "eyelets" and model.mode is not None and not isinstance(model, _PlanarTree):
+            if model.model == "eyelets" and model.mode is not None and model.rigid_bodies:
                 hint = ("; eyelet ropes on the rigid-body chain converge only linearly in Newton (numerical, "
                         "not a physical instability): use SpringLinkParams(backend='tree') where possible")
             raise ModelFailure(
@@ -137,7 +140,7 @@ def solve(robot: Robot, load: LoadCase, options: SolverOptions,
         ropes = options.tendon_model == "eyelets" and act_mode is not None
         auto_tree = params.backend == "auto" and ropes
         if tree_ok and (params.backend == "tree" or auto_tree):
-            model = _PlanarTree(robot, load, options, geo, spatial=not use_2d)
+            model = _Tree(robot, load, options, geo, spatial=not use_2d)
         elif use_2d:
             model = _Planar(robot, load, options, geo, params.axial)
         else:

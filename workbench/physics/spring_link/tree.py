@@ -1,26 +1,198 @@
-"""The spring-link chain as an Exudyn ``ObjectKinematicTree`` (minimal coordinates), for the
-speed comparison of :mod:`benchmarks.bench_spring_link` only.
+"""The spring-link chain as one Exudyn ``ObjectKinematicTree`` (minimal coordinates).
 
-Same discretisation as :mod:`workbench.physics.spring_link` (half-link layout, joint stiffness
-``EI/ds`` as the tree's ``jointPControlVector``).  Planar: one ``RevoluteY`` joint per link
-(rotation about base +y, bending towards +x).  3-D: ``RevoluteX`` then ``RevoluteY`` at each joint
-(a Cardan joint, torsion locked), the intermediate link massless.  Supported loads: gravity (the
-tree's own ``gravity``), a tip moment about base y and continuum tendons at sigma in {0, pi}
-(both as constant generalised joint forces, exact for bends in the x-z plane).  The tree has no
-eyelet/rope support here, which is why the registered model uses rigid bodies (the tree was also
-not faster, see the benchmark).  Static solve with own load ramp (gravity is applied at once by
-Exudyn).
+Same discretisation as the rigid-body chains (half-link layout, joint stiffness ``EI/ds`` as the
+tree's ``jointPControlVector``, damping ``options.damping * k``).  Planar: one ``RevoluteY`` joint
+per link (rotation about base +y, bending towards +x).  3-D (``spatial``): ``RevoluteX`` then
+``RevoluteY`` at each joint (a Cardan joint, torsion locked, springs on both Cardan angles), the
+intermediate link massless.  No joint constraints, so eyelet ropes (``MarkerKinematicTreeRigid``
+eyelets) keep Newton quadratic; :mod:`.solve` uses it for every eyelet rope it can.  Planar
+continuum tendons act as generalised joint forces (``jointForceVector``); 3-D ones as a body-fixed
+torque on the terminating link; length mode (planar only) as a rotational spring to ground.
+
+:func:`tree_tip_position` is a stripped variant (continuum tendons at sigma in {0, pi}, tip moment
+about base y and gravity, all as joint forces or the tree's own gravity) timed by
+``benchmarks/bench_spring_link.py``.  Checked by ``tests/physics/test_spring_link.py``
+(``test_kinematic_tree_*``, ``test_spatial_tree_backend_matches_cardan_bodies``).
 """
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ...models.result import ModelFailure, SolverOptions
-from ...robot import LoadCase, Robot
-from .geometry import chain_geometry_from_robot
+from ...robot import LoadCase, Payload, Robot
+from .chain import _Chain
+from .geometry import ChainGeometry, chain_geometry_from_robot
+from .routing import _end_link_torque, _Tendon
 
 __all__ = ["tree_tip_position"]
+
+
+def _tree_link_masses(geo: ChainGeometry, payload: Payload) -> tuple[np.ndarray, list, list]:
+    """Link masses (N,), centres of mass (N x (3,)) and inertias about the centre of mass
+    (N x (3, 3)), payload folded into the last link."""
+    mass, com = geo.mass.copy(), geo.com.copy()
+    coms = [np.array([0.0, 0.0, c]) for c in com]
+    inertias = [np.diag([geo.inertia_bending[k], geo.inertia_bending[k], geo.inertia_axial[k]])
+                for k in range(geo.n_links)]
+    pm = payload.mass
+    if pm > 0:
+        pp = np.array(payload.offset) + np.array([0.0, 0.0, geo.link_lengths[-1]])
+        c_new = (mass[-1] * coms[-1] + pm * pp) / (mass[-1] + pm)
+        dc, dp = coms[-1] - c_new, pp - c_new
+        inertias[-1] = (inertias[-1] + mass[-1] * (dc @ dc * np.eye(3) - np.outer(dc, dc))
+                        + pm * (dp @ dp * np.eye(3) - np.outer(dp, dp)))
+        mass[-1] += pm
+        coms[-1] = c_new
+    return mass, coms, inertias
+
+
+def _tree_links(exu, geo: ChainGeometry, mass: np.ndarray, coms: list, inertias: list, per: int) -> tuple:  # noqa: ANN001
+    """Per tree link: joint types, offsets, masses, centres of mass, inertias, spring stiffness.
+
+    ``per = 1``: one ``RevoluteY`` per chain link; ``per = 2``: ``RevoluteX`` + ``RevoluteY`` (a
+    Cardan joint; the first, massless link carries the offset)."""
+    types, offs, ms, cs, Is, Ps = [], [], [], [], [], []
+    for k in range(geo.n_links):
+        off = float(geo.joints[0]) if k == 0 else float(geo.link_lengths[k - 1])
+        if per == 2:
+            types.append(exu.JointType.RevoluteX)
+            offs.append([0.0, 0.0, off])
+            ms.append(0.0)
+            cs.append([0.0, 0.0, 0.0])
+            Is.append(np.zeros((3, 3)))
+            Ps.append(float(geo.stiffness[k]))
+            off = 0.0
+        types.append(exu.JointType.RevoluteY)
+        offs.append([0.0, 0.0, off])
+        ms.append(float(mass[k]))
+        cs.append(coms[k].tolist())
+        Is.append(inertias[k])
+        Ps.append(float(geo.stiffness[k]))
+    return types, offs, ms, cs, Is, Ps
+
+
+class _Tree(_Chain):
+    """Chain in minimal coordinates: planar (``RevoluteY``) or 3-D Cardan (``spatial=True``)."""
+
+    rigid_bodies = False
+    torsion = "locked"
+
+    def __init__(self, robot: Robot, load: LoadCase, options: SolverOptions, geo: ChainGeometry,
+                 spatial: bool = False) -> None:
+        self.spatial = bool(spatial)
+        self.planar = not self.spatial
+        self.per = 2 if self.spatial else 1
+        super().__init__(robot, load, options, geo)
+
+    def _check(self) -> None:
+        if self.spatial and self.model == "continuum" and self.mode == "length":
+            raise ModelFailure("spring_link: continuum tendons in length mode are only implemented for the planar chain")
+        if self.spatial and self.model == "continuum" and self.mode is not None and any(t.tapered for t in self.tendons):
+            raise ModelFailure("spring_link: continuum tendons with tapered offsets are only implemented for the planar chain")
+        self._reject_tapered_length()
+
+    def _build(self, mbs) -> None:  # noqa: ANN001
+        exu, eii, geo = self.exu, self.eii, self.geo
+        n = geo.n_links * self.per
+        self.g2 = np.asarray(self.robot.gravity_in_base(), dtype=float)
+        mass, coms, inertias = _tree_link_masses(geo, self.robot.payload)
+        types, offs, ms, cs, Is, Ps = _tree_links(exu, geo, mass, coms, inertias, self.per)
+        self.n_coords = n
+        self.node = mbs.AddNode(eii.NodeGenericODE2(
+            referenceCoordinates=[0.0] * n, initialCoordinates=[0.0] * n, initialCoordinates_t=[0.0] * n,
+            numberOfODE2Coordinates=n))
+        self.tree = mbs.AddObject(eii.ObjectKinematicTree(
+            nodeNumber=self.node, jointTypes=types, linkParents=list(range(-1, n - 1)),
+            jointTransformations=exu.Matrix3DList([np.eye(3)] * n), jointOffsets=exu.Vector3DList(offs),
+            linkInertiasCOM=exu.Matrix3DList(Is), linkCOMs=exu.Vector3DList(cs),
+            linkMasses=ms, baseOffset=[0.0, 0.0, 0.0], gravity=[0.0, 0.0, 0.0],
+            jointForceVector=[0.0] * n, jointPositionOffsetVector=[0.0] * n, jointVelocityOffsetVector=[0.0] * n,
+            jointPControlVector=Ps, jointDControlVector=[float(self.options.damping * k) for k in Ps]))
+        self.ground = mbs.AddObject(eii.ObjectGround(referencePosition=[0.0, 0.0, 0.0]))
+        m_tip = mbs.AddMarker(eii.MarkerKinematicTreeRigid(objectNumber=self.tree, linkNumber=n - 1,
+                                                           localPosition=[0.0, 0.0, float(geo.link_lengths[-1])]))
+        self._add_tip_loads(mbs, m_tip, np.asarray(self.load.tip_force, dtype=float),
+                            np.asarray(self.load.tip_torque, dtype=float))
+        self._add_tendons(mbs)
+
+    def _tree_marker(self, mbs, link: int, position: list[float]) -> int:  # noqa: ANN001
+        return mbs.AddMarker(self.eii.MarkerKinematicTreeRigid(objectNumber=self.tree, linkNumber=link,
+                                                               localPosition=position))
+
+    def _eyelet_marker(self, mbs, i: int, tendon: _Tendon, link: int, z: float, d: float) -> int:  # noqa: ANN001
+        u = np.array([math.cos(tendon.sigma), math.sin(tendon.sigma)]) if self.spatial else np.array([self.sign[i], 0.0])
+        x, y = (d * u).tolist()
+        if link < 0:
+            return mbs.AddMarker(self.eii.MarkerBodyRigid(bodyNumber=self.ground, localPosition=[x, y, float(z)]))
+        return self._tree_marker(mbs, int(link + 1) * self.per - 1, [x, y, float(z)])
+
+    def _continuum_items(self, mbs, i: int, tendon: _Tendon) -> list:  # noqa: ANN001
+        eii = self.eii
+        if self.mode == "length":  # planar: rotational spring on the terminating link's angle
+            mg = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=self.ground, localPosition=[0.0, 0.0, 0.0]))
+            mt = self._tree_marker(mbs, tendon.end_eyelet - 1, [0.0, 0.0, 0.0])
+            return [mbs.AddObject(eii.ObjectConnectorRigidBodySpringDamper(markerNumbers=[mg, mt],
+                                                                           useIntrinsicFormulation=True))]
+        if self.spatial:  # tension: body-fixed torque on the terminating link
+            mt = self._tree_marker(mbs, tendon.end_eyelet * self.per - 1, [0.0, 0.0, 0.0])
+            return [mbs.AddLoad(eii.LoadTorqueVector(markerNumber=mt, loadVector=[0.0, 0.0, 0.0], bodyFixed=True))]
+        return []  # planar tension: generalised joint forces (jointForceVector), no items
+
+    def _set_gravity(self, lam: float) -> None:
+        self.mbs.SetObjectParameter(self.tree, "gravity", (lam * self.g2).tolist())
+
+    def _set_continuum(self) -> None:
+        mbs = self.mbs
+        if self.mode == "tension" and self.spatial:
+            for t, items, v in zip(self.tendons, self.tendon_items, self._values):
+                mbs.SetLoadParameter(items[0], "loadVector", _end_link_torque(t, v))
+            return
+        if self.mode == "tension":
+            Q = np.zeros(self.geo.n_links)
+            for i, (t, v) in enumerate(zip(self.tendons, self._values)):
+                Q[: t.end_eyelet] += v * t.moment_arm * self.sign[i]
+            mbs.SetObjectParameter(self.tree, "jointForceVector", Q.tolist())
+            return
+        for i, (t, items) in enumerate(zip(self.tendons, self.tendon_items)):
+            d, c, L0 = t.offsets[-1], self.sign[i], float(self._L0[i])
+            K = np.zeros((6, 6))
+            K[4, 4] = t.axial_stiffness * d * d / L0 if self.tendon_active[i] else 0.0
+            off = [0.0] * 6
+            off[4] = float((t.reference_length - L0) / (d * c))
+            mbs.SetObjectParameter(items[0], "stiffness", K.tolist())
+            mbs.SetObjectParameter(items[0], "offset", off)
+
+    def link_frames(self) -> tuple[np.ndarray, np.ndarray]:
+        """Joint positions (N, 3) and link rotations (N, 3, 3) from the tree coordinates."""
+        q = np.asarray(self.mbs.systemData.GetODE2Coordinates(), dtype=float).reshape(-1, self.per)
+        geo = self.geo
+        P = np.zeros((geo.n_links, 3))
+        R = np.zeros((geo.n_links, 3, 3))
+        Rk, pk = np.eye(3), np.array([0.0, 0.0, geo.joints[0]])
+        for k in range(geo.n_links):
+            if k > 0:
+                pk = pk + geo.link_lengths[k - 1] * Rk[:, 2]
+            if self.per == 2:
+                c, s = math.cos(q[k, 0]), math.sin(q[k, 0])
+                Rk = Rk @ np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+            c, s = math.cos(q[k, -1]), math.sin(q[k, -1])
+            Rk = Rk @ np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+            P[k], R[k] = pk, Rk
+        return P, R
+
+    def link_states(self) -> tuple[np.ndarray, np.ndarray]:
+        """Joint positions (N, 3) and link angles (N,) of the planar tree (angles add up)."""
+        q = np.asarray(self.mbs.systemData.GetODE2Coordinates(), dtype=float)
+        beta = np.cumsum(q)
+        geo = self.geo
+        P = np.zeros((geo.n_links, 3))
+        P[0] = [0.0, 0.0, geo.joints[0]]
+        for k in range(1, geo.n_links):
+            P[k] = P[k - 1] + geo.link_lengths[k - 1] * np.array([math.sin(beta[k - 1]), 0.0, math.cos(beta[k - 1])])
+        return P, beta
 
 
 def tree_tip_position(robot: Robot, load: LoadCase, options: SolverOptions, dimension: str = "2d") -> np.ndarray:
