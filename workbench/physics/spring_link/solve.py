@@ -16,10 +16,15 @@ from .spatial import _Spatial
 from .tree import _Tree
 from .geometry import chain_geometry_from_robot
 from .params import SpringLinkParams, is_planar
+from .._stepping import RampExhausted, RampPolicy, RampStalled, ramp
 
 __all__ = ["solve", "run"]
 
 _SPARSE_FROM = 16
+
+#: The static ramp's step rule: first try the full load, halve on failure, double (capped at 1)
+#: after every success, give up below an increment of 1e-6.
+_STATIC_RAMP = RampPolicy(first_increment=1.0, growth=2.0, grow_after=1, cap="one", min_increment=1e-6)
 
 
 def _use_sparse(settings, model) -> None:  # noqa: ANN001
@@ -32,7 +37,21 @@ def _use_sparse(settings, model) -> None:  # noqa: ANN001
 
 def _static_ramp(model: _Chain, options: SolverOptions, params: SpringLinkParams,
                  apply: Callable[[float], None]) -> tuple[int, int]:
-    """Ramp ``apply(lam)`` from 0 to 1 with repeated static solves; returns (steps, newton its)."""
+    """Ramp ``apply(lam)`` from 0 to 1 with repeated static solves; returns (steps, newton its).
+
+    One attempt applies the load factor and solves, re-solving while the slack/taut active set
+    of length-controlled tendons changes (at most ``params.max_active_set_iterations`` passes).
+    A failed attempt (Exudyn ``SolverError``, non-finite state, an unsettled active set) restores
+    the state and the active set and halves the increment (:data:`_STATIC_RAMP`); a non-positive
+    rope rest length is not a solver failure and propagates.  Newton iterations of every attempt
+    are counted.  Checked by ``test_max_load_steps_is_a_failure``,
+    ``test_rigid_body_ramp_failure_names_the_numerical_cause`` and ``test_spring_link_layout.py``.
+
+    Raises
+    ------
+    ModelFailure
+        More than ``options.max_load_steps`` attempts, or an increment below 1e-6.
+    """
     from .._exudyn import static_settings
 
     exu = model.exu
@@ -41,28 +60,15 @@ def _static_ramp(model: _Chain, options: SolverOptions, params: SpringLinkParams
     _use_sparse(settings, model)
     settings.staticSolver.adaptiveStep = False
     # eyelet ropes loading the joint constraints make Newton converge only linearly (measured
-    # ~100-125 iterations at N = 16 vs 3-6 for continuum tendons; see Limitations): allow more.
+    # ~100-125 iterations at N = 16 vs 3-6 for continuum tendons, docs/models.md): allow more.
     eyelet_ropes = model.model == "eyelets" and model.mode is not None
     settings.staticSolver.newton.maxIterations = 250 if eyelet_ropes else 40
-    lam, inc = 0.0, 1.0
-    attempts, newton_its = 0, 0
-    while lam < 1.0:
-        target = min(1.0, lam + inc)
-        attempts += 1
-        if attempts > options.max_load_steps:
-            hint = ""
-            if model.model == "eyelets" and model.mode is not None and model.rigid_bodies:
-                hint = ("; eyelet ropes on the rigid-body chain converge only linearly in Newton (numerical, "
-                        "not a physical instability): use SpringLinkParams(backend='tree') where possible")
-            raise ModelFailure(
-                f"spring_link: static load ramp exceeded options.max_load_steps={options.max_load_steps} "
-                f"(reached load factor {lam:.4g}){hint}"
-            )
-        q_save = mbs.systemData.GetODE2Coordinates(configuration=exu.ConfigurationType.Initial)
-        active_save = list(model.tendon_active)
-        ok = True
+    newton_its = 0
+
+    def attempt(lam: float) -> bool:
+        nonlocal newton_its
         try:
-            apply(target)
+            apply(lam)
             for _ in range(params.max_active_set_iterations):
                 solver = exu.MainSolverStatic()
                 if not solver.SolveSystem(mbs, settings):
@@ -73,25 +79,37 @@ def _static_ramp(model: _Chain, options: SolverOptions, params: SpringLinkParams
                     raise exu.SolverError("non-finite state")
                 mbs.systemData.SetODE2Coordinates(q, configuration=exu.ConfigurationType.Initial)
                 if not model.update_active_set():
-                    break
-                apply(target)
-            else:
-                raise ModelFailure("spring_link: tendon slack/taut switching did not settle")
+                    return True
+                apply(lam)
+            raise ModelFailure("spring_link: tendon slack/taut switching did not settle")
         except (exu.SolverError, RuntimeError) as err:  # ModelFailure is a RuntimeError too
             if isinstance(err, ModelFailure) and "rest length" in str(err):
                 raise
-            ok = False
-        if ok:
-            lam = target
-            inc = min(1.0, inc * 2.0)
-        else:
-            mbs.systemData.SetODE2Coordinates(q_save, configuration=exu.ConfigurationType.Initial)
-            mbs.systemData.SetODE2Coordinates(q_save, configuration=exu.ConfigurationType.Current)
-            model.tendon_active = active_save
-            inc *= 0.5
-            if inc < 1e-6:
-                raise ModelFailure(f"spring_link: static solve failed near load factor {lam:.4g}")
-    return attempts, newton_its
+            return False
+
+    def save() -> tuple:
+        return mbs.systemData.GetODE2Coordinates(configuration=exu.ConfigurationType.Initial), list(model.tendon_active)
+
+    def restore(state: tuple) -> None:
+        q_save, active = state
+        mbs.systemData.SetODE2Coordinates(q_save, configuration=exu.ConfigurationType.Initial)
+        mbs.systemData.SetODE2Coordinates(q_save, configuration=exu.ConfigurationType.Current)
+        model.tendon_active = active
+
+    try:
+        info = ramp(attempt, save, restore, max_attempts=options.max_load_steps, policy=_STATIC_RAMP)
+    except RampExhausted as err:
+        hint = ""
+        if model.model == "eyelets" and model.mode is not None and model.rigid_bodies:
+            hint = ("; eyelet ropes on the rigid-body chain converge only linearly in Newton (numerical, "
+                    "not a physical instability): use SpringLinkParams(backend='tree') where possible")
+        raise ModelFailure(
+            f"spring_link: static load ramp exceeded options.max_load_steps={options.max_load_steps} "
+            f"(reached load factor {err.lam:.4g}){hint}"
+        ) from None
+    except RampStalled as err:
+        raise ModelFailure(f"spring_link: static solve failed near load factor {err.lam:.4g}") from None
+    return info.attempts, newton_its
 
 
 def solve(robot: Robot, load: LoadCase, options: SolverOptions,

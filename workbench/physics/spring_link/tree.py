@@ -26,8 +26,13 @@ from ...robot import LoadCase, Payload, Robot
 from .chain import _Chain
 from .geometry import ChainGeometry, chain_geometry_from_robot
 from .routing import _end_link_torque, _Tendon
+from .._stepping import RampExhausted, RampPolicy, ramp
 
 __all__ = ["tree_tip_position"]
+
+#: tree_tip_position's step rule: like the model's static ramp, but no smallest increment (only
+#: ``options.max_load_steps`` stops it).
+_TIP_RAMP = RampPolicy(first_increment=1.0, growth=2.0, grow_after=1, cap="one", min_increment=None)
 
 
 def _tree_link_masses(geo: ChainGeometry, payload: Payload) -> tuple[np.ndarray, list, list]:
@@ -257,27 +262,23 @@ def tree_tip_position(robot: Robot, load: LoadCase, options: SolverOptions, dime
         mbs.Assemble()
         settings = static_settings(options, 1)
         settings.staticSolver.adaptiveStep = False
-        lam, inc, attempts = 0.0, 1.0, 0
-        while lam < 1.0:
-            target = min(1.0, lam + inc)
-            attempts += 1
-            if attempts > options.max_load_steps:
-                raise ModelFailure("kinematic tree: load ramp exceeded options.max_load_steps")
-            q_save = mbs.systemData.GetODE2Coordinates(configuration=exu.ConfigurationType.Initial)
-            mbs.SetObjectParameter(tree, "gravity", (target * g).tolist())
-            mbs.SetObjectParameter(tree, "jointForceVector", (target * Qfull).tolist())
+        initial = exu.ConfigurationType.Initial
+
+        def attempt(lam: float) -> bool:
+            mbs.SetObjectParameter(tree, "gravity", (lam * g).tolist())
+            mbs.SetObjectParameter(tree, "jointForceVector", (lam * Qfull).tolist())
             solver = exu.MainSolverStatic()
-            try:
-                ok = solver.SolveSystem(mbs, settings)
-            except exu.SolverError:
-                ok = False
-            if ok:
-                q = mbs.systemData.GetODE2Coordinates()
-                mbs.systemData.SetODE2Coordinates(q, configuration=exu.ConfigurationType.Initial)
-                lam, inc = target, min(1.0, 2 * inc)
-            else:
-                mbs.systemData.SetODE2Coordinates(q_save, configuration=exu.ConfigurationType.Initial)
-                inc *= 0.5
+            if not solver.SolveSystem(mbs, settings):
+                return False
+            mbs.systemData.SetODE2Coordinates(mbs.systemData.GetODE2Coordinates(), configuration=initial)
+            return True
+
+        try:
+            ramp(attempt, lambda: mbs.systemData.GetODE2Coordinates(configuration=initial),
+                 lambda q: mbs.systemData.SetODE2Coordinates(q, configuration=initial),
+                 max_attempts=options.max_load_steps, policy=_TIP_RAMP, failure=exu.SolverError)
+        except RampExhausted:
+            raise ModelFailure("kinematic tree: load ramp exceeded options.max_load_steps") from None
         q = np.asarray(mbs.systemData.GetODE2Coordinates())
     # forward kinematics of the chain
     R = np.eye(3)
