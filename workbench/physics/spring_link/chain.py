@@ -119,10 +119,13 @@ class _Chain:
                 mm = mbs.AddMarker(eii.MarkerBodyMass(bodyNumber=b))
                 self.gravity_loads.append(mbs.AddLoad(eii.LoadMassProportional(markerNumber=mm, loadVector=[0.0, 0.0, 0.0])))
 
-    def _add_tip_loads(self, mbs, marker: int, force: np.ndarray, torque: np.ndarray) -> None:  # noqa: ANN001
-        """Tip force and torque loads on ``marker``; ``force``/``torque`` are their full values."""
+    def _add_tip_loads(self, mbs, marker: int, force: np.ndarray | None = None,  # noqa: ANN001
+                       torque: np.ndarray | None = None) -> None:
+        """Tip force and torque loads on ``marker``; ``force``/``torque`` are their full values in
+        the system's frame (default: the load case's, base frame)."""
         eii = self.eii
-        self.tip_force_full, self.tip_torque_full = force, torque
+        self.tip_force_full = np.asarray(self.load.tip_force, dtype=float) if force is None else force
+        self.tip_torque_full = np.asarray(self.load.tip_torque, dtype=float) if torque is None else torque
         self.tip_force_load = mbs.AddLoad(eii.LoadForceVector(markerNumber=marker, loadVector=[0.0, 0.0, 0.0]))
         self.tip_torque_load = mbs.AddLoad(eii.LoadTorqueVector(markerNumber=marker, loadVector=[0.0, 0.0, 0.0]))
 
@@ -196,6 +199,19 @@ class _Chain:
             self.mbs.SetObjectParameter(self.joint_springs[k], "offset", off)
 
     # -- state access ----------------------------------------------------------------------------
+    def save_state(self) -> tuple:
+        """The state a failed load step returns to: initial coordinates and the active set."""
+        q = self.mbs.systemData.GetODE2Coordinates(configuration=self.exu.ConfigurationType.Initial)
+        return q, list(self.tendon_active)
+
+    def restore_state(self, state: tuple) -> None:
+        """Reset the initial and current coordinates and the active set to ``state``."""
+        q, active = state
+        cfg = self.exu.ConfigurationType
+        self.mbs.systemData.SetODE2Coordinates(q, configuration=cfg.Initial)
+        self.mbs.systemData.SetODE2Coordinates(q, configuration=cfg.Current)
+        self.tendon_active = active
+
     def tendon_lengths(self) -> np.ndarray:
         """Current tendon path lengths [m]: continuum tendons of planar chains from the rotation
         of their terminating link, ropes (and 3-D chains) from the eyelet marker positions."""

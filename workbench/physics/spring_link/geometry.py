@@ -88,6 +88,72 @@ def _section_of(robot: Robot, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return idx, np.clip(frac, 0.0, 1.0)
 
 
+def _check_link_count(robot: Robot, n_links: int) -> None:
+    n_sec = robot.n_sections
+    if int(n_links) != n_links or n_links < 1 or n_links % n_sec:
+        raise ValueError(
+            f"spring_link: the number of links (options.n_elements) must be a positive multiple of the "
+            f"number of sections ({n_sec}), got {n_links!r}"
+        )
+
+
+def _eyelet_stations(robot: Robot, per: int) -> np.ndarray:
+    """Eyelet stations ``e_k`` (N + 1,): ``per`` equal intervals in every section, ``e_N = L``."""
+    starts = np.concatenate([[0.0], robot.section_ends[:-1]])
+    e = [0.0]
+    for s0, sec in zip(starts, robot.sections):
+        e.extend(s0 + sec.length * np.arange(1, per + 1) / per)
+    eyelets = np.asarray(e)
+    eyelets[-1] = robot.length
+    return eyelets
+
+
+def _section_properties(robot: Robot, s: np.ndarray) -> dict[str, np.ndarray]:
+    """EI, GJ, EA, GA (EA where None), mass per length ``mu`` and diameter ``d`` at stations ``s``."""
+    idx, frac = _section_of(robot, s)
+    out: dict[str, list[float]] = {"EI": [], "GJ": [], "EA": [], "GA": [], "mu": [], "d": []}
+    for i, f in zip(idx, frac):
+        cs = robot.sections[i].cross_section_at(f)
+        out["EI"].append(cs.EI)
+        out["GJ"].append(cs.GJ)
+        out["EA"].append(cs.EA)
+        out["GA"].append(cs.EA if cs.GA is None else cs.GA)
+        out["mu"].append(cs.mass_per_length)
+        out["d"].append(0.0 if cs.diameter is None else cs.diameter)
+    return {k: np.asarray(v) for k, v in out.items()}
+
+
+def _rod_moments(robot: Robot, joints: np.ndarray, ends: np.ndarray, n_quad: int) -> tuple[np.ndarray, ...]:
+    """Rod mass over each link span ``[joints[k], ends[k]]`` (Gauss-Legendre) and its first and
+    second moments about the joint, plus ``sum w mu d^2`` for the solid-disk inertia terms."""
+    n_links = joints.size
+    xg, wg = np.polynomial.legendre.leggauss(n_quad)
+    mass = np.zeros(n_links)
+    first = np.zeros(n_links)
+    second = np.zeros(n_links)
+    radial = np.zeros(n_links)
+    for k in range(n_links):
+        a, b = joints[k], ends[k]
+        s = 0.5 * (a + b) + 0.5 * (b - a) * xg
+        w = 0.5 * (b - a) * wg
+        p = _section_properties(robot, s)
+        mass[k] = np.sum(w * p["mu"])
+        first[k] = np.sum(w * p["mu"] * (s - a))
+        second[k] = np.sum(w * p["mu"] * (s - a) ** 2)
+        radial[k] = np.sum(w * p["mu"] * p["d"] ** 2)
+    return mass, first, second, radial
+
+
+def _disk_masses(robot: Robot, per: int, n_links: int) -> np.ndarray:
+    """Lumped disks: each section's total disk mass spread over its eyelets 1..per."""
+    disk = np.zeros(n_links)
+    for j, sec in enumerate(robot.sections):
+        if sec.disk_mass > 0:
+            ks = np.arange(j * per, (j + 1) * per)
+            disk[ks] += sec.disk_mass * sec.n_disks / per
+    return disk
+
+
 def chain_geometry_from_robot(robot: Robot, n_links: int, n_quad: int = 8) -> ChainGeometry:
     """Discretise ``robot`` into ``n_links`` rigid links (see the module docstring).
 
@@ -103,67 +169,23 @@ def chain_geometry_from_robot(robot: Robot, n_links: int, n_quad: int = 8) -> Ch
     Returns
     -------
     ChainGeometry
+
+    Raises
+    ------
+    ValueError
+        ``n_links`` is not a positive multiple of the number of sections.
     """
-    n_sec = robot.n_sections
-    if int(n_links) != n_links or n_links < 1 or n_links % n_sec:
-        raise ValueError(
-            f"spring_link: the number of links (options.n_elements) must be a positive multiple of the "
-            f"number of sections ({n_sec}), got {n_links!r}"
-        )
+    _check_link_count(robot, n_links)
     n_links = int(n_links)
-    per = n_links // n_sec
-    starts = np.concatenate([[0.0], robot.section_ends[:-1]])
-    e = [0.0]
-    for s0, sec in zip(starts, robot.sections):
-        e.extend(s0 + sec.length * np.arange(1, per + 1) / per)
-    eyelets = np.asarray(e)
-    eyelets[-1] = robot.length
+    per = n_links // robot.n_sections
+    eyelets = _eyelet_stations(robot, per)
     ds = np.diff(eyelets)
     joints = 0.5 * (eyelets[:-1] + eyelets[1:])
     ends = np.append(joints[1:], robot.length)
     link_lengths = ends - joints
-
-    def props(s: np.ndarray) -> dict[str, np.ndarray]:
-        idx, frac = _section_of(robot, s)
-        out: dict[str, list[float]] = {"EI": [], "GJ": [], "EA": [], "GA": [], "mu": [], "d": []}
-        for i, f in zip(idx, frac):
-            cs = robot.sections[i].cross_section_at(f)
-            out["EI"].append(cs.EI)
-            out["GJ"].append(cs.GJ)
-            out["EA"].append(cs.EA)
-            out["GA"].append(cs.EA if cs.GA is None else cs.GA)
-            out["mu"].append(cs.mass_per_length)
-            out["d"].append(0.0 if cs.diameter is None else cs.diameter)
-        return {k: np.asarray(v) for k, v in out.items()}
-
-    pj = props(joints)
-    stiffness = pj["EI"] / ds
-    torsion = pj["GJ"] / ds
-    axial = pj["EA"] / ds
-    shear = pj["GA"] / ds
-
-    # rod mass over each link span (Gauss-Legendre), centre of mass and inertia
-    xg, wg = np.polynomial.legendre.leggauss(n_quad)
-    mass = np.zeros(n_links)
-    first = np.zeros(n_links)
-    second = np.zeros(n_links)
-    radial = np.zeros(n_links)
-    for k in range(n_links):
-        a, b = joints[k], ends[k]
-        s = 0.5 * (a + b) + 0.5 * (b - a) * xg
-        w = 0.5 * (b - a) * wg
-        p = props(s)
-        mass[k] = np.sum(w * p["mu"])
-        first[k] = np.sum(w * p["mu"] * (s - a))
-        second[k] = np.sum(w * p["mu"] * (s - a) ** 2)
-        radial[k] = np.sum(w * p["mu"] * p["d"] ** 2)  # for solid-disk inertia terms
-    # lumped disks: the section's total disk mass spread over its eyelets 1..per
-    disk = np.zeros(n_links)
-    disk_pos = np.zeros(n_links)
-    for j, sec in enumerate(robot.sections):
-        if sec.disk_mass > 0:
-            ks = np.arange(j * per, (j + 1) * per)
-            disk[ks] += sec.disk_mass * sec.n_disks / per
+    pj = _section_properties(robot, joints)
+    mass, first, second, radial = _rod_moments(robot, joints, ends, n_quad)
+    disk = _disk_masses(robot, per, n_links)
     disk_pos = eyelets[1:] - joints
     m_tot = mass + disk
     if np.any(m_tot <= 0):
@@ -173,20 +195,17 @@ def chain_geometry_from_robot(robot: Robot, n_links: int, n_quad: int = 8) -> Ch
     com = (first + disk * disk_pos) / np.where(mass + disk > 0, mass + disk, 1.0)
     com = np.where(mass + disk > 0, com, 0.5 * link_lengths)
     I_about_joint = second + disk * disk_pos**2 + radial / 16.0
-    inertia_b = np.maximum(I_about_joint - m_tot * com**2, 1e-12)
-    inertia_a = np.maximum(radial / 8.0, 1e-12)
-    sec_end = (np.arange(1, n_sec + 1) * per).astype(int)
     return ChainGeometry(
         eyelets=eyelets,
         joints=joints,
         link_lengths=link_lengths,
-        stiffness=stiffness,
-        torsion_stiffness=torsion,
-        axial_stiffness=axial,
-        shear_stiffness=shear,
+        stiffness=pj["EI"] / ds,
+        torsion_stiffness=pj["GJ"] / ds,
+        axial_stiffness=pj["EA"] / ds,
+        shear_stiffness=pj["GA"] / ds,
         mass=m_tot,
         com=com,
-        inertia_bending=inertia_b,
-        inertia_axial=inertia_a,
-        section_end_eyelet=sec_end,
+        inertia_bending=np.maximum(I_about_joint - m_tot * com**2, 1e-12),
+        inertia_axial=np.maximum(radial / 8.0, 1e-12),
+        section_end_eyelet=(np.arange(1, robot.n_sections + 1) * per).astype(int),
     )

@@ -85,8 +85,7 @@ class _Spatial(_Chain):
         self._add_gravity(mbs)
         m_tip = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=self.bodies[-1],
                                                   localPosition=[0.0, 0.0, float(geo.link_lengths[-1])]))
-        self._add_tip_loads(mbs, m_tip, np.asarray(self.load.tip_force, dtype=float),
-                            np.asarray(self.load.tip_torque, dtype=float))
+        self._add_tip_loads(mbs, m_tip)
         self._add_tendons(mbs)
 
     def _add_joints(self, mbs) -> None:  # noqa: ANN001

@@ -35,14 +35,14 @@ __all__ = ["tree_tip_position"]
 _TIP_RAMP = RampPolicy(first_increment=1.0, growth=2.0, grow_after=1, cap="one", min_increment=None)
 
 
-def _tree_link_masses(geo: ChainGeometry, payload: Payload) -> tuple[np.ndarray, list, list]:
+def _tree_link_masses(geo: ChainGeometry, payload: Payload | None) -> tuple[np.ndarray, list, list]:
     """Link masses (N,), centres of mass (N x (3,)) and inertias about the centre of mass
-    (N x (3, 3)), payload folded into the last link."""
+    (N x (3, 3)), payload (if any) folded into the last link."""
     mass, com = geo.mass.copy(), geo.com.copy()
     coms = [np.array([0.0, 0.0, c]) for c in com]
     inertias = [np.diag([geo.inertia_bending[k], geo.inertia_bending[k], geo.inertia_axial[k]])
                 for k in range(geo.n_links)]
-    pm = payload.mass
+    pm = 0.0 if payload is None else payload.mass
     if pm > 0:
         pp = np.array(payload.offset) + np.array([0.0, 0.0, geo.link_lengths[-1]])
         c_new = (mass[-1] * coms[-1] + pm * pp) / (mass[-1] + pm)
@@ -79,6 +79,25 @@ def _tree_links(exu, geo: ChainGeometry, mass: np.ndarray, coms: list, inertias:
     return types, offs, ms, cs, Is, Ps
 
 
+def _add_kinematic_tree(mbs, exu, eii, links: tuple, damping: float) -> tuple[int, int]:  # noqa: ANN001
+    """The ``NodeGenericODE2`` and the serial ``ObjectKinematicTree`` of ``links`` (from
+    :func:`_tree_links`), joint springs ``jointPControlVector``, damping ``damping * k``, no
+    loads yet (gravity and joint forces are set by the load ramp)."""
+    types, offs, ms, cs, Is, Ps = links
+    n = len(types)
+    node = mbs.AddNode(eii.NodeGenericODE2(
+        referenceCoordinates=[0.0] * n, initialCoordinates=[0.0] * n, initialCoordinates_t=[0.0] * n,
+        numberOfODE2Coordinates=n))
+    tree = mbs.AddObject(eii.ObjectKinematicTree(
+        nodeNumber=node, jointTypes=types, linkParents=list(range(-1, n - 1)),
+        jointTransformations=exu.Matrix3DList([np.eye(3)] * n), jointOffsets=exu.Vector3DList(offs),
+        linkInertiasCOM=exu.Matrix3DList(Is), linkCOMs=exu.Vector3DList(cs),
+        linkMasses=ms, baseOffset=[0.0, 0.0, 0.0], gravity=[0.0, 0.0, 0.0],
+        jointForceVector=[0.0] * n, jointPositionOffsetVector=[0.0] * n, jointVelocityOffsetVector=[0.0] * n,
+        jointPControlVector=Ps, jointDControlVector=[float(damping * k) for k in Ps]))
+    return node, tree
+
+
 class _Tree(_Chain):
     """Chain in minimal coordinates: planar (``RevoluteY``) or 3-D Cardan (``spatial=True``)."""
 
@@ -104,23 +123,13 @@ class _Tree(_Chain):
         n = geo.n_links * self.per
         self.g2 = np.asarray(self.robot.gravity_in_base(), dtype=float)
         mass, coms, inertias = _tree_link_masses(geo, self.robot.payload)
-        types, offs, ms, cs, Is, Ps = _tree_links(exu, geo, mass, coms, inertias, self.per)
+        links = _tree_links(exu, geo, mass, coms, inertias, self.per)
         self.n_coords = n
-        self.node = mbs.AddNode(eii.NodeGenericODE2(
-            referenceCoordinates=[0.0] * n, initialCoordinates=[0.0] * n, initialCoordinates_t=[0.0] * n,
-            numberOfODE2Coordinates=n))
-        self.tree = mbs.AddObject(eii.ObjectKinematicTree(
-            nodeNumber=self.node, jointTypes=types, linkParents=list(range(-1, n - 1)),
-            jointTransformations=exu.Matrix3DList([np.eye(3)] * n), jointOffsets=exu.Vector3DList(offs),
-            linkInertiasCOM=exu.Matrix3DList(Is), linkCOMs=exu.Vector3DList(cs),
-            linkMasses=ms, baseOffset=[0.0, 0.0, 0.0], gravity=[0.0, 0.0, 0.0],
-            jointForceVector=[0.0] * n, jointPositionOffsetVector=[0.0] * n, jointVelocityOffsetVector=[0.0] * n,
-            jointPControlVector=Ps, jointDControlVector=[float(self.options.damping * k) for k in Ps]))
+        self.node, self.tree = _add_kinematic_tree(mbs, exu, eii, links, self.options.damping)
         self.ground = mbs.AddObject(eii.ObjectGround(referencePosition=[0.0, 0.0, 0.0]))
         m_tip = mbs.AddMarker(eii.MarkerKinematicTreeRigid(objectNumber=self.tree, linkNumber=n - 1,
                                                            localPosition=[0.0, 0.0, float(geo.link_lengths[-1])]))
-        self._add_tip_loads(mbs, m_tip, np.asarray(self.load.tip_force, dtype=float),
-                            np.asarray(self.load.tip_torque, dtype=float))
+        self._add_tip_loads(mbs, m_tip)
         self._add_tendons(mbs)
 
     def _tree_marker(self, mbs, link: int, position: list[float]) -> int:  # noqa: ANN001
@@ -200,8 +209,61 @@ class _Tree(_Chain):
         return P, beta
 
 
+def _tip_joint_forces(robot: Robot, load: LoadCase, geo: ChainGeometry) -> np.ndarray:
+    """Generalised joint moments (N,) about base y: the tip moment on every joint plus
+    ``T d`` of every continuum tendon on the joints it passes (exact for bends in the x-z plane)."""
+    Q = np.full(geo.n_links, float(load.tip_torque[1]))
+    if load.actuation is not None:
+        if load.actuation.mode != "tension":
+            raise ValueError("tree_tip_position supports tension control only")
+        m_end = geo.section_end_eyelet
+        for (j, sigma, grp), T in zip(robot.tendon_table(), load.actuation.values):
+            Q[: m_end[j]] += T * grp.offset * (1.0 if np.cos(sigma) > 0 else -1.0)
+    return Q
+
+
+def _tip_by_forward_kinematics(q: np.ndarray, geo: ChainGeometry, per: int) -> np.ndarray:
+    """Tip position (3,) of the chain with tree coordinates ``q`` (``per`` per joint)."""
+    R = np.eye(3)
+    p = np.zeros(3)
+    for k in range(geo.n_links):
+        p = p + R @ np.array([0.0, 0.0, geo.joints[0] if k == 0 else geo.link_lengths[k - 1]])
+        for i in range(per):
+            a = q[k * per + i]
+            c, s = np.cos(a), np.sin(a)
+            if per == 2 and i == 0:
+                R = R @ np.array([[1, 0, 0], [0, c, -s], [0, s, c]])
+            else:
+                R = R @ np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]])
+    return p + R @ np.array([0.0, 0.0, geo.link_lengths[-1]])
+
+
 def tree_tip_position(robot: Robot, load: LoadCase, options: SolverOptions, dimension: str = "2d") -> np.ndarray:
-    """Static tip position ``(3,)`` of the kinematic-tree chain (see the module docstring)."""
+    """Static tip position of the stripped kinematic-tree chain (see the module docstring).
+
+    Parameters
+    ----------
+    robot : Robot
+        Tendons at sigma in {0, pi} only; the payload is not modelled.
+    load : LoadCase
+        Gravity, a tip moment about base y and tension-controlled continuum tendons.
+    options : SolverOptions
+        ``n_elements`` links, ``max_load_steps`` attempts of the load ramp.
+    dimension : {"2d", "3d"}
+        One ``RevoluteY`` per joint, or ``RevoluteX`` + ``RevoluteY`` (Cardan).
+
+    Returns
+    -------
+    ndarray, shape (3,)
+        Tip position [m], base frame.
+
+    Raises
+    ------
+    ValueError
+        Unsupported dimension, tendon angle, load or actuation mode.
+    ModelFailure
+        The load ramp needed more than ``options.max_load_steps`` attempts.
+    """
     import exudyn as exu
     import exudyn.itemInterface as eii
 
@@ -214,51 +276,15 @@ def tree_tip_position(robot: Robot, load: LoadCase, options: SolverOptions, dime
     if np.any(np.abs(load.tip_force) > 0) or abs(load.tip_torque[0]) > 0 or abs(load.tip_torque[2]) > 0:
         raise ValueError("tree_tip_position supports a tip moment about base y only")
     geo = chain_geometry_from_robot(robot, options.n_elements)
-    N = geo.n_links
     per = 1 if dimension == "2d" else 2
-    n = N * per
-    Q = np.full(N, float(load.tip_torque[1]))
-    if load.actuation is not None:
-        if load.actuation.mode != "tension":
-            raise ValueError("tree_tip_position supports tension control only")
-        m_end = geo.section_end_eyelet
-        for (j, sigma, grp), T in zip(robot.tendon_table(), load.actuation.values):
-            Q[: m_end[j]] += T * grp.offset * (1.0 if np.cos(sigma) > 0 else -1.0)
-    types, parents, offsets, masses, coms, inertias, P = [], [], [], [], [], [], []
-    for k in range(N):
-        off = geo.joints[0] if k == 0 else geo.link_lengths[k - 1]
-        Ib, Ia = geo.inertia_bending[k], geo.inertia_axial[k]
-        body = (float(geo.mass[k]), [0.0, 0.0, float(geo.com[k])], np.diag([Ib, Ib, Ia]).tolist())
-        joints = [exu.JointType.RevoluteY] if per == 1 else [exu.JointType.RevoluteX, exu.JointType.RevoluteY]
-        for i, jt in enumerate(joints):
-            types.append(jt)
-            parents.append(len(types) - 2)
-            offsets.append([0.0, 0.0, float(off) if i == 0 else 0.0])
-            if i == len(joints) - 1:
-                masses.append(body[0])
-                coms.append(body[1])
-                inertias.append(body[2])
-            else:  # massless intermediate link of the Cardan joint
-                masses.append(0.0)
-                coms.append([0.0, 0.0, 0.0])
-                inertias.append(np.zeros((3, 3)).tolist())
-            P.append(float(geo.stiffness[k]))
-    Qfull = np.zeros(n)
-    Qfull[per - 1 :: per] = Q
+    Qfull = np.zeros(geo.n_links * per)
+    Qfull[per - 1 :: per] = _tip_joint_forces(robot, load, geo)
+    links = _tree_links(exu, geo, *_tree_link_masses(geo, None), per)
     g = np.asarray(robot.gravity_in_base(), dtype=float)
     with quiet_exudyn():
-        SC = exu.SystemContainer()
+        SC = exu.SystemContainer()  # keep the container alive while its system is used
         mbs = SC.AddSystem()
-        node = mbs.AddNode(eii.NodeGenericODE2(referenceCoordinates=[0.0] * n, initialCoordinates=[0.0] * n,
-                                               initialCoordinates_t=[0.0] * n, numberOfODE2Coordinates=n))
-        tree = mbs.AddObject(eii.ObjectKinematicTree(
-            nodeNumber=node, jointTypes=types, linkParents=parents,
-            jointTransformations=exu.Matrix3DList([np.eye(3)] * n),
-            jointOffsets=exu.Vector3DList(offsets),
-            linkInertiasCOM=exu.Matrix3DList([np.asarray(I) for I in inertias]),
-            linkCOMs=exu.Vector3DList(coms), linkMasses=masses, baseOffset=[0.0, 0.0, 0.0],
-            gravity=[0.0, 0.0, 0.0], jointForceVector=[0.0] * n, jointPositionOffsetVector=[0.0] * n,
-            jointPControlVector=P, jointDControlVector=[0.0] * n, jointVelocityOffsetVector=[0.0] * n))
+        _, tree = _add_kinematic_tree(mbs, exu, eii, links, 0.0)
         mbs.Assemble()
         settings = static_settings(options, 1)
         settings.staticSolver.adaptiveStep = False
@@ -280,16 +306,4 @@ def tree_tip_position(robot: Robot, load: LoadCase, options: SolverOptions, dime
         except RampExhausted:
             raise ModelFailure("kinematic tree: load ramp exceeded options.max_load_steps") from None
         q = np.asarray(mbs.systemData.GetODE2Coordinates())
-    # forward kinematics of the chain
-    R = np.eye(3)
-    p = np.zeros(3)
-    for k in range(N):
-        p = p + R @ np.array([0.0, 0.0, geo.joints[0] if k == 0 else geo.link_lengths[k - 1]])
-        for i in range(per):
-            a = q[k * per + i]
-            c, s = np.cos(a), np.sin(a)
-            if per == 2 and i == 0:
-                R = R @ np.array([[1, 0, 0], [0, c, -s], [0, s, c]])
-            else:
-                R = R @ np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]])
-    return p + R @ np.array([0.0, 0.0, geo.link_lengths[-1]])
+    return _tip_by_forward_kinematics(q, geo, per)
