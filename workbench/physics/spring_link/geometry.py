@@ -13,9 +13,11 @@ Layout ("half-link" or tangent-polygon discretisation) for ``N`` links:
 
 Under a pure end moment all joints turn by ``kappa ds``, so the tip orientation is exact and the
 positions converge as ``O(1/N^2)``.  The link stations ``e_k`` carry continuum tendons; eyelet ropes
-pass the robot's disks instead (see :mod:`workbench.physics.spring_link`).  With one disk per link
+pass the robot's disks instead (see :mod:`.routing`).  With one disk per link
 a straight rope segment spans exactly one joint at half-distance ``ds/2`` either side, which is
-the joint geometry of Hannan & Walker's Eq (1) with ``h = ds/2``.
+the joint geometry of Hannan & Walker's Eq (1) with ``h = ds/2``.  Checked by
+``tests/physics/test_hannan_walker.py`` (joint springs and masses of the preset, Eq. 1 = measured rope
+lengths) and ``test_spring_link_eyelets.py`` (disk placement).
 """
 
 from __future__ import annotations

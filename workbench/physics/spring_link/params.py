@@ -1,4 +1,7 @@
-"""Model-specific settings of the spring-link chain and the planarity test (pure numpy)."""
+"""Model-specific settings of the spring-link chain and the planarity test (pure numpy).
+
+Checked by ``tests/physics/test_spring_link.py`` (``test_bad_inputs``, the 2-D/3-D and backend tests).
+"""
 
 from __future__ import annotations
 
@@ -42,23 +45,15 @@ class SpringLinkParams:
         (wire-delay compression, continuum-tendon compression ``T``) and ``length_change`` is
         reported.  Not combined with ``torsion="locked"`` or with continuum tendons in length mode.
     backend : {"auto", "bodies", "tree"}
-        Exudyn representation of the planar inextensible chain.  ``"tree"``: one
-        ``ObjectKinematicTree`` (minimal coordinates, no joint constraints); ``"bodies"``: rigid
-        bodies + revolute joints.  Both give the same statics (tested to ~1e-10).  Measured at
-        N = 16 / 64 (steel rod): with length-controlled eyelet ropes (reeving) the tree needs 3-4
-        Newton iterations instead of ~100 and is 2-4x faster (36 vs 155 ms, 1.1 vs 2.4 s), and it
-        solved a heavily loaded Hannan & Walker case on which the bodies' ramp gave up; with
-        constant-force rope chains (eyelets, tension control) it was 5-70x slower than the bodies
-        when a rope passed every link (every rope segment on tree markers evaluates the tree's
-        kinematics), but the bodies' ramp stalls under large rope forces (bending study, 8 disks: 1 of
-        15 solved within 40 steps) while the tree solves them in one load step; with continuum
-        tendons both are within noise.  In 3-D the tree is a chain of Cardan joints
-        (``RevoluteX`` + ``RevoluteY``, springs on both Cardan angles), so it needs
-        ``torsion="locked"``; it agrees with the rigid-body Cardan chain up to the spring law
-        (rotation vector vs Cardan angles, second order in the joint angles: 2.8e-7 m at N = 16) and solved a 16-cable Hannan & Walker
-        reeving case in 0.8 s where the bodies took 76 s (3330 Newton iterations).  ``"auto"``
-        (default) uses the tree for eyelet tendons (length or tension mode; planar, or 3-D with
-        ``torsion="locked"``) and bodies otherwise; ``axial=True`` always uses bodies.
+        Exudyn representation of an inextensible chain.  ``"tree"``: one ``ObjectKinematicTree``
+        (minimal coordinates, no joint constraints; planar, or in 3-D a chain of Cardan joints
+        ``RevoluteX`` + ``RevoluteY`` with springs on both Cardan angles, so it needs
+        ``torsion="locked"``); ``"bodies"``: rigid bodies + joints.  Both give the same statics
+        (tested to ~1e-10 planar; in 3-D up to the spring law, rotation vector vs Cardan angles,
+        second order in the joint angles).  ``"auto"`` (default) uses the tree for eyelet tendons
+        (length or tension mode; planar, or 3-D with ``torsion="locked"``) and bodies otherwise;
+        ``axial=True`` always uses bodies.  Why (measured Newton convergence and timings):
+        ``docs/models.md``, "Spring-link".
     """
 
     dimension: Literal["auto", "2d", "3d"] = "auto"

@@ -1,4 +1,15 @@
-"""Tendon routing along the chain (pure numpy) and the Exudyn items of one eyelet rope."""
+"""Tendon routing along the chain (pure numpy) and the Exudyn items of one eyelet rope.
+
+Eyelet ropes pass the robot's disks (``robot.disk_stations()`` up to their section end; the
+section-end station is the terminating eyelet) at the tendon's offset ``d`` (``offset_at`` the
+fraction of its own path, for tapered groups), as in the ANCF model; a disk sits on the link
+whose span contains its station (links may be finer than disks).  Continuum tendons use the link
+eyelets.  Tension control: one constant-force spring-damper (stiffness 0) per straight rope
+segment, exactly a frictionless rope with uniform tension ``T``.  Length control: one
+``ObjectConnectorReevingSystemSprings`` rope, ``T = EA_t (L - L_0) / L_0``.  Checked by
+``tests/physics/test_spring_link_eyelets.py`` (eyelets at the disk stations) and
+``test_reeving_length_control_equals_constant_force_rope``.
+"""
 
 from __future__ import annotations
 
@@ -15,6 +26,8 @@ __all__: list[str] = []
 
 @dataclass(frozen=True)
 class _Tendon:
+    """Routing of one tendon along the chain (reference configuration, lengths in m)."""
+
     section: int
     sigma: float
     end_eyelet: int          # index m of the terminating link eyelet (section end)

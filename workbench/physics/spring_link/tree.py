@@ -5,7 +5,7 @@ tree's ``jointPControlVector``, damping ``options.damping * k``).  Planar: one `
 per link (rotation about base +y, bending towards +x).  3-D (``spatial``): ``RevoluteX`` then
 ``RevoluteY`` at each joint (a Cardan joint, torsion locked, springs on both Cardan angles), the
 intermediate link massless.  No joint constraints, so eyelet ropes (``MarkerKinematicTreeRigid``
-eyelets) keep Newton quadratic; :mod:`.solve` uses it for every eyelet rope it can.  Planar
+eyelets) keep Newton quadratic; :mod:`.driver` uses it for every eyelet rope it can.  Planar
 continuum tendons act as generalised joint forces (``jointForceVector``); 3-D ones as a body-fixed
 torque on the terminating link; length mode (planar only) as a rotational spring to ground.
 

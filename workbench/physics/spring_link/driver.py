@@ -1,4 +1,4 @@
-"""Solving a spring-link chain: chain choice, the static load ramp, statics and dynamics.
+"""Driving a spring-link chain: chain choice, the static load ramp, statics and dynamics.
 
 :func:`solve` picks the chain (:func:`_build_chain`: dimension from :func:`.params.is_planar` and
 ``SpringLinkParams.dimension``; the kinematic tree for eyelet ropes where it applies, rigid bodies
