@@ -1,0 +1,127 @@
+"""Spring-link package layout: old import paths, the chain hooks, the static load ramp's steps."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from workbench.models.result import ModelFailure, SolverOptions
+from workbench.robot import LoadCase
+from workbench.robot.presets.steel_rod import steel_rod
+
+
+def test_old_import_paths_are_the_moved_objects():
+    import workbench.physics._spring_link_geometry as old_geo
+    import workbench.physics._spring_link_tree as old_tree
+    from workbench.physics import spring_link as sl
+    from workbench.physics.spring_link import driver, geometry, routing, tree
+
+    assert old_geo.chain_geometry_from_robot is geometry.chain_geometry_from_robot is sl.chain_geometry_from_robot
+    assert old_geo.ChainGeometry is geometry.ChainGeometry
+    assert old_tree.tree_tip_position is tree.tree_tip_position
+    assert "Deprecated" in old_geo.__doc__ and "Deprecated" in old_tree.__doc__
+    assert sl.solve is driver.solve and sl.run is driver.run and sl._static_ramp is driver._static_ramp
+    assert sl._tendons is routing._tendons
+    for name in ("SpringLinkParams", "is_planar", "_Planar", "_Spatial", "_PlanarTree", "SolverInfo"):
+        assert hasattr(sl, name), name
+
+
+def test_package_imports_without_exudyn():
+    """The study layer imports spring-link helpers; Exudyn is imported only when a chain is built."""
+    code = ("import sys, workbench.physics.spring_link, workbench.physics._spring_link_geometry, "
+            "workbench.physics._spring_link_tree; print('exudyn' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
+
+
+def test_every_chain_provides_the_hooks():
+    from workbench.physics.spring_link.chain import _Chain
+    from workbench.physics.spring_link.planar import _Planar
+    from workbench.physics.spring_link.spatial import _Spatial
+    from workbench.physics.spring_link.tree import _Tree
+
+    for cls in (_Planar, _Spatial, _Tree):
+        assert issubclass(cls, _Chain)
+        for hook in ("_build", "_eyelet_marker", "_continuum_items", "_set_continuum"):
+            assert getattr(cls, hook) is not getattr(_Chain, hook), (cls.__name__, hook)
+    assert _Planar.link_states is not _Chain.link_states and _Spatial.link_frames is not _Chain.link_frames
+    assert _Tree.link_states is not _Chain.link_states and _Tree.link_frames is not _Chain.link_frames
+    assert _Planar.rigid_bodies and _Spatial.rigid_bodies and not _Tree.rigid_bodies
+
+
+def test_ramp_policies():
+    from workbench.physics._stepping import RampPolicy
+    from workbench.physics.spring_link.driver import _STATIC_RAMP
+    from workbench.physics.spring_link.tree import _TIP_RAMP
+
+    assert _STATIC_RAMP == RampPolicy(first_increment=1.0, growth=2.0, grow_after=1, cap="one", min_increment=1e-6)
+    assert _TIP_RAMP == RampPolicy(first_increment=1.0, growth=2.0, grow_after=1, cap="one", min_increment=None)
+
+
+# The tests below use only names the original module had (spring_link._Planar, _static_ramp, ...),
+# so the step sequences they pin were checked against the code before the package existed.
+def _chain(max_load_steps=200):
+    from workbench.physics import spring_link as sl
+    from workbench.physics._spring_link_geometry import chain_geometry_from_robot
+
+    robot = steel_rod()
+    load = LoadCase(tip_torque=(0.0, 5.0, 0.0))
+    opts = SolverOptions(n_elements=4, max_load_steps=max_load_steps)
+    return sl, sl._Planar(robot, load, opts, chain_geometry_from_robot(robot, 4)), opts
+
+
+def _recording_apply(model, fail):
+    import exudyn as exu
+
+    trials = []
+
+    def apply(lam):
+        trials.append(lam)
+        if fail(lam, trials):
+            raise exu.SolverError("injected failure")
+        model.set_external(lam)
+        model.set_tendons(np.zeros(len(model.tendons)), lam)
+
+    return apply, trials
+
+
+def test_static_ramp_halves_on_failure_and_doubles_after_each_success():
+    sl, model, opts = _chain()
+    # the first two trials above 0.3 fail: 1 (x), 0.5 (x), 0.25, 0.75, 1
+    apply, trials = _recording_apply(model, lambda lam, t: lam > 0.3 and sum(x > 0.3 for x in t) <= 2)
+    steps, its = sl._static_ramp(model, opts, sl.SpringLinkParams(), apply)
+    assert trials == [1.0, 0.5, 0.25, 0.75, 1.0]
+    assert steps == 5 and its > 0
+    # the failed trials left no trace: the result is the one of a direct solve
+    direct = sl.run(model.robot, model.load, opts)
+    assert np.abs(model.result(sl.SolverInfo(True)).positions - direct.positions).max() < 1e-9
+
+
+def test_static_ramp_failures_keep_their_messages():
+    sl, model, opts = _chain()
+    apply, trials = _recording_apply(model, lambda lam, t: True)
+    with pytest.raises(ModelFailure, match=r"^spring_link: static solve failed near load factor 0$"):
+        sl._static_ramp(model, opts, sl.SpringLinkParams(), apply)
+    assert trials[:3] == [1.0, 0.5, 0.25] and len(trials) == 20  # halved 20 times: 2**-20 < 1e-6
+    sl, model, opts = _chain(max_load_steps=3)
+    apply, trials = _recording_apply(model, lambda lam, t: lam > 0.3)
+    with pytest.raises(ModelFailure, match=r"^spring_link: static load ramp exceeded options.max_load_steps=3 "
+                                           r"\(reached load factor 0\.25\)$"):
+        sl._static_ramp(model, opts, sl.SpringLinkParams(), apply)
+    assert trials == [1.0, 0.5, 0.25]
+
+
+def test_static_ramp_propagates_a_non_positive_rest_length():
+    sl, model, opts = _chain()
+    calls = []
+
+    def apply(lam):
+        calls.append(lam)
+        raise ModelFailure("spring_link: tendon rest length -0.1 m <= 0 (command -0.9 m too short)")
+
+    with pytest.raises(ModelFailure, match="rest length"):
+        sl._static_ramp(model, opts, sl.SpringLinkParams(), apply)
+    assert calls == [1.0]

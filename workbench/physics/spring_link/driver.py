@@ -1,0 +1,240 @@
+"""Driving a spring-link chain: chain choice, the static load ramp, statics and dynamics.
+
+:func:`solve` picks the chain (:func:`_build_chain`: dimension from :func:`.params.is_planar` and
+``SpringLinkParams.dimension``; the kinematic tree for eyelet ropes where it applies, rigid bodies
+otherwise), ramps the loads (:func:`_static_ramp` on :func:`workbench.physics._stepping.ramp`) and
+for dynamics integrates with implicit generalised-alpha, updating the tendon commands of
+:meth:`TendonActuation.command_at` every step.  :func:`run` is the registered model
+``"spring_link"`` (default :class:`SpringLinkParams`).  Checked by ``tests/physics/test_spring_link*.py``.
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Callable
+
+import numpy as np
+
+from ...models.inputs import check_model_inputs
+from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
+from ...robot import LoadCase, Robot
+from .._stepping import RampExhausted, RampPolicy, RampStalled, ramp
+from .chain import _Chain
+from .geometry import ChainGeometry, chain_geometry_from_robot
+from .params import SpringLinkParams, is_planar
+from .planar import _Planar
+from .spatial import _Spatial
+from .tree import _Tree
+
+__all__ = ["solve", "run"]
+
+_SPARSE_FROM = 16
+
+#: The static ramp's step rule: first try the full load, halve on failure, double (capped at 1)
+#: after every success, give up below an increment of 1e-6.
+_STATIC_RAMP = RampPolicy(first_increment=1.0, growth=2.0, grow_after=1, cap="one", min_increment=1e-6)
+
+_ROPES_HINT = ("; eyelet ropes on the rigid-body chain converge only linearly in Newton (numerical, "
+               "not a physical instability): use SpringLinkParams(backend='tree') where possible")
+
+
+def _use_sparse(settings, model) -> None:  # noqa: ANN001
+    """Sparse LU for larger chains (dense LU dominated the 3-D solve time from N ~ 32)."""
+    import exudyn as exu
+
+    if model.geo.n_links >= _SPARSE_FROM:
+        settings.linearSolver.solverType = exu.LinearSolverType.EigenSparse
+
+
+def _static_ramp(model: _Chain, options: SolverOptions, params: SpringLinkParams,
+                 apply: Callable[[float], None]) -> tuple[int, int]:
+    """Ramp ``apply(lam)`` from 0 to 1 with repeated static solves; returns (steps, newton its).
+
+    One attempt applies the load factor and solves, re-solving while the slack/taut active set
+    of length-controlled tendons changes (at most ``params.max_active_set_iterations`` passes).
+    A failed attempt (Exudyn ``SolverError``, non-finite state, an unsettled active set) restores
+    the chain's state (:meth:`_Chain.save_state`) and halves the increment (:data:`_STATIC_RAMP`);
+    a non-positive rope rest length is not a solver failure and propagates.  Newton iterations
+    of every attempt are counted.  Checked by ``test_max_load_steps_is_a_failure``,
+    ``test_rigid_body_ramp_failure_names_the_numerical_cause`` and ``test_spring_link_layout.py``.
+
+    Raises
+    ------
+    ModelFailure
+        More than ``options.max_load_steps`` attempts, or an increment below 1e-6.
+    """
+    from .._exudyn import static_settings
+
+    exu, mbs = model.exu, model.mbs
+    settings = static_settings(options, 1)
+    _use_sparse(settings, model)
+    settings.staticSolver.adaptiveStep = False
+    # eyelet ropes loading the joint constraints make Newton converge only linearly (measured
+    # ~100-125 iterations at N = 16 vs 3-6 for continuum tendons, docs/models.md): allow more.
+    eyelet_ropes = model.model == "eyelets" and model.mode is not None
+    settings.staticSolver.newton.maxIterations = 250 if eyelet_ropes else 40
+    newton_its = 0
+
+    def attempt(lam: float) -> bool:
+        nonlocal newton_its
+        try:
+            apply(lam)
+            for _ in range(params.max_active_set_iterations):
+                solver = exu.MainSolverStatic()
+                if not solver.SolveSystem(mbs, settings):
+                    raise exu.SolverError("static Newton did not converge")
+                newton_its += int(solver.it.newtonStepsCount)
+                q = mbs.systemData.GetODE2Coordinates()
+                if not np.all(np.isfinite(q)):
+                    raise exu.SolverError("non-finite state")
+                mbs.systemData.SetODE2Coordinates(q, configuration=exu.ConfigurationType.Initial)
+                if not model.update_active_set():
+                    return True
+                apply(lam)
+            raise ModelFailure("spring_link: tendon slack/taut switching did not settle")
+        except (exu.SolverError, RuntimeError) as err:  # ModelFailure is a RuntimeError too
+            if isinstance(err, ModelFailure) and "rest length" in str(err):
+                raise
+            return False
+
+    try:
+        info = ramp(attempt, model.save_state, model.restore_state, max_attempts=options.max_load_steps,
+                    policy=_STATIC_RAMP)
+    except RampExhausted as err:
+        hint = _ROPES_HINT if eyelet_ropes and model.rigid_bodies else ""
+        raise ModelFailure(
+            f"spring_link: static load ramp exceeded options.max_load_steps={options.max_load_steps} "
+            f"(reached load factor {err.lam:.4g}){hint}"
+        ) from None
+    except RampStalled as err:
+        raise ModelFailure(f"spring_link: static solve failed near load factor {err.lam:.4g}") from None
+    return info.attempts, newton_its
+
+
+def _ramp_to(model: _Chain, params: SpringLinkParams, commands: np.ndarray) -> tuple[int, int]:
+    """Static equilibrium under gravity, tip loads and tendon ``commands``, all ramped together."""
+
+    def apply(lam: float) -> None:
+        model.set_external(lam)
+        model.set_tendons(lam * commands, lam)
+
+    return _static_ramp(model, model.options, params, apply)
+
+
+def _build_chain(robot: Robot, load: LoadCase, options: SolverOptions, geo: ChainGeometry,
+                 params: SpringLinkParams, use_2d: bool) -> _Chain:
+    """The chain variant for this case: the kinematic tree when asked for, or (``backend="auto"``)
+    for eyelet ropes where the tree applies (inextensible, planar or Cardan); rigid bodies else."""
+    act_mode = None if load.actuation is None else load.actuation.mode
+    tree_ok = not params.axial and (use_2d or params.torsion == "locked")
+    if params.backend == "tree" and not tree_ok:
+        raise ModelFailure("spring_link: backend='tree' supports inextensible chains that are planar or have "
+                           "torsion='locked' (Cardan joints) only")
+    # eyelet ropes (reeving or constant-force segments) on the rigid-body chain stall the static
+    # ramp (docs/models.md); the constraint-free tree solves them in a few Newton iterations
+    ropes = options.tendon_model == "eyelets" and act_mode is not None
+    auto_tree = params.backend == "auto" and ropes
+    if tree_ok and (params.backend == "tree" or auto_tree):
+        return _Tree(robot, load, options, geo, spatial=not use_2d)
+    if use_2d:
+        return _Planar(robot, load, options, geo, params.axial)
+    return _Spatial(robot, load, options, geo, params.torsion, params.axial)
+
+
+def _solve_static(model: _Chain, params: SpringLinkParams, t0: float) -> PhysicsResult:
+    act = model.load.actuation
+    final = np.zeros(len(model.tendons)) if act is None else np.asarray(act.values)
+    steps, its = _ramp_to(model, params, final)
+    info = SolverInfo(converged=True, iterations=its, wall_time=time.perf_counter() - t0,
+                      message=f"{steps} load steps")
+    return model.result(info)
+
+
+def _solve_dynamic(model: _Chain, params: SpringLinkParams, t0: float) -> PhysicsResult:
+    """Equilibrium under the external loads with the commands at t = 0, then integrate."""
+    from .._exudyn import dynamic_settings
+
+    load, exu = model.load, model.exu
+    act = load.actuation
+    start = np.zeros(len(model.tendons)) if act is None else act.command_at(0.0, load.ramp_time)
+    _ramp_to(model, params, start)
+    rec_t, rec_tip, rec_T = [], [], []
+
+    def record(t: float, r: PhysicsResult) -> None:
+        rec_t.append(t)
+        rec_tip.append(r.tip_position.copy())
+        rec_T.append(r.tendon_tensions.copy())
+
+    def pre_step(mbs, t):  # noqa: ANN001 - Exudyn callback signature
+        cmd = start if act is None else act.command_at(t, load.ramp_time)
+        if model.mode == "length":
+            model._L0 = model.rest_lengths(np.asarray(cmd), 1.0)
+            model.update_active_set()
+        model.set_tendons(np.asarray(cmd), 1.0)
+        record(t, model.result(SolverInfo(True)))
+        return True
+
+    model.mbs.SetPreStepUserFunction(pre_step)
+    settings = dynamic_settings(model.options, load.duration)
+    _use_sparse(settings, model)
+    solver = exu.MainSolverImplicitSecondOrder()
+    try:
+        solver.SolveSystem(model.mbs, settings)
+    except exu.SolverError as err:
+        raise ModelFailure(f"spring_link: dynamic solve failed: {err}") from err
+    record(load.duration, model.result(SolverInfo(True)))
+    info = SolverInfo(converged=True, iterations=int(solver.it.newtonStepsCount),
+                      wall_time=time.perf_counter() - t0, message=f"{len(rec_t) - 1} time steps")
+    return model.result(
+        info, time_=np.asarray(rec_t),
+        series={"tip_position": np.asarray(rec_tip), "tendon_tensions": np.asarray(rec_T)},
+    )
+
+
+def solve(robot: Robot, load: LoadCase, options: SolverOptions,
+          params: SpringLinkParams = SpringLinkParams()) -> PhysicsResult:
+    """Static or dynamic solve of the spring-link chain (see :mod:`workbench.physics.spring_link`).
+
+    Parameters
+    ----------
+    robot : Robot
+    load : LoadCase
+    options : SolverOptions
+        ``n_elements`` is the number of links ``N`` (multiple of the number of sections).
+    params : SpringLinkParams
+        Model-specific settings.
+
+    Returns
+    -------
+    PhysicsResult
+        ``joint_angles`` shape ``(N, 1)`` (planar), ``(N, 3)`` or ``(N, 2)`` (3-D, sprung or
+        locked torsion); for dynamics ``time`` (k,) and series ``tip_position`` (k, 3),
+        ``tendon_tensions`` (k, n_tendons).
+
+    Raises
+    ------
+    ModelFailure
+        Non-planar case with ``dimension="2d"``, unsupported combination, failed load ramp,
+        non-positive tendon rest length.
+    ValueError
+        ``n_elements`` not a multiple of the number of sections.
+    """
+    from .._exudyn import quiet_exudyn
+
+    check_model_inputs(robot, load, options)
+    planar, why = is_planar(robot, load)
+    if params.dimension == "2d" and not planar:
+        raise ModelFailure(f"spring_link: dimension='2d' requested but the case is not planar: {why}")
+    use_2d = params.dimension == "2d" or (params.dimension == "auto" and planar)
+    geo = chain_geometry_from_robot(robot, options.n_elements)
+    t0 = time.perf_counter()
+    with quiet_exudyn():
+        model = _build_chain(robot, load, options, geo, params, use_2d)
+        if load.analysis == "static":
+            return _solve_static(model, params, t0)
+        return _solve_dynamic(model, params, t0)
+
+
+def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
+    """Registered model ``"spring_link"``: :func:`solve` with default :class:`SpringLinkParams`."""
+    return solve(robot, load, options, SpringLinkParams())

@@ -1,0 +1,99 @@
+"""Model-specific settings of the spring-link chain and the planarity test (pure numpy).
+
+Checked by ``tests/physics/test_spring_link.py`` (``test_bad_inputs``, the 2-D/3-D and backend tests).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+
+from ...robot import LoadCase, Robot
+
+__all__ = ["SpringLinkParams", "is_planar"]
+
+_PLANE_TOL = 1e-12
+
+
+@dataclass(frozen=True)
+class SpringLinkParams:
+    """Model-specific settings of the spring-link chain.
+
+    Parameters
+    ----------
+    dimension : {"auto", "2d", "3d"}
+        ``"auto"``: planar chain when the robot and load are planar (see :func:`is_planar`),
+        spatial chain otherwise.  ``"2d"`` forces the planar chain (raises if the case is not
+        planar), ``"3d"`` the spatial chain.
+    max_active_set_iterations : int
+        Cap on slack/taut switching passes in a static length-controlled solve.
+    torsion : {"spring", "locked"}
+        3-D chain only.  ``"spring"`` (default): spherical joints with a rotational spring
+        ``diag(k, k, GJ/ds)`` on the intrinsic relative rotation vector (the equivalent rod: a
+        bend in any fixed plane is twist-free).  ``"locked"``: Cardan (universal) joints, the
+        relative rotation about the link axis in the joint's x-y-z Tait-Bryan sequence is
+        constrained (Hannan & Walker's 2-DOF joints; an oblique bend then carries the Cardan
+        twist, reported as ``tip_twist``).
+    axial : bool
+        ``False`` (default): inextensible pin (2-D) / spherical or Cardan (3-D) joints.  ``True``:
+        every joint becomes a rigid-body spring (``RigidBodySpringDamper``, intrinsic) with axial
+        stiffness ``EA/ds`` and shear stiffness ``GA/ds`` (``CrossSection.GA``, or ``EA`` when it
+        is ``None``) besides the bending (and torsion) springs, so the backbone can compress
+        (wire-delay compression, continuum-tendon compression ``T``) and ``length_change`` is
+        reported.  Not combined with ``torsion="locked"`` or with continuum tendons in length mode.
+    backend : {"auto", "bodies", "tree"}
+        Exudyn representation of an inextensible chain.  ``"tree"``: one ``ObjectKinematicTree``
+        (minimal coordinates, no joint constraints; planar, or in 3-D a chain of Cardan joints
+        ``RevoluteX`` + ``RevoluteY`` with springs on both Cardan angles, so it needs
+        ``torsion="locked"``); ``"bodies"``: rigid bodies + joints.  Both give the same statics
+        (tested to ~1e-10 planar; in 3-D up to the spring law, rotation vector vs Cardan angles,
+        second order in the joint angles).  ``"auto"`` (default) uses the tree for eyelet tendons
+        (length or tension mode; planar, or 3-D with ``torsion="locked"``) and bodies otherwise;
+        ``axial=True`` always uses bodies.  Why (measured Newton convergence and timings):
+        ``docs/models.md``, "Spring-link".
+    """
+
+    dimension: Literal["auto", "2d", "3d"] = "auto"
+    max_active_set_iterations: int = 20
+    torsion: Literal["spring", "locked"] = "spring"
+    axial: bool = False
+    backend: Literal["auto", "bodies", "tree"] = "auto"
+
+    def __post_init__(self) -> None:
+        if self.dimension not in ("auto", "2d", "3d"):
+            raise ValueError(f"SpringLinkParams.dimension must be 'auto', '2d' or '3d', got {self.dimension!r}")
+        if self.backend not in ("auto", "bodies", "tree"):
+            raise ValueError(f"SpringLinkParams.backend must be 'auto', 'bodies' or 'tree', got {self.backend!r}")
+        if self.axial and self.torsion == "locked":
+            raise ValueError("SpringLinkParams: axial=True needs torsion='spring'")
+        if self.torsion not in ("spring", "locked"):
+            raise ValueError(f"SpringLinkParams.torsion must be 'spring' or 'locked', got {self.torsion!r}")
+        if int(self.max_active_set_iterations) < 1:
+            raise ValueError("SpringLinkParams.max_active_set_iterations must be >= 1")
+
+
+def is_planar(robot: Robot, load: LoadCase) -> tuple[bool, str]:
+    """Whether ``robot`` under ``load`` stays in the base x-z plane.
+
+    Returns
+    -------
+    planar : bool
+    reason : str
+        Why not (empty when planar).
+    """
+    for j, sigma, _ in robot.tendon_table():
+        if abs(math.sin(sigma)) > 1e-9:
+            return False, f"tendon of section {j} at sigma = {sigma:.6g} rad is not in the x-z plane (sigma in {{0, pi}})"
+    g = robot.gravity_in_base()
+    if abs(g[1]) > _PLANE_TOL * max(1.0, np.linalg.norm(g)):
+        return False, f"gravity in the base frame {g.tolist()} has a y component"
+    if abs(load.tip_force[1]) > _PLANE_TOL:
+        return False, f"tip force {list(load.tip_force)} has a y component"
+    if abs(load.tip_torque[0]) > _PLANE_TOL or abs(load.tip_torque[2]) > _PLANE_TOL:
+        return False, f"tip torque {list(load.tip_torque)} is not about base y"
+    if robot.payload.mass > 0 and abs(robot.payload.offset[1]) > _PLANE_TOL:
+        return False, "payload offset has a y component"
+    return True, ""
