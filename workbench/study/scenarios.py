@@ -75,14 +75,14 @@ class _Scenarios(Mapping[str, Callable[..., dict[str, Any]]]):
 #: ``[scenario] name`` -> scenario function (resolved from ``registry.SCENARIOS`` when looked up).
 SCENARIOS: Mapping[str, Callable[..., dict[str, Any]]] = _Scenarios()
 
-#: Deprecated names kept importable from here: ``name`` -> its registry row.
-_MOVED = {"wire_delay": "wire_delay", "hannan_walker_line": "hannan_walker_line"}
+#: Deprecated names kept importable from here (each is also its registry row's name).
+_MOVED = ("wire_delay", "hannan_walker_line")
 
 
 def __getattr__(name: str) -> Any:
     """Deprecated: ``wire_delay`` and ``hannan_walker_line`` live in ``workbench/experiments/``."""
     if name in _MOVED:
-        return SCENARIOS[_MOVED[name]]
+        return SCENARIOS[name]
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 

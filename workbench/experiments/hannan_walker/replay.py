@@ -249,8 +249,9 @@ def _check_replay_inputs(robot: Robot, start, end, kappa0) -> None:
     if a.shape != (2,) or b.shape != (2,):
         raise ValueError(f"start and end must have shape (2,) = (x, z), got {a.shape} and {b.shape}")
     n_sec = robot.n_sections
-    if kappa0 is not None and np.asarray(kappa0, dtype=float).shape != (n_sec,):
-        raise ValueError(f"kappa0 must have shape ({n_sec},), got {np.asarray(kappa0, dtype=float).shape}")
+    k0 = None if kappa0 is None else np.asarray(kappa0, dtype=float)
+    if k0 is not None and k0.shape != (n_sec,):
+        raise ValueError(f"kappa0 must have shape ({n_sec},), got {k0.shape}")
 
 
 def replay_hannan_walker(

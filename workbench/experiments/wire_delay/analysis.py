@@ -229,6 +229,21 @@ def wire_delay_commands(robot: Robot, *, theta: float, alpha: float, move_time: 
     Every wire moves from its straight length to its kinematic length at ``(theta, phi = alpha + pi)``
     in ``move_time``.  No checks here: the callers (scenario, driver) check their inputs with
     their own wording.
+
+    Parameters
+    ----------
+    robot : Robot
+        One section with three tendons (:func:`wire_geometry` reads the first section).
+    theta, alpha : float
+        Target bending angle and the paper's direction angle [rad].
+    move_time, delay : float
+        Duration of every wire's move and start delay of the late wire [s].
+    delayed_wire : int
+        Index of the late wire (0, 1 or 2).
+
+    Returns
+    -------
+    WireDelayCommands
     """
     geo = wire_geometry(robot)
     L0 = geo.lengths(0.0, 0.0)
