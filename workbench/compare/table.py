@@ -32,6 +32,7 @@ from typing import Any, Iterable, Mapping, Sequence
 import numpy as np
 import pandas as pd
 
+from ..study.params import section_params
 from .metrics import (
     compression_split,
     orientation_error_deg,
@@ -187,8 +188,9 @@ def section_ends_from_row(row: Mapping[str, Any]) -> np.ndarray | None:
     """Reference section ends [m] of a result row, or ``None`` when unknown.
 
     From a ``section_ends`` list column if present; else by rebuilding the robot preset named
-    in ``p.robot.preset`` with the row's ``p.robot.*`` parameters (JSON strings decoded;
-    parameters the preset does not take are ignored).  Any failure gives ``None``.
+    in ``p.robot.preset`` with the row's ``p.robot.*`` parameters (un-flattened by
+    :func:`workbench.study.params.section_params`; parameters the preset does not take are
+    ignored).  Any failure gives ``None``.
     """
     ends = array_cell(row.get("section_ends"))
     if ends is not None:
@@ -197,22 +199,10 @@ def section_ends_from_row(row: Mapping[str, Any]) -> np.ndarray | None:
     if not isinstance(name, str) or not name:
         return None
     try:
-        import json
-
         from ..robot.presets import build_preset, preset_parameters
 
         known = preset_parameters(name)
-        params = {}
-        for k, v in row.items():
-            key = str(k)
-            if key.startswith("p.robot.") and key[len("p.robot."):] in known:
-                if isinstance(v, str) and v[:1] in "[{":
-                    v = json.loads(v)
-                if v is None or (isinstance(v, float) and np.isnan(v)):
-                    continue
-                if isinstance(v, np.generic):
-                    v = v.item()
-                params[key[len("p.robot."):]] = v
+        params = {k: v for k, v in section_params(row, "robot").items() if k in known}
         return np.asarray(build_preset(name, **params).section_ends, dtype=float)
     except Exception:  # unknown preset, changed signature, invalid values: fall back
         return None

@@ -1,4 +1,13 @@
-"""Build ``reports/<study>/report.html`` (one self-contained file) plus figures and CSVs."""
+"""Build ``reports/<study>/report.html`` (one self-contained file) plus figures and CSVs.
+
+:func:`build_report` loads the folder (:func:`.load.load_results`), compares the models
+(:func:`workbench.compare.compare_table`) and draws, inside one ``matplotlib.rc_context(STYLE)``,
+first the study-specific figure sets of ``workbench.registry.FIGURES`` whose ``matches(results)``
+is true (in registry order; the report names no study), then the generic builders of
+:data:`.figures.GENERIC_FIGURES`.  :func:`add_report_arguments` + :func:`report_command` are the
+one report command line (``workbench report`` and ``python -m workbench.report``, :func:`main`).
+Checked by ``tests/report/`` and the report tier of ``tests/regression``.
+"""
 
 from __future__ import annotations
 
@@ -14,26 +23,13 @@ import matplotlib
 import numpy as np
 import pandas as pd
 
+from .. import registry
 from ..compare.table import compare_table
-from .figures import (
-    STYLE,
-    ReportFigure,
-    code_categories,
-    compression_split_figures,
-    error_vs_parameter_figures,
-    fmt,
-    model_label,
-    pair_label,
-    shape_overlay_figures,
-    short_label,
-    time_series_figures,
-    validity_map_figures,
-)
-from ._motion import motion_figures
-from ._studies_b import study_figures
-from .load import Study, load_study, numeric
+from ..study.store import MANIFEST
+from .figures import GENERIC_FIGURES, STYLE, ReportFigure, code_categories, fmt, model_label, pair_label, short_label
+from .load import ResultSet, load_results, numeric
 
-__all__ = ["build_report", "main"]
+__all__ = ["add_report_arguments", "build_report", "main", "report_command", "study_figure_sets"]
 
 _PNG_META = {"Software": None}
 _SVG_META = {"Creator": None, "Date": None, "Format": None, "Type": None}
@@ -54,19 +50,18 @@ def _scalar_columns(df: pd.DataFrame) -> list[str]:
     return cols
 
 
-def _all_figures(study: Study, cmp: pd.DataFrame) -> list[ReportFigure]:
+def study_figure_sets(results: ResultSet) -> list[str]:
+    """Names of the ``registry.FIGURES`` sets whose ``matches(results)`` is true, in registry order."""
+    return [name for name, fs in registry.FIGURES.items() if registry.resolve(fs.matches)(results)]
+
+
+def _all_figures(results: ResultSet, cmp: pd.DataFrame) -> list[ReportFigure]:
+    """The study-specific figure sets that match, then the generic figures (call inside ``rc_context(STYLE)``)."""
     figs: list[ReportFigure] = []
-    with matplotlib.rc_context(STYLE):
-        figs += study_figures(study, cmp)  # study-specific key figures (wire delay, H&W, harvester)
-        figs += motion_figures(study.results)  # series-parallel motion studies
-        for builder in (
-            shape_overlay_figures,
-            error_vs_parameter_figures,
-            validity_map_figures,
-            compression_split_figures,
-            time_series_figures,
-        ):
-            figs += builder(study, cmp)
+    for name in study_figure_sets(results):
+        figs += registry.resolve(registry.FIGURES[name].figures)(results, cmp)
+    for builder in GENERIC_FIGURES:
+        figs += builder(results, cmp)
     return figs
 
 
@@ -139,13 +134,36 @@ dl.prov{display:grid;grid-template-columns:max-content auto;gap:2px 14px;font-si
 """
 
 
+def _write_figures(figs: list[ReportFigure], figdir: Path, formats: Sequence[str]) -> list[str]:
+    """Save every figure in ``formats`` under ``figdir``; return its HTML ``<figure>`` (PNG inlined)."""
+    sections = []
+    for f in figs:
+        buf = io.BytesIO()
+        f.figure.savefig(buf, format="png", metadata=_PNG_META)
+        png = buf.getvalue()
+        if "png" in formats:
+            (figdir / f"{f.name}.png").write_bytes(png)
+        if "svg" in formats:
+            f.figure.savefig(figdir / f"{f.name}.svg", format="svg", metadata=_SVG_META)
+        if "pdf" in formats:
+            f.figure.savefig(figdir / f"{f.name}.pdf", format="pdf", metadata={"Creator": None, "Producer": None})
+        b64 = base64.b64encode(png).decode("ascii")
+        sections.append(
+            f"<figure id='fig-{_esc(f.name)}' data-figure='{_esc(f.name)}'>"
+            f"<h3>{_esc(f.title)}</h3>"
+            f"<img alt='{_esc(f.title)}' src='data:image/png;base64,{b64}'>"
+            f"<figcaption>{_esc(f.summary)}</figcaption></figure>"
+        )
+    return sections
+
+
 def build_report(data_dir: str | Path, out_dir: str | Path | None = None, *, formats: Sequence[str] = ("png", "svg")) -> Path:
     """Write the comparison report of a study folder.
 
     Parameters
     ----------
     data_dir : path
-        ``data/<study>/`` with Parquet part files and ``manifest.json``.
+        ``data/<study>/`` with Parquet part files and ``_manifest.json`` (see :mod:`.load`).
     out_dir : path, optional
         Output folder; default ``reports/<study name from manifest>`` (relative to the
         current directory).
@@ -162,7 +180,7 @@ def build_report(data_dir: str | Path, out_dir: str | Path | None = None, *, for
     bad = sorted(set(formats) - {"png", "svg", "pdf"})
     if bad:
         raise ValueError(f"formats must be among png, svg, pdf; got {bad}")
-    study = load_study(data_dir)
+    study = load_results(data_dir)
     out = Path(out_dir) if out_dir is not None else Path("reports") / study.name
     figdir = out / "figures"
     figdir.mkdir(parents=True, exist_ok=True)
@@ -180,46 +198,31 @@ def build_report(data_dir: str | Path, out_dir: str | Path | None = None, *, for
     fcols = [c for c in ["case_id", "model", "error", *study.axes] if c in failed.columns]
     failed[fcols].to_csv(out / "failed.csv", index=False)
 
-    sections = []
     with matplotlib.rc_context(STYLE):
         figs = _all_figures(study, code_categories(study, cmp))
-        for f in figs:
-            buf = io.BytesIO()
-            f.figure.savefig(buf, format="png", metadata=_PNG_META)
-            png = buf.getvalue()
-            if "png" in formats:
-                (figdir / f"{f.name}.png").write_bytes(png)
-            if "svg" in formats:
-                f.figure.savefig(figdir / f"{f.name}.svg", format="svg", metadata=_SVG_META)
-            if "pdf" in formats:
-                f.figure.savefig(figdir / f"{f.name}.pdf", format="pdf", metadata={"Creator": None, "Producer": None})
-            b64 = base64.b64encode(png).decode("ascii")
-            sections.append(
-                f"<figure id='fig-{_esc(f.name)}' data-figure='{_esc(f.name)}'>"
-                f"<h3>{_esc(f.title)}</h3>"
-                f"<img alt='{_esc(f.title)}' src='data:image/png;base64,{b64}'>"
-                f"<figcaption>{_esc(f.summary)}</figcaption></figure>"
-            )
+        sections = _write_figures(figs, figdir, formats)
     html_text = _page(study, cmp, summary, failed, fcols, sections, [f.name for f in figs])
     path = out / "report.html"
     path.write_text(html_text, encoding="utf-8")
     return path
 
 
-def _page(study: Study, cmp, summary, failed, fcols, sections, fig_names) -> str:
-    man = study.manifest
+def _swept_text(study: ResultSet, n_cases: int) -> str:
     ok = study.ok
+    if not study.axes:
+        return "nothing (single case)" if n_cases == 1 else "no numeric parameter varies"
+    return ", ".join(
+        f"{short_label(a, study.labels)} ({', '.join(study.categories[a])})" if a in study.categories else
+        f"{short_label(a, study.labels)} ({fmt(np.nanmin(numeric(ok[a])))} … {fmt(np.nanmax(numeric(ok[a])))}, "
+        f"{pd.Series(numeric(ok[a])).nunique()} values)"
+        for a in study.axes
+    )
+
+
+def _provenance_html(study: ResultSet, failed: pd.DataFrame) -> str:
+    man = study.manifest
     n_cases = study.results["case_id"].nunique()
     models = ", ".join(model_label(m) for m in study.models) or "none"
-    if study.axes:
-        swept = ", ".join(
-            f"{short_label(a, study.labels)} ({', '.join(study.categories[a])})" if a in study.categories else
-            f"{short_label(a, study.labels)} ({fmt(np.nanmin(numeric(ok[a])))} … {fmt(np.nanmax(numeric(ok[a])))}, "
-            f"{pd.Series(numeric(ok[a])).nunique()} values)"
-            for a in study.axes
-        )
-    else:
-        swept = "nothing (single case)" if n_cases == 1 else "no numeric parameter varies"
     versions = man.get("versions") or {}
     vtxt = ", ".join(f"{k} {v if v is not None else 'n/a'}" for k, v in versions.items()) if isinstance(versions, dict) else str(versions)
     pv = _provenance(man)
@@ -227,7 +230,7 @@ def _page(study: Study, cmp, summary, failed, fcols, sections, fig_names) -> str
     model_time = float(np.nansum(numeric(study.results["wall_time"]))) if "wall_time" in study.results else np.nan
     prov = [
         ("study", study.name + (f" — {desc}" if desc else "")),
-        ("swept", swept),
+        ("swept", _swept_text(study, n_cases)),
         ("models compared", models + (f" (reference: {model_label(study.reference)})" if study.reference in study.models else "")),
         ("cases", f"{n_cases} cases, {len(study.results)} model runs, {len(failed)} failed"),
         ("config hash", man.get("config_hash", "n/a")),
@@ -243,18 +246,32 @@ def _page(study: Study, cmp, summary, failed, fcols, sections, fig_names) -> str
     for k, v in man.items():
         if k not in known and not isinstance(v, (dict, list)):
             prov.append((str(k), v))
-    prov_html = "<dl class='prov'>" + "".join(f"<dt>{_esc(k)}</dt><dd>{_esc(v)}</dd>" for k, v in prov) + "</dl>"
-    if len(failed):
-        rows = _table(failed[fcols]).replace("<tr><td>", "<tr class='failed'><td>")
-        per_model = ", ".join(f"{_esc(m)} {n}" for m, n in failed["model"].astype(str).value_counts().sort_index().items())
-        fail_html = (f"<h2>Failed cases</h2><p>{len(failed)} failed model runs ({per_model}), excluded from all "
-                     "figures and metrics.</p>")
-        if len(failed) > 8:  # a long list would push the results off the first screen
-            fail_html += f"<details><summary>show the {len(failed)} failed runs and their reasons</summary>{rows}</details>"
-        else:
-            fail_html += rows
-    else:
-        fail_html = "<p class='note'>No failed cases.</p>"
+    return "<dl class='prov'>" + "".join(f"<dt>{_esc(k)}</dt><dd>{_esc(v)}</dd>" for k, v in prov) + "</dl>"
+
+
+def _failed_html(failed: pd.DataFrame, fcols: list[str]) -> str:
+    if not len(failed):
+        return "<p class='note'>No failed cases.</p>"
+    rows = _table(failed[fcols]).replace("<tr><td>", "<tr class='failed'><td>")
+    per_model = ", ".join(f"{_esc(m)} {n}" for m, n in failed["model"].astype(str).value_counts().sort_index().items())
+    fail_html = (f"<h2>Failed cases</h2><p>{len(failed)} failed model runs ({per_model}), excluded from all "
+                 "figures and metrics.</p>")
+    if len(failed) > 8:  # a long list would push the results off the first screen
+        return fail_html + f"<details><summary>show the {len(failed)} failed runs and their reasons</summary>{rows}</details>"
+    return fail_html + rows
+
+
+_DEFINITIONS = (
+    "<p class='note'>Errors compare each model with the reference at the same case. Tip error: distance between tip "
+    "positions, in metres and in % of the robot length L. Orientation error: angle of the relative tip rotation. "
+    "Shape error: maximum / RMS distance between the backbones at matched reference arc-length stations. "
+    "Curvature: best-fit circle per section. The files <code>metrics.csv</code>, <code>summary.csv</code>, "
+    "<code>results.csv</code> and <code>failed.csv</code> next to this report hold the tables; "
+    "<code>figures/</code> holds each figure as PNG and SVG.</p>"
+)
+
+
+def _page(study: ResultSet, cmp, summary, failed, fcols, sections, fig_names) -> str:
     if summary.empty:
         sum_html = ("<p class='note'>Only one model (or no case with two successful models): "
                     "there is nothing to compare, the figures show the results alone.</p>")
@@ -267,34 +284,48 @@ def _page(study: Study, cmp, summary, failed, fcols, sections, fig_names) -> str
         if spec else ""
     )
     toc = " · ".join(f"<a href='#fig-{_esc(n)}'>{_esc(n)}</a>" for n in fig_names)
-    defs = (
-        "<p class='note'>Errors compare each model with the reference at the same case. Tip error: distance between tip "
-        "positions, in metres and in % of the robot length L. Orientation error: angle of the relative tip rotation. "
-        "Shape error: maximum / RMS distance between the backbones at matched reference arc-length stations. "
-        "Curvature: best-fit circle per section. The files <code>metrics.csv</code>, <code>summary.csv</code>, "
-        "<code>results.csv</code> and <code>failed.csv</code> next to this report hold the tables; "
-        "<code>figures/</code> holds each figure as PNG and SVG.</p>"
-    )
     return (
         "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>"
         f"<title>{_esc(study.name)} – trunk-workbench report</title><style>{_CSS}</style></head><body>"
         f"<h1>Study report: {_esc(study.name)}</h1>"
         f"<p class='sub'>Constant-curvature (CC) kinematics vs physics models — generated by trunk-workbench</p>"
-        f"{prov_html}{fail_html}<h2>Summary</h2>{sum_html}{defs}"
+        f"{_provenance_html(study, failed)}{_failed_html(failed, fcols)}<h2>Summary</h2>{sum_html}{_DEFINITIONS}"
         f"<h2>Figures</h2><p class='note'>{toc}</p>{''.join(sections)}{spec_html}"
         "</body></html>"
     )
 
 
+def add_report_arguments(parser) -> None:
+    """The arguments of the report command (``folder``, ``--out``, ``--formats``) on an argparse parser.
+
+    Shared by ``workbench report`` and ``python -m workbench.report`` (one command line, one code path).
+    """
+    parser.add_argument("folder", help="e.g. data/quickstart")
+    parser.add_argument("--out", help="output folder (default reports/<study name>)")
+    parser.add_argument("--formats", default="png,svg", help="figure file formats, comma separated (png,svg,pdf)")
+
+
+def report_command(args) -> int:
+    """Run the report command for parsed :func:`add_report_arguments` arguments; return the exit code.
+
+    Refuses a folder without ``_manifest.json`` (exit 2, the message on stderr); otherwise builds
+    the report and prints the path of ``report.html`` (exit 0).
+    """
+    import sys
+
+    folder = Path(args.folder)
+    if not (folder / MANIFEST).exists():
+        print(f"{folder}: not a study result folder (no {MANIFEST})", file=sys.stderr)
+        return 2
+    formats = tuple(x for x in args.formats.split(",") if x)
+    print(build_report(folder, args.out, formats=formats))
+    return 0
+
+
 def main(argv: Iterable[str] | None = None) -> int:
-    """Command line: ``python -m workbench.report data/<study> [--out DIR]``."""
+    """Command line: ``python -m workbench.report data/<study> [--out DIR] [--formats png,svg]``."""
     import argparse
 
     ap = argparse.ArgumentParser(prog="workbench report", description="Write the HTML comparison report of a study.")
-    ap.add_argument("data_dir", help="study folder data/<study> (Parquet parts + manifest.json)")
-    ap.add_argument("--out", default=None, help="output folder (default reports/<study>)")
-    ap.add_argument("--formats", default="png,svg", help="figure file formats, comma separated (png,svg,pdf)")
-    args = ap.parse_args(list(argv) if argv is not None else None)
-    path = build_report(args.data_dir, args.out, formats=tuple(x for x in args.formats.split(",") if x))
-    print(path)
-    return 0
+    add_report_arguments(ap)
+    return report_command(ap.parse_args(list(argv) if argv is not None else None))

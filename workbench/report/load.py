@@ -1,7 +1,8 @@
-"""Read a study folder (Parquet part files + ``manifest.json``) into a :class:`Study`.
+"""Read a study folder (Parquet part files + manifest) into a :class:`ResultSet`.
 
-The manifest is ``_manifest.json`` (the study runner's name, ignored by Parquet readers) or
-``manifest.json``.  Conventions (every key is optional here):
+A folder the study runner wrote (``_manifest.json``) is read with
+:func:`workbench.study.store.read_table`; any other folder (e.g. the synthetic test folders with
+``manifest.json``) by concatenating its ``*.parquet`` parts.  Conventions (every key is optional):
 
 - the resolved spec is ``manifest["study"]`` (study runner) or ``manifest["spec"]``;
 - study name: ``spec["study"]["name"]``, ``spec["name"]`` or ``manifest["name"]``; default:
@@ -34,12 +35,15 @@ from typing import Any, Mapping
 
 import numpy as np
 import pandas as pd
+import pyarrow as pa
 
 from ..compare.table import REQUIRED_COLUMNS, add_derived_columns
+from ..study.store import MANIFEST, read_table
 
-__all__ = ["DIMENSIONLESS_AXES", "MANIFEST_NAMES", "Study", "load_study", "sweep_keys"]
+__all__ = ["DIMENSIONLESS_AXES", "MANIFEST_NAMES", "ResultSet", "Study", "load_results", "load_study", "numeric",
+           "sweep_keys"]
 
-MANIFEST_NAMES = ("_manifest.json", "manifest.json")
+MANIFEST_NAMES = (MANIFEST, "manifest.json")
 
 #: swept parameter column -> dimensionless column plotted instead (when it exists).
 DIMENSIONLESS_AXES = {
@@ -50,8 +54,8 @@ DIMENSIONLESS_AXES = {
 
 
 @dataclass(frozen=True)
-class Study:
-    """A loaded study.
+class ResultSet:
+    """The results of one study folder, ready for the report (alias ``Study``, deprecated).
 
     Attributes
     ----------
@@ -146,17 +150,90 @@ def sweep_keys(spec: Mapping[str, Any]) -> list[str]:
     return keys
 
 
-def _read_parquet_folder(path: Path) -> pd.DataFrame:
+def _part_files(path: Path) -> list[Path]:
     files = sorted(p for p in path.rglob("*.parquet") if not p.name.startswith((".", "_")))
     if not files:
         raise FileNotFoundError(f"no Parquet part files (*.parquet) under {path}")
+    return files
+
+
+def _read_parquet_folder(path: Path) -> pd.DataFrame:
+    """The result table of ``path``.
+
+    A runner folder (``_manifest.json``) is read with :func:`workbench.study.store.read_table`;
+    any other folder, or one whose parts do not share one schema (hand-written folders such as the
+    synthetic test studies), by concatenating every ``*.parquet`` part under it (tolerant path).
+    """
+    files = _part_files(path)
+    if (path / MANIFEST).exists():
+        try:
+            return read_table(path)
+        except pa.ArrowException:  # parts without one common schema: not written by ResultStore
+            pass
     frames = [pd.read_parquet(f) for f in files]
     frames = [f for f in frames if len(f.columns)]
     return pd.concat(frames, ignore_index=True, sort=False) if frames else pd.DataFrame()
 
 
-def load_study(data_dir: str | Path) -> Study:
-    """Load ``data/<study>/``: Parquet part files and (optional) ``manifest.json``.
+def _read_manifest(path: Path) -> dict[str, Any]:
+    mpath = next((path / n for n in MANIFEST_NAMES if (path / n).exists()), None)
+    if mpath is None:
+        return {}
+    try:
+        manifest = json.loads(mpath.read_text())
+    except json.JSONDecodeError as exc:
+        raise ValueError(f"{mpath} is not valid JSON: {exc}") from exc
+    if not isinstance(manifest, dict):
+        raise ValueError(f"{mpath} must hold a JSON object, got {type(manifest).__name__}")
+    return manifest
+
+
+def _varies(df: pd.DataFrame, ok: pd.DataFrame, col: str) -> bool:
+    """A numeric column with more than one value among the ok rows."""
+    if col not in df.columns:
+        return False
+    v = pd.to_numeric(ok[col], errors="coerce").dropna()
+    return v.nunique() > 1
+
+
+def _varies_categorical(df: pd.DataFrame, ok: pd.DataFrame, col: str) -> bool:
+    """A non-numeric column with more than one value among the ok rows."""
+    if col not in df.columns or not pd.to_numeric(ok[col], errors="coerce").isna().all():
+        return False
+    return ok[col].dropna().astype(str).nunique() > 1
+
+
+def _plot_axes(df: pd.DataFrame, ok: pd.DataFrame, spec: Mapping[str, Any], rep: Mapping[str, Any]) -> list[str]:
+    """The plotted axes: ``report.axes``, else the varying sweep keys, else varying ``p.*`` columns."""
+    def varies(col: str) -> bool:
+        return _varies(df, ok, col)
+
+    def any_varies(col: str) -> bool:
+        return varies(col) or _varies_categorical(df, ok, col)
+
+    axes: list[str] = []
+    for a in rep.get("axes") or []:
+        # numeric or categorical (e.g. robot.base_orientation) axes, named with or without "p."
+        for col in (str(a), f"p.{a}"):
+            if col in df.columns and any_varies(col):
+                axes.append(col)
+                break
+    if not axes:
+        for k in sweep_keys(spec):
+            col = k if k in df.columns else f"p.{k}"
+            if any_varies(col):
+                axes.append(col)
+    if not axes:
+        axes = [c for c in df.columns if str(c).startswith("p.") and varies(c)]
+        if len(axes) > 3:  # e.g. random sweeps varying many keys: keep the first three
+            axes = axes[:3]
+    if not rep.get("axes"):
+        axes = [DIMENSIONLESS_AXES[a] if varies(DIMENSIONLESS_AXES.get(a, "")) else a for a in axes]
+    return axes
+
+
+def load_results(data_dir: str | Path) -> ResultSet:
+    """Load ``data/<study>/``: Parquet part files and (optional) manifest.
 
     Raises
     ------
@@ -174,15 +251,7 @@ def load_study(data_dir: str | Path) -> Study:
         raise ValueError(f"result table in {path} lacks required column(s) {missing}")
     if "error" not in df.columns:
         df["error"] = ""
-    mpath = next((path / n for n in MANIFEST_NAMES if (path / n).exists()), None)
-    manifest: dict[str, Any] = {}
-    if mpath is not None:
-        try:
-            manifest = json.loads(mpath.read_text())
-        except json.JSONDecodeError as exc:
-            raise ValueError(f"{mpath} is not valid JSON: {exc}") from exc
-        if not isinstance(manifest, dict):
-            raise ValueError(f"{mpath} must hold a JSON object, got {type(manifest).__name__}")
+    manifest = _read_manifest(path)
     spec = _spec_of(manifest)
     rep = spec.get("report") if isinstance(spec.get("report"), Mapping) else {}
     derived = dict(rep.get("derived") or {})
@@ -190,52 +259,27 @@ def load_study(data_dir: str | Path) -> Study:
     inner = spec.get("study") if isinstance(spec.get("study"), Mapping) else {}
     name = str(inner.get("name") or spec.get("name") or manifest.get("name") or path.name)
     ok = df[df["status"].astype(str) == "ok"]
-
-    def varies(col: str) -> bool:
-        if col not in df.columns:
-            return False
-        v = pd.to_numeric(ok[col], errors="coerce").dropna()
-        return v.nunique() > 1
-
-    def varies_categorical(col: str) -> bool:
-        if col not in df.columns or not pd.to_numeric(ok[col], errors="coerce").isna().all():
-            return False
-        return ok[col].dropna().astype(str).nunique() > 1
-
-    axes: list[str] = []
-    for a in rep.get("axes") or []:
-        # numeric or categorical (e.g. robot.base_orientation) axes, named with or without "p."
-        for col in (str(a), f"p.{a}"):
-            if col in df.columns and (varies(col) or varies_categorical(col)):
-                axes.append(col)
-                break
-    if not axes:
-        for k in sweep_keys(spec):
-            col = k if k in df.columns else f"p.{k}"
-            if varies(col) or varies_categorical(col):
-                axes.append(col)
-    if not axes:
-        axes = [c for c in df.columns if str(c).startswith("p.") and varies(c)]
-        if len(axes) > 3:  # e.g. random sweeps varying many keys: keep the first three
-            axes = axes[:3]
-    if not rep.get("axes"):
-        axes = [DIMENSIONLESS_AXES[a] if varies(DIMENSIONLESS_AXES.get(a, "")) else a for a in axes]
-    categories = {a: tuple(sorted(ok[a].dropna().astype(str).unique())) for a in axes if varies_categorical(a)}
-    models = tuple(dict.fromkeys(df["model"].astype(str)))
-    reference = str(rep.get("reference") or "cc")
-    labels = {str(k): str(v) for k, v in (rep.get("labels") or {}).items()}
-    return Study(
+    axes = _plot_axes(df, ok, spec, rep)
+    categories = {a: tuple(sorted(ok[a].dropna().astype(str).unique())) for a in axes
+                  if _varies_categorical(df, ok, a)}
+    return ResultSet(
         name=name,
         path=path,
         results=df,
         manifest=manifest,
         axes=tuple(dict.fromkeys(axes)),
-        reference=reference,
-        models=models,
+        reference=str(rep.get("reference") or "cc"),
+        models=tuple(dict.fromkeys(df["model"].astype(str))),
         derived=derived,
-        labels=labels,
+        labels={str(k): str(v) for k, v in (rep.get("labels") or {}).items()},
         categories=categories,
     )
+
+
+#: Deprecated: use :class:`ResultSet` (the old name collides with :class:`workbench.study.Study`).
+Study = ResultSet
+#: Deprecated: use :func:`load_results` (the old name collides with :func:`workbench.study.load_study`).
+load_study = load_results
 
 
 def numeric(series: pd.Series) -> np.ndarray:

@@ -1,4 +1,7 @@
-"""Helpers of the study-specific report figures (workbench/report/_studies_b.py)."""
+"""The fruit-harvester grasp envelope and circle fit (workbench/experiments/fruit_harvester/envelope.py).
+
+Moved from tests/study/test_studies_b_report.py (assertions unchanged); the old import path
+(workbench.report._studies_b) is checked in tests/experiments/test_moved_names.py."""
 
 from __future__ import annotations
 
@@ -6,7 +9,7 @@ import math
 
 import numpy as np
 
-from workbench.report._studies_b import HARVESTER_LIMITS, circle_fit
+from workbench.experiments.fruit_harvester.envelope import HARVESTER_LIMITS, circle_fit
 
 
 def test_circle_fit_exact_on_an_arc():

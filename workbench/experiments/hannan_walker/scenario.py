@@ -1,0 +1,71 @@
+"""The ``hannan_walker_line`` scenario: cable commands of one sample of a CC line plan.
+
+Registered as ``registry.SCENARIOS["hannan_walker_line"]`` (format:
+:mod:`workbench.study.scenarios`).  The plan is :func:`.replay.cc_cable_plan`, the same pipeline
+the driver :func:`.replay.replay_hannan_walker` replays.  Pure numpy (imports the spring-link
+module, which imports Exudyn only when it solves).  Checked by ``tests/study/test_scenarios.py``.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from .replay import cc_cable_plan
+
+__all__ = ["hannan_walker_line"]
+
+
+def hannan_walker_line(
+    robot,
+    *,
+    shape: str = "line",
+    start_x: float = 0.25,
+    start_z: float = 0.70,
+    end_x: float = 0.35,
+    end_z: float = 0.60,
+    n_samples: int = 9,
+    sample: int = 0,
+    grasp_bend_angles: list | None = None,
+) -> dict[str, Any]:
+    """Cable commands of the Hannan & Walker trunk for one sample of a CC plan.
+
+    The planar CC resolved-rate controller (paper Eq 10-11, :func:`workbench.kinematics.follow_path`,
+    start curvatures ``0.1 / L``) tracks the straight end-point line from ``(start_x, start_z)``
+    to ``(end_x, end_z)`` (base x-z plane) in ``n_samples`` samples; the case is sample
+    ``sample`` (0-based).  ``shape = "line"``: no null-space task (paper's first example,
+    q_0 = 0).  ``shape = "grasp"``: the null-space term of Eq 11 pulls the configuration
+    towards the grasp configuration ``q_d`` given as section bend angles
+    ``grasp_bend_angles`` (kappa_i l_i [rad], planar sign: > 0 bends towards base +x) while the
+    tip stays on the line (paper's second example: approach with the grasp configuration).
+
+    Either way the section curvatures become equal joint angles per section (paper Eq 2-3) and
+    cable length changes from the jointed geometry of Eq 1
+    (:func:`.replay.cable_changes_from_joint_angles`), the exact cable geometry of the
+    spring-link chain.
+
+    Returns
+    -------
+    dict
+        ``mode = "length"``, ``length_changes`` (n_tendons,) [m].
+    """
+    ell = np.asarray(robot.section_lengths, dtype=float)
+    ns = robot.n_sections
+    if shape not in ("line", "grasp"):
+        raise ValueError(f"scenario hannan_walker_line: shape must be 'line' or 'grasp', got {shape!r}")
+    if n_samples < 2 or not 0 <= sample < n_samples:
+        raise ValueError(f"scenario hannan_walker_line needs n_samples >= 2 and 0 <= sample < n_samples, "
+                         f"got n_samples = {n_samples}, sample = {sample}")
+    kappa_d = None
+    if shape == "grasp":
+        if grasp_bend_angles is None or len(grasp_bend_angles) != ns:
+            raise ValueError(f"scenario hannan_walker_line: shape = 'grasp' needs grasp_bend_angles with {ns} "
+                             f"entries (one bend angle per section) [rad], got {grasp_bend_angles!r}")
+        kappa_d = np.asarray(grasp_bend_angles, dtype=float) / ell
+    plan = cc_cable_plan(robot, (start_x, start_z), (end_x, end_z), n_samples, kappa_d=kappa_d, n_links=16,
+                         sample=sample)
+    if not plan.success:
+        raise ValueError(f"scenario hannan_walker_line: the CC resolved-rate controller did not track the "
+                         f"line (max error {np.max(plan.tracking_error):.3g} m); the line is out of reach")
+    return {"mode": "length", "length_changes": [float(v) for v in np.asarray(plan.cable_changes).reshape(-1)]}

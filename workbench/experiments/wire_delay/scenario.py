@@ -1,0 +1,78 @@
+"""The ``wire_delay`` scenario: the tendon commands of one case of the wire-delay study.
+
+Registered as ``registry.SCENARIOS["wire_delay"]``; a study selects it with
+``[scenario] name = "wire_delay"`` (format: :mod:`workbench.study.scenarios`).  The commands come
+from :func:`.analysis.wire_delay_commands`, the same function the driver
+:func:`.analysis.simulate_wire_delay` uses.  Pure numpy.  Checked by
+``tests/study/test_scenarios.py``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from .analysis import wire_delay_commands
+
+__all__ = ["wire_delay"]
+
+
+def wire_delay(
+    robot,
+    *,
+    theta: float = math.pi / 4,
+    alpha: float = math.pi / 4,
+    move_time: float = 4.0,
+    delay: float = 0.0,
+    delayed_wire: int = 0,
+    settle_time: float = 1.0,
+) -> dict[str, Any]:
+    """Cojocaru's constant-speed wire move with one wire started late.
+
+    Every wire of the (one-section, three-wire, tronconic) robot moves at constant speed from
+    its straight length to its kinematic length at ``(theta, alpha)`` (paper Eq 5-11, via
+    :func:`.analysis.wire_lengths_from_arc_tronconic`; the workbench bending plane is
+    ``phi = alpha + pi``) in ``move_time``; wire ``delayed_wire`` starts ``delay`` seconds
+    late.  The simulated time is ``delay + move_time + settle_time``.
+
+    Parameters
+    ----------
+    robot : Robot
+        One section with exactly three tendons.
+    theta, alpha : float
+        Target bending angle and the paper's direction angle [rad] (paper: 45 deg, 45 deg).
+    move_time : float
+        Duration of each wire's ramp [s].
+    delay : float
+        Start delay of the late wire [s] (paper: 3 s), >= 0.
+    delayed_wire : int
+        Index of the late wire (paper's wire 1 -> 0).
+    settle_time : float
+        Simulated time after the last wire stops [s], >= 0.
+
+    Returns
+    -------
+    dict
+        ``mode = "length"``, ``length_changes`` (3,) [m], ``start_delays`` (3,) [s],
+        ``ramp_durations`` (3,) [s], ``analysis = "dynamic"``, ``duration`` [s],
+        ``ramp_time`` [s].
+    """
+    if robot.n_sections != 1 or robot.n_tendons != 3:
+        raise ValueError(f"scenario wire_delay needs a one-section robot with 3 tendons, got "
+                         f"{robot.n_sections} sections and {robot.n_tendons} tendons (set robot.n_sections = 1)")
+    if not (move_time > 0 and delay >= 0 and settle_time >= 0 and 0 <= theta < math.pi):
+        raise ValueError(f"scenario wire_delay needs move_time > 0, delay >= 0, settle_time >= 0, "
+                         f"0 <= theta < pi; got {move_time}, {delay}, {settle_time}, {theta}")
+    if delayed_wire not in (0, 1, 2):
+        raise ValueError(f"scenario wire_delay: delayed_wire must be 0, 1 or 2, got {delayed_wire!r}")
+    cmd = wire_delay_commands(robot, theta=theta, alpha=alpha, move_time=move_time, delay=delay,
+                              delayed_wire=delayed_wire)
+    return {
+        "mode": "length",
+        "length_changes": [float(v) for v in cmd.length_changes],
+        "start_delays": list(cmd.start_delays),
+        "ramp_durations": list(cmd.ramp_durations),
+        "analysis": "dynamic",
+        "duration": float(delay + move_time + settle_time),
+        "ramp_time": float(move_time),
+    }

@@ -1,0 +1,328 @@
+"""Generic report figures over the swept axes: tip error against each axis, and the validity map.
+
+:func:`error_vs_parameter_figures`: with one axis, tip / orientation / shape error of every model
+pair against it; with two or more, the tip error against each of the first two axes, one line
+per value of the other.  :func:`validity_map_figures`: a heat map of the CC tip error over the
+first two axes with contour lines at :data:`~.style.THRESHOLDS` (% of L), one panel per
+reference pair (and per value of a small categorical third axis).  Each figure's summary states
+where the error stays below the thresholds.  Checked by ``tests/report/test_report_build.py``
+and the report tier of ``tests/regression``.
+"""
+
+from __future__ import annotations
+
+from typing import Sequence
+
+import numpy as np
+import pandas as pd
+from matplotlib import colormaps, patheffects
+from matplotlib.cm import ScalarMappable
+from matplotlib.colors import LogNorm, Normalize
+from matplotlib.figure import Figure
+
+from .load import ResultSet, numeric
+from .style import (
+    THRESHOLDS,
+    ReportFigure,
+    _category_ticks,
+    _is_geometric,
+    _log_worthy,
+    _ref_pairs,
+    _slug,
+    _val,
+    axis_label,
+    fmt,
+    model_color,
+    pair_label,
+    short_label,
+)
+
+__all__ = ["error_vs_parameter_figures", "validity_map_figures"]
+
+_ONE_AXIS_METRICS = [
+    ("tip_error_pct", "tip position error [% L]"),
+    ("orientation_error_deg", "tip orientation error [deg]"),
+    ("shape_error_rms_pct", "RMS shape error [% L]"),
+]
+
+
+# --------------------------------------------------------------------------------------
+# error vs swept parameter
+# --------------------------------------------------------------------------------------
+def _below_statement(x: np.ndarray, err: np.ndarray, xname: str, what: str, cats: Sequence[str] | None = None) -> str:
+    """'stays below 1 % of L for x <= a' style statement (x sorted ascending).
+
+    For a categorical axis (``cats``: names of the codes in ``x``) the errors are listed."""
+    order = np.argsort(x)
+    x, err = x[order], err[order]
+    if cats:
+        return f"{what}: " + ", ".join(f"{cats[int(c)]} {fmt(e)} % of L" for c, e in zip(x, err)) + "."
+    parts = []
+    for t in THRESHOLDS:
+        below = err < t
+        if below.all():
+            parts.append(f"stays below {fmt(t)} % of L over the whole sweep")
+            break
+        if not below[0]:
+            continue
+        k = int(np.argmin(below))  # first index at/above threshold
+        parts.append(f"stays below {fmt(t)} % of L for {xname} ≤ {fmt(x[k - 1])}")
+    if not parts:
+        parts.append(f"exceeds {fmt(THRESHOLDS[-1])} % of L already at {xname} = {fmt(x[0])}")
+    i = int(np.nanargmax(err))
+    return f"{what} " + "; ".join(parts) + f" (max {fmt(err[i])} % at {xname} = {fmt(x[i])})."
+
+
+def _pair_rows(cmp: pd.DataFrame, ref: str, m: str) -> pd.DataFrame:
+    return cmp[(cmp["reference"] == ref) & (cmp["model"] == m)]
+
+
+def _metric_panel(ax, study: ResultSet, cmp: pd.DataFrame, a: str, pairs, col: str, texts: list) -> None:
+    """One metric against axis ``a``, a line per model pair (the reference pairs solid)."""
+    allv = []
+    for ref, m in pairs:
+        sub = _pair_rows(cmp, ref, m)
+        x, y = numeric(sub[a]), numeric(sub[col])
+        o = np.argsort(x)
+        x, y = x[o], y[o]
+        is_ref = ref == study.reference
+        ax.plot(x, y, marker="o" if is_ref else "s", ms=3.5 if is_ref else 3,
+                color=model_color(m, study.models) if is_ref else "0.45",
+                ls="-" if is_ref else (":", "-.", "--")[len(allv) % 3], label=pair_label(ref, m))
+        allv.append(y)
+        if col == "tip_error_pct" and is_ref and np.isfinite(y).any():
+            good = np.isfinite(y)
+            texts.append(_below_statement(x[good], y[good], short_label(a, study.labels), f"{pair_label(ref, m)}: tip error",
+                                          study.categories.get(a)))
+    v = np.concatenate(allv) if allv else np.array([])
+    if _log_worthy(v):
+        ax.set_yscale("log")
+    elif np.isfinite(v).any() and np.nanmin(v) >= 0:
+        ax.set_ylim(bottom=0, top=1.08 * np.nanmax(v) if np.nanmax(v) > 0 else 1)
+    if _is_geometric(numeric(cmp[a])):
+        ax.set_xscale("log")
+    ax.set_xlabel(axis_label(a, study.labels))
+    _category_ticks(ax, study, a, "x")
+
+
+def _errors_one_axis(study: ResultSet, cmp: pd.DataFrame, a: str, pairs) -> ReportFigure:
+    metrics = [m for m in _ONE_AXIS_METRICS if m[0] in cmp and np.isfinite(numeric(cmp[m[0]])).any()]
+    fig = Figure(figsize=(3.6 * len(metrics) + 0.4, 3.5), layout="constrained")
+    axs = np.atleast_1d(fig.subplots(1, len(metrics), squeeze=False)[0])
+    texts: list[str] = []
+    for ax, (col, lab) in zip(axs, metrics):
+        _metric_panel(ax, study, cmp, a, pairs, col, texts)
+        ax.set_ylabel(lab)
+    axs[0].legend(frameon=False)
+    return ReportFigure(f"error_vs_{_slug(a)}", f"Errors vs {short_label(a, study.labels)}", fig,
+                        " ".join(texts) or "Errors of each model pair along the sweep.")
+
+
+def _colour_lines(axs, study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str, main, norm, cmap) -> np.ndarray:
+    """Tip error against ``x_ax``, one line per ``c_ax`` value (worst over the rest); all plotted values."""
+    allv = []
+    for ax, (ref, m) in zip(axs, main):
+        sub = _pair_rows(cmp, ref, m)
+        g = sub.assign(_x=numeric(sub[x_ax]), _c=numeric(sub[c_ax]), _e=numeric(sub["tip_error_pct"]))
+        g = g.groupby(["_c", "_x"], as_index=False)["_e"].max()
+        for cv, gg in g.groupby("_c"):
+            gg = gg.sort_values("_x")
+            ax.plot(gg["_x"], gg["_e"], marker="o", ms=3, color=cmap(norm(cv)))
+            allv.append(gg["_e"].to_numpy())
+        ax.set_title(pair_label(ref, m))
+        ax.set_xlabel(axis_label(x_ax, study.labels))
+        _category_ticks(ax, study, x_ax, "x")
+        if _is_geometric(numeric(cmp[x_ax])):
+            ax.set_xscale("log")
+    return np.concatenate(allv) if allv else np.array([])
+
+
+def _two_axes_summary(study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str, main, axes) -> str:
+    texts = []
+    for ref, m in main:
+        sub = _pair_rows(cmp, ref, m)
+        lo_c = np.nanmin(numeric(sub[c_ax]))
+        s2 = sub[numeric(sub[c_ax]) == lo_c]
+        x, y = numeric(s2[x_ax]), numeric(s2["tip_error_pct"])
+        good = np.isfinite(x) & np.isfinite(y)
+        if good.any():
+            lo_txt = study.categories[c_ax][int(lo_c)] if c_ax in study.categories else fmt(lo_c)
+            texts.append(_below_statement(x[good], y[good], short_label(x_ax, study.labels),
+                                          f"{pair_label(ref, m)} at {short_label(c_ax, study.labels)} = {lo_txt}: tip error",
+                                          study.categories.get(x_ax)))
+    rest = [short_label(a, study.labels) for a in axes[2:]]
+    worst = f" (worst case over {', '.join(rest)})" if rest else ""
+    return (f"Tip error vs {short_label(x_ax, study.labels)}, one line per value of "
+            f"{short_label(c_ax, study.labels)} (colour){worst}; dotted lines at 1, 5, 10 % of L. " + " ".join(texts))
+
+
+def _errors_two_axes(study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str, main, axes) -> ReportFigure:
+    n = len(main)
+    fig = Figure(figsize=(3.7 * n + 1.0, 3.5), layout="constrained")
+    axs = np.atleast_1d(fig.subplots(1, n, squeeze=False)[0])
+    cvals = np.unique(numeric(cmp[c_ax])[np.isfinite(numeric(cmp[c_ax]))])
+    norm = (LogNorm if _is_geometric(cvals) else Normalize)(vmin=cvals.min(), vmax=cvals.max())
+    cmap = colormaps["viridis"]
+    v = _colour_lines(axs, study, cmp, x_ax, c_ax, main, norm, cmap)
+    for ax in axs:
+        if _log_worthy(v):
+            ax.set_yscale("log")
+        elif np.isfinite(v).any() and np.nanmin(v) >= 0:
+            ax.set_ylim(bottom=0)
+        for t in THRESHOLDS:
+            ax.axhline(t, color="0.5", lw=0.7, ls=":")
+    axs[0].set_ylabel("tip position error [% L]")
+    cb = fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=list(axs), shrink=0.9)
+    cb.set_label(axis_label(c_ax, study.labels))
+    if c_ax in study.categories:
+        cb.set_ticks(range(len(study.categories[c_ax])), labels=study.categories[c_ax])
+    summary = _two_axes_summary(study, cmp, x_ax, c_ax, main, axes)
+    return ReportFigure(f"error_vs_{_slug(x_ax)}", f"Tip error vs {short_label(x_ax, study.labels)}", fig, summary)
+
+
+def error_vs_parameter_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFigure]:
+    """One ``error_vs_<axis>`` figure for one swept axis, two (one per axis) for more."""
+    axes = list(study.axes)
+    pairs = _ref_pairs(cmp, study.reference)
+    if not axes or not pairs or cmp.empty:
+        return []
+    if len(axes) == 1:
+        return [_errors_one_axis(study, cmp, axes[0], pairs)]
+    # two or more axes: one figure per plotted axis, lines for the other axis' values
+    a0, a1 = axes[0], axes[1]
+    main = [p for p in pairs if p[0] == study.reference] or pairs
+    return [_errors_two_axes(study, cmp, x_ax, c_ax, main, axes) for x_ax, c_ax in ((a0, a1), (a1, a0))]
+
+
+# --------------------------------------------------------------------------------------
+# validity map
+# --------------------------------------------------------------------------------------
+def _facet_axis(study: ResultSet, axes: Sequence[str]) -> str | None:
+    """A categorical third axis with a few values: one validity-map panel per category."""
+    if len(axes) >= 3 and axes[2] in study.categories and 2 <= len(study.categories[axes[2]]) <= 4:
+        return axes[2]
+    return None
+
+
+def _contours(ax, xs, ys, E, Em) -> None:
+    if xs.size >= 2 and ys.size >= 2 and np.isfinite(E).sum() >= 4:
+        levels = [t for t in THRESHOLDS if np.nanmin(E) < t < np.nanmax(E)]
+        if levels:
+            cs = ax.contour(xs, ys, Em, levels=levels, colors="white", linewidths=1.5)
+            cs.set(path_effects=[patheffects.withStroke(linewidth=3.0, foreground="black")])
+            for t in ax.clabel(cs, fmt=lambda v: f"{v:g} %", fontsize=8.5, colors="black"):
+                t.set_path_effects([patheffects.withStroke(linewidth=2.5, foreground="white")])
+
+
+def _mark_missing(ax, xs, ys, E) -> bool:
+    """Cross out failed / missing grid cells; True when there were any."""
+    if not np.isnan(E).any():
+        return False
+    yy, xx = np.nonzero(np.isnan(E))
+    ax.plot(xs[xx], ys[yy], "x", color="0.3", ms=7, mew=1.5)
+    for x_, y_ in zip(xs[xx], ys[yy]):
+        ax.annotate("failed", (x_, y_), xytext=(0, 7), textcoords="offset points", ha="center",
+                    va="bottom", fontsize=7.5, color="0.3")
+    return True
+
+
+def _validity_text(study: ResultSet, ref: str, m: str, where: str, xs, ys, E, a0: str, a1: str) -> str:
+    tot = np.isfinite(E).sum()
+    frac = [100.0 * np.sum(E[np.isfinite(E)] < t) / tot for t in THRESHOLDS]
+    iy, ix = np.unravel_index(np.nanargmax(E), E.shape)
+    return (
+        f"{pair_label(ref, m)}{where}: CC tip error is below 1 % of L in {fmt(frac[0])} % of the {tot} swept points, "
+        f"below 5 % in {fmt(frac[1])} %, below 10 % in {fmt(frac[2])} %; worst {fmt(E[iy, ix])} % at "
+        f"{short_label(a0, study.labels)} = {_val(study, a0, xs[ix])}, {short_label(a1, study.labels)} = {_val(study, a1, ys[iy])}."
+        + _region_statement(xs, ys, E, a0, a1, study)
+    )
+
+
+def _validity_panel(ax, study: ResultSet, cmp: pd.DataFrame, panel, facet, a0: str, a1: str, norm):
+    """Draw one heat map; return ``(mesh, sentence, missing cells?)`` or ``None`` for an empty panel."""
+    ref, m, fv = panel
+    sub = _pair_rows(cmp, ref, m)
+    where = ""
+    if facet is not None:
+        sub = sub[numeric(sub[facet]) == fv]
+        where = f" ({study.categories[facet][int(fv)]})"
+    g = pd.DataFrame({"x": numeric(sub[a0]), "y": numeric(sub[a1]), "e": numeric(sub["tip_error_pct"])})
+    g = g.dropna().groupby(["y", "x"])["e"].max().unstack("x")  # worst over other axes
+    if g.empty:
+        ax.set_axis_off()
+        return None
+    xs, ys, E = g.columns.to_numpy(float), g.index.to_numpy(float), g.to_numpy(float)
+    Em = np.ma.masked_invalid(E)
+    mesh = ax.pcolormesh(xs, ys, Em, shading="nearest", cmap="magma_r", norm=norm)
+    _contours(ax, xs, ys, E, Em)
+    ax.set_xscale("log" if _is_geometric(xs) else "linear")
+    ax.set_yscale("log" if _is_geometric(ys) else "linear")
+    ax.grid(False)
+    ax.set_xlabel(axis_label(a0, study.labels))
+    _category_ticks(ax, study, a0, "x")
+    _category_ticks(ax, study, a1, "y")
+    ax.set_title(pair_label(ref, m) + where)
+    missing = _mark_missing(ax, xs, ys, E)
+    return mesh, _validity_text(study, ref, m, where, xs, ys, E, a0, a1), missing
+
+
+def validity_map_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFigure]:
+    """The ``validity_map`` figure (needs two swept axes)."""
+    axes = list(study.axes)
+    if len(axes) < 2 or cmp.empty:
+        return []
+    a0, a1 = axes[0], axes[1]
+    pairs = [p for p in _ref_pairs(cmp, study.reference) if p[0] == study.reference] or _ref_pairs(cmp, study.reference)
+    if not pairs:
+        return []
+    facet = _facet_axis(study, axes)
+    facet_vals: list[float | None] = (list(range(len(study.categories[facet]))) if facet else [None])
+    panels = [(ref, m, fv) for ref, m in pairs for fv in facet_vals]
+    n = len(panels)
+    fig = Figure(figsize=(4.0 * n + 1.2, 3.8), layout="constrained")
+    axs = np.atleast_1d(fig.subplots(1, n, squeeze=False, sharey=True)[0])
+    allv = numeric(cmp["tip_error_pct"])
+    allv = allv[np.isfinite(allv) & (allv > 0)]
+    if allv.size == 0:
+        return []
+    use_log = allv.max() / allv.min() > 20
+    norm = LogNorm(vmin=allv.min(), vmax=allv.max()) if use_log else Normalize(vmin=0, vmax=allv.max())
+    texts = []
+    mesh = None
+    missing_note = False
+    for ax, panel in zip(axs, panels):
+        drawn = _validity_panel(ax, study, cmp, panel, facet, a0, a1, norm)
+        if drawn is not None:
+            mesh, text, missing = drawn
+            texts.append(text)
+            missing_note = missing_note or missing
+    if mesh is None:
+        return []
+    axs[0].set_ylabel(axis_label(a1, study.labels))
+    cb = fig.colorbar(mesh, ax=list(axs), shrink=0.95)
+    cb.set_label("CC tip position error [% L]")
+    if missing_note:
+        texts.append("Blank cells marked × are failed or missing cases (excluded).")
+    rest = [a for a in axes[2:] if a != facet]
+    extra = f" (maximum over {', '.join(short_label(a, study.labels) for a in rest)})" if rest else ""
+    per = f", one panel per {short_label(facet, study.labels)}" if facet else ""
+    summary = "Validity map: heat map of the tip error, contour lines at 1 %, 5 % and 10 % of L" + per + extra + ". " + " ".join(texts)
+    return [ReportFigure("validity_map", "Validity map of constant curvature", fig, summary)]
+
+
+def _region_statement(xs, ys, E, a0, a1, study: ResultSet) -> str:
+    """'below 1 % for all y when x <= ...' from the full-column criterion."""
+    labels = study.labels
+    if a0 in study.categories or a1 in study.categories:
+        return ""
+    col_ok = np.all(np.where(np.isfinite(E), E < THRESHOLDS[0], True), axis=0)
+    if col_ok.any() and not col_ok.all() and col_ok[0]:
+        k = int(np.argmin(col_ok))
+        return (f" Below 1 % for every {short_label(a1, labels)} in the sweep as long as "
+                f"{short_label(a0, labels)} ≤ {fmt(xs[k - 1])}.")
+    row_ok = np.all(np.where(np.isfinite(E), E < THRESHOLDS[0], True), axis=1)
+    if row_ok.any() and not row_ok.all() and row_ok[0]:
+        k = int(np.argmin(row_ok))
+        return (f" Below 1 % for every {short_label(a0, labels)} in the sweep as long as "
+                f"{short_label(a1, labels)} ≤ {fmt(ys[k - 1])}.")
+    return ""
