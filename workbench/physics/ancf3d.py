@@ -23,18 +23,17 @@ transverse slope components are fixed; the axial slope component is left free (f
 forbids axial strain at the clamp).  The cable runs along the base z axis directly (no
 internal frame).
 
-Static analysis: own load ramp (all loads scale with lambda 0 -> 1, one ``SolveStatic`` per
-increment with ``updateInitialValues=True``, halving on failure, at most
-``options.max_load_steps`` attempts).  Dynamic analysis: generalised-alpha from the static
-equilibrium; loads are constant, so a dynamic run stays at rest (there is nothing in this
-model to drive it); damping ``options.damping`` = beta [s] multiplies the bending and
-axial stiffness (``bendingDamping = beta EI``, ``axialDamping = beta EA``).
+Static analysis: all loads scale with lambda 0 -> 1 through :func:`workbench.physics._stepping.ramp`
+(one ``SolveStatic`` per increment, doubling capped at the remaining load, halving on failure, at
+most ``options.max_load_steps`` attempts).  Dynamic analysis: generalised-alpha from the static
+equilibrium; loads are constant, so a dynamic run stays at rest (nothing in this model drives it);
+damping ``options.damping`` = beta [s]: ``bendingDamping = beta EI``, ``axialDamping = beta EA``.
 
 Outputs: positions from the element's own (cubic Hermite) interpolation at the stations;
-``tip_frame`` z axis = the unit tip tangent, x/y axes = the base x/y axes parallel-
-transported along the node tangents (successive minimal rotations; the cable has no
-material frame); ``tip_twist`` = 0; ``length_change`` = integral of ``|r'| - 1`` by
-3-point Gauss quadrature per element; ``tendon_tensions`` = zeros.
+``tip_frame`` z axis = the unit tip tangent, x/y axes = the base x/y axes parallel-transported
+along the node tangents (the cable has no material frame); ``tip_twist`` = 0; ``length_change`` =
+integral of ``|r'| - 1`` (3-point Gauss per element); ``tendon_tensions`` = zeros.
+Checked by ``tests/physics/test_ancf3d.py`` and the ``ancf3d`` comparisons in ``test_beam3d.py``.
 """
 
 from __future__ import annotations
@@ -46,11 +45,15 @@ import numpy as np
 from ..models.inputs import check_model_inputs
 from ..models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ..robot import LoadCase, Robot
+from ._stepping import RampExhausted, RampPolicy, RampStalled, ramp
 from .beam3d import element_layout
 
 __all__ = ["run"]
 
 _MIN_INCREMENT = 1e-6
+#: doubling capped at the load still to go, halving on failure (the step sequence of this model)
+_RAMP_POLICY = RampPolicy(first_increment=1.0, growth=2.0, grow_after=1, cap="remaining",
+                          min_increment=_MIN_INCREMENT, end_tolerance=1e-14)
 
 
 def _check(robot: Robot, load: LoadCase, options: SolverOptions) -> None:
@@ -87,6 +90,144 @@ def _bishop_tip_frame(tangents: np.ndarray) -> np.ndarray:
     return R
 
 
+class _System:
+    """The assembled Exudyn system of one ancf3d solve: cable, clamp, masses and the ramped loads.
+
+    ``loads`` lists ``(load index, full vector)`` in the order added: gravity on the elements and
+    on the node masses (disks lumped linearly onto their element's nodes, the payload on the tip),
+    then the tip force.
+    """
+
+    def __init__(self, robot: Robot, load: LoadCase, options: SolverOptions):
+        import exudyn as exu
+        from exudyn.itemInterface import LoadForceVector, MarkerNodePosition, NodePointSlope1, ObjectANCFCable
+
+        from ._exudyn import add_gravity_loads, add_point_masses, clamp_coordinates, lumped_disk_masses
+
+        self.exu = exu
+        self.SC = exu.SystemContainer()
+        mbs = self.mbs = self.SC.AddSystem()
+        node_s, elem_sec = element_layout(robot, options.n_elements)
+        self.node_s, self.elem_len = node_s, np.diff(node_s)
+        starts = np.concatenate([[0.0], robot.section_ends[:-1]])
+        self.nodes = [mbs.AddNode(NodePointSlope1(referenceCoordinates=[0, 0, float(s), 0, 0, 1])) for s in node_s]
+        self.elements = []
+        for e, j in enumerate(elem_sec):
+            sec = robot.sections[int(j)]
+            cs = sec.cross_section_at((0.5 * (node_s[e] + node_s[e + 1]) - starts[j]) / sec.length)
+            self.elements.append(mbs.AddObject(ObjectANCFCable(
+                nodeNumbers=[self.nodes[e], self.nodes[e + 1]], length=float(self.elem_len[e]),
+                massPerLength=cs.mass_per_length, bendingStiffness=cs.EI, axialStiffness=cs.EA,
+                bendingDamping=options.damping * cs.EI, axialDamping=options.damping * cs.EA,
+                useReducedOrderIntegration=2,
+            )))
+        clamp_coordinates(mbs, self.nodes[0], (0, 1, 2, 3, 4))  # position and the transverse slopes x', y'
+        lumped = lumped_disk_masses(robot, node_s)
+        lumped[-1] += robot.payload.mass
+        points = add_point_masses(mbs, self.nodes, lumped)
+        g = robot.gravity_in_base()
+        self.loads = [(ld, g) for ld in add_gravity_loads(mbs, self.elements + points)] if np.any(g != 0) else []
+        F = np.asarray(load.tip_force)
+        if np.any(F != 0):
+            mt = mbs.AddMarker(MarkerNodePosition(nodeNumber=self.nodes[-1]))
+            self.loads.append((mbs.AddLoad(LoadForceVector(markerNumber=mt, loadVector=[0, 0, 0])), F))
+        mbs.Assemble()
+
+    def tip_position(self) -> np.ndarray:
+        """Tip node position ``(3,)`` [m] (base frame)."""
+        return np.asarray(self.mbs.GetNodeOutput(self.nodes[-1], self.exu.OutputVariableType.Position))
+
+    def positions(self, stations: np.ndarray) -> np.ndarray:
+        """Centreline points at reference stations by the element's own interpolation, ``(m, 3)`` [m]."""
+        out = np.empty((stations.size, 3))
+        for i, s in enumerate(stations):
+            e = min(max(int(np.searchsorted(self.node_s, s, side="left")) - 1, 0), len(self.elements) - 1)
+            out[i] = self.mbs.GetObjectOutputBody(
+                self.elements[e], self.exu.OutputVariableType.Position, localPosition=[float(s - self.node_s[e]), 0, 0]
+            )
+        return out
+
+    def length_change(self) -> float:
+        """Integral of ``|r'| - 1`` over the cable (3-point Gauss per element) [m]."""
+        gp = np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)])
+        gw = np.array([5.0, 8.0, 5.0]) / 9.0
+        dl = 0.0
+        for el, Le in zip(self.elements, self.elem_len):
+            for x, w in zip(gp, gw):
+                d1 = self.mbs.GetObjectOutputBody(el, self.exu.OutputVariableType.Director1,
+                                                  localPosition=[0.5 * Le * (1 + x), 0, 0])
+                dl += 0.5 * Le * w * (np.linalg.norm(d1) - 1.0)
+        return float(dl)
+
+    def tip_frame(self) -> np.ndarray:
+        """Base <- tip ``(4, 4)``: z = unit tip tangent, x/y parallel-transported along the node tangents."""
+        coords = self.exu.OutputVariableType.Coordinates
+        tangents = np.array([self.mbs.GetNodeOutput(n, coords)[3:6] + np.array([0, 0, 1.0]) for n in self.nodes])
+        tip = np.eye(4)
+        tip[:3, :3] = _bishop_tip_frame(tangents)
+        tip[:3, 3] = self.tip_position()
+        return tip
+
+
+def _ramp_static(system: _System, options: SolverOptions) -> tuple[int, int]:
+    """Load ramp lambda: 0 -> 1 (``_RAMP_POLICY``); returns (accepted increments, attempts)."""
+    from ._exudyn import ode2_saver, set_load_factor, static_settings
+
+    exu, mbs = system.exu, system.mbs
+    settings = static_settings(options, 1)
+    settings.staticSolver.adaptiveStep = False
+
+    def attempt(lam: float) -> bool:
+        set_load_factor(mbs, system.loads, lam)
+        try:
+            exu.SolveStatic(mbs, settings, updateInitialValues=True)
+        except exu.SolverError:
+            return False
+        return bool(np.all(np.isfinite(mbs.systemData.GetODE2Coordinates())))
+
+    save, restore = ode2_saver(mbs, with_ae=False)
+    try:
+        info = ramp(attempt, save, restore, max_attempts=options.max_load_steps, policy=_RAMP_POLICY)
+    except RampExhausted as stop:
+        raise ModelFailure(
+            f"ancf3d: static load ramp needs more than max_load_steps={options.max_load_steps} "
+            f"increments (reached lambda={stop.lam:.4g})"
+        ) from None
+    except RampStalled as stop:
+        raise ModelFailure(f"ancf3d: static solve failed (increment below {_MIN_INCREMENT} at lambda={stop.lam:.4g})") from None
+    return info.accepted, info.attempts
+
+
+def _dynamic(system: _System, load: LoadCase, options: SolverOptions) -> tuple[np.ndarray, dict, int]:
+    """Generalised-alpha from the current state; returns (times, series, n_steps)."""
+    from ._exudyn import dynamic_settings
+
+    exu = system.exu
+    sim = dynamic_settings(options, load.duration)
+    rec_t, rec_p = [], []
+    n_steps = sim.timeIntegration.numberOfSteps
+    h = load.duration / n_steps
+    every = max(1, int(round(max(h, load.duration / 1000.0) / h)))
+    counter = {"k": 0}
+
+    def pre_step(mbs_, t):
+        # Exudyn passes the end time of the coming step; the state is at t - h
+        if counter["k"] % every == 0:
+            rec_t.append(float(t) - h)
+            rec_p.append(np.asarray(mbs_.GetNodeOutput(system.nodes[-1], exu.OutputVariableType.Position)))
+        counter["k"] += 1
+        return True
+
+    system.mbs.SetPreStepUserFunction(pre_step)
+    try:
+        exu.SolveDynamic(system.mbs, sim, solverType=exu.DynamicSolverType.GeneralizedAlpha)
+    except exu.SolverError as err:
+        raise ModelFailure(f"ancf3d: dynamic solve failed: {err}") from None
+    rec_t.append(float(load.duration))
+    rec_p.append(system.tip_position())
+    return np.asarray(rec_t), {"tip_position": np.asarray(rec_p)}, n_steps
+
+
 def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     """Solve the spatial ANCF cable backbone (model ``"ancf3d"``).
 
@@ -110,158 +251,22 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     ModelFailure
         Unsupported load (tendons, torque, payload offset) or a failed static ramp.
     """
-    import exudyn as exu
-    from exudyn.itemInterface import (
-        CoordinateConstraint,
-        LoadForceVector,
-        LoadMassProportional,
-        MarkerBodyMass,
-        MarkerNodeCoordinate,
-        MarkerNodePosition,
-        NodePointGround,
-        NodePointSlope1,
-        ObjectANCFCable,
-        ObjectMassPoint,
-    )
-
-    from ._exudyn import dynamic_settings, quiet_exudyn, static_settings
+    from ._exudyn import quiet_exudyn
 
     _check(robot, load, options)
     t_wall = _time.perf_counter()
-    node_s, elem_sec = element_layout(robot, options.n_elements)
-    elem_len = np.diff(node_s)
-    starts = np.concatenate([[0.0], robot.section_ends[:-1]])
-    g = robot.gravity_in_base()
     with quiet_exudyn():
-        SC = exu.SystemContainer()
-        mbs = SC.AddSystem()
-        nodes = [mbs.AddNode(NodePointSlope1(referenceCoordinates=[0, 0, float(s), 0, 0, 1])) for s in node_s]
-        elements = []
-        for e, j in enumerate(elem_sec):
-            sec = robot.sections[int(j)]
-            cs = sec.cross_section_at((0.5 * (node_s[e] + node_s[e + 1]) - starts[j]) / sec.length)
-            elements.append(
-                mbs.AddObject(
-                    ObjectANCFCable(
-                        nodeNumbers=[nodes[e], nodes[e + 1]], length=float(elem_len[e]),
-                        massPerLength=cs.mass_per_length, bendingStiffness=cs.EI, axialStiffness=cs.EA,
-                        bendingDamping=options.damping * cs.EI, axialDamping=options.damping * cs.EA,
-                        useReducedOrderIntegration=2,
-                    )
-                )
-            )
-        ng = mbs.AddNode(NodePointGround())
-        mg = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=ng, coordinate=0))
-        for k in (0, 1, 2, 3, 4):  # position and the transverse slope components x', y'
-            mk = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nodes[0], coordinate=k))
-            mbs.AddObject(CoordinateConstraint(markerNumbers=[mg, mk]))
-        loads = []
-        has_g = bool(np.any(g != 0))
-        if has_g:
-            for el in elements:
-                mm = mbs.AddMarker(MarkerBodyMass(bodyNumber=el))
-                loads.append((mbs.AddLoad(LoadMassProportional(markerNumber=mm, loadVector=[0, 0, 0])), g))
-        lumped = np.zeros(len(nodes))
-        for j, sec in enumerate(robot.sections):
-            if sec.disk_mass > 0:
-                for sd in starts[j] + sec.disk_positions():
-                    e = min(max(int(np.searchsorted(node_s, sd, side="left")) - 1, 0), len(elements) - 1)
-                    w1 = (sd - node_s[e]) / elem_len[e]
-                    lumped[e] += sec.disk_mass * (1.0 - w1)
-                    lumped[e + 1] += sec.disk_mass * w1
-        lumped[-1] += robot.payload.mass
-        for i, m in enumerate(lumped):
-            if m > 0 and i > 0:
-                mp = mbs.AddObject(ObjectMassPoint(nodeNumber=nodes[i], mass=float(m)))
-                if has_g:
-                    mm = mbs.AddMarker(MarkerBodyMass(bodyNumber=mp))
-                    loads.append((mbs.AddLoad(LoadMassProportional(markerNumber=mm, loadVector=[0, 0, 0])), g))
-        F = np.asarray(load.tip_force)
-        if np.any(F != 0):
-            mt = mbs.AddMarker(MarkerNodePosition(nodeNumber=nodes[-1]))
-            loads.append((mbs.AddLoad(LoadForceVector(markerNumber=mt, loadVector=[0, 0, 0])), F))
-        mbs.Assemble()
-
-        settings = static_settings(options, 1)
-        settings.staticSolver.adaptiveStep = False
-        lam, dlam, accepted, attempts = 0.0, 1.0, 0, 0
-        while lam < 1.0 - 1e-14:
-            if attempts >= options.max_load_steps:
-                raise ModelFailure(
-                    f"ancf3d: static load ramp needs more than max_load_steps={options.max_load_steps} "
-                    f"increments (reached lambda={lam:.4g})"
-                )
-            attempts += 1
-            target = min(1.0, lam + dlam)
-            q0 = np.asarray(mbs.systemData.GetODE2Coordinates(configuration=exu.ConfigurationType.Initial))
-            for ld, v in loads:
-                mbs.SetLoadParameter(ld, "loadVector", [float(x) for x in target * np.asarray(v)])
-            ok = True
-            try:
-                exu.SolveStatic(mbs, settings, updateInitialValues=True)
-                ok = bool(np.all(np.isfinite(mbs.systemData.GetODE2Coordinates())))
-            except exu.SolverError:
-                ok = False
-            if ok:
-                lam = target
-                accepted += 1
-                dlam = min(2.0 * dlam, max(1.0 - lam, 1e-14))
-            else:
-                mbs.systemData.SetODE2Coordinates(q0, configuration=exu.ConfigurationType.Initial)
-                mbs.systemData.SetODE2Coordinates(q0, configuration=exu.ConfigurationType.Current)
-                dlam *= 0.5
-                if dlam < _MIN_INCREMENT:
-                    raise ModelFailure(f"ancf3d: static solve failed (increment below {_MIN_INCREMENT} at lambda={lam:.4g})")
-        times = None
-        series: dict[str, np.ndarray] = {}
-        extras = {"n_elements": float(len(elements)), "load_steps": float(accepted)}
+        system = _System(robot, load, options)
+        accepted, attempts = _ramp_static(system, options)
+        times, series = None, {}
+        extras = {"n_elements": float(len(system.elements)), "load_steps": float(accepted)}
         if load.analysis == "dynamic":
-            sim = dynamic_settings(options, load.duration)
-            rec_t, rec_p = [], []
-            n_steps = sim.timeIntegration.numberOfSteps
-            h = load.duration / n_steps
-            every = max(1, int(round(max(h, load.duration / 1000.0) / h)))
-            counter = {"k": 0}
-
-            def pre_step(mbs_, t):
-                # Exudyn passes the end time of the coming step; the state is at t - h
-                if counter["k"] % every == 0:
-                    rec_t.append(float(t) - h)
-                    rec_p.append(np.asarray(mbs_.GetNodeOutput(nodes[-1], exu.OutputVariableType.Position)))
-                counter["k"] += 1
-                return True
-
-            mbs.SetPreStepUserFunction(pre_step)
-            try:
-                exu.SolveDynamic(mbs, sim, solverType=exu.DynamicSolverType.GeneralizedAlpha)
-            except exu.SolverError as err:
-                raise ModelFailure(f"ancf3d: dynamic solve failed: {err}") from None
-            rec_t.append(float(load.duration))
-            rec_p.append(np.asarray(mbs.GetNodeOutput(nodes[-1], exu.OutputVariableType.Position)))
-            times = np.asarray(rec_t)
-            series = {"tip_position": np.asarray(rec_p)}
+            times, series, n_steps = _dynamic(system, load, options)
             extras["n_steps"] = float(n_steps)
-
         stations = np.linspace(0.0, robot.length, options.n_stations)
-        positions = np.empty((stations.size, 3))
-        for i, s in enumerate(stations):
-            e = min(max(int(np.searchsorted(node_s, s, side="left")) - 1, 0), len(elements) - 1)
-            positions[i] = mbs.GetObjectOutputBody(
-                elements[e], exu.OutputVariableType.Position, localPosition=[float(s - node_s[e]), 0, 0]
-            )
-        tangents = np.array(
-            [mbs.GetNodeOutput(n, exu.OutputVariableType.Coordinates)[3:6] + np.array([0, 0, 1.0]) for n in nodes]
-        )
-        gp = np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)])
-        gw = np.array([5.0, 8.0, 5.0]) / 9.0
-        dl = 0.0
-        for el, Le in zip(elements, elem_len):
-            for x, w in zip(gp, gw):
-                d1 = mbs.GetObjectOutputBody(el, exu.OutputVariableType.Director1, localPosition=[0.5 * Le * (1 + x), 0, 0])
-                dl += 0.5 * Le * w * (np.linalg.norm(d1) - 1.0)
-        tip = np.eye(4)
-        tip[:3, :3] = _bishop_tip_frame(tangents)
-        tip[:3, 3] = mbs.GetNodeOutput(nodes[-1], exu.OutputVariableType.Position)
+        positions = system.positions(stations)
+        dl = system.length_change()
+        tip = system.tip_frame()
     if not (np.all(np.isfinite(positions)) and np.all(np.isfinite(tip))):
         raise ModelFailure("ancf3d: non-finite state after the solve")
     return PhysicsResult(
@@ -269,7 +274,7 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
         stations=stations,
         positions=positions,
         tip_frame=tip,
-        length_change=float(dl),
+        length_change=dl,
         tendon_tensions=np.zeros(robot.n_tendons),
         tip_twist=0.0,
         solver=SolverInfo(converged=True, iterations=attempts, wall_time=_time.perf_counter() - t_wall, message="ok"),

@@ -9,7 +9,8 @@
   tensions around any tension-controlled equilibrium solver (semismooth quasi-Newton with
   Broyden updates).
 * :func:`ramp_load` -- adaptive load stepping (halve on failure, cap on steps) for loads
-  that a static solver applies at once (connector forces, reference curvature, ...).
+  that a static solver applies at once (connector forces, reference curvature, ...): the
+  ANCF models' policy of :func:`workbench.physics._stepping.ramp`.
 
 Length convention (``docs/architecture.md``): ``TendonActuation.values[i]`` is the change of
 the free length of tendon ``i`` relative to its straight reference configuration
@@ -23,6 +24,8 @@ from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
+
+from ._stepping import RampExhausted, RampPolicy, RampStalled, ramp
 
 __all__ = [
     "tendon_rest_lengths",
@@ -266,11 +269,13 @@ def ramp_load(
     min_increment: float = 1e-6,
     failure: type[BaseException] | tuple[type[BaseException], ...] = Exception,
 ) -> RampInfo:
-    """Adaptive load stepping from load factor 0 to 1.
+    """Adaptive load stepping from load factor 0 to 1 (the ANCF models' policy of :func:`ramp`).
 
     Each step sets the factor (``apply(lam)``) and solves from the last converged state;
     a failed solve (``failure`` raised) restores the state and halves the increment; after
-    two successes the increment doubles again.
+    two successes the increment doubles again (capped at 1).  A thin wrapper over
+    :func:`workbench.physics._stepping.ramp` with ``RampPolicy(grow_after=2, cap="one")``;
+    ``apply`` runs outside the failure handling (its exceptions propagate).
 
     Parameters
     ----------
@@ -299,33 +304,26 @@ def ramp_load(
         The cap on steps or the minimum increment was reached (the message says which and
         at what load factor).
     """
-    lam, dlam = 0.0, min(1.0, float(first_increment))
-    steps = failed = 0
-    smallest = dlam
-    ok_in_row = 0
-    while lam < 1.0:
-        if steps >= max_steps:
-            raise RuntimeError(f"load stepping hit max_load_steps={max_steps} at load factor {lam:.6g}")
-        trial = min(1.0, lam + dlam)
-        state = save()
-        apply(trial)
-        steps += 1
+    last: list[BaseException] = []
+
+    def attempt(lam: float) -> bool:
+        apply(lam)
         try:
             solve()
         except failure as err:
-            failed += 1
-            restore(state)
-            dlam *= 0.5
-            smallest = min(smallest, dlam)
-            ok_in_row = 0
-            if dlam < min_increment:
-                raise RuntimeError(
-                    f"load stepping failed at load factor {lam:.6g} (increment < {min_increment}): {err}"
-                ) from err
-            continue
-        lam = trial
-        ok_in_row += 1
-        if ok_in_row >= 2:
-            dlam = min(1.0, 2.0 * dlam)
-            ok_in_row = 0
-    return RampInfo(steps=steps, failed_steps=failed, smallest_increment=smallest)
+            last[:] = [err]
+            return False
+        return True
+
+    policy = RampPolicy(first_increment=first_increment, growth=2.0, grow_after=2, cap="one",
+                        min_increment=min_increment)
+    try:
+        info = ramp(attempt, save, restore, max_attempts=max_steps, policy=policy)
+    except RampExhausted as stop:
+        raise RuntimeError(f"load stepping hit max_load_steps={max_steps} at load factor {stop.lam:.6g}") from None
+    except RampStalled as stop:
+        err = last[0]
+        raise RuntimeError(
+            f"load stepping failed at load factor {stop.lam:.6g} (increment < {min_increment}): {err}"
+        ) from err
+    return RampInfo(steps=info.attempts, failed_steps=info.failed, smallest_increment=info.smallest_increment)

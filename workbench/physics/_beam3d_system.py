@@ -1,0 +1,272 @@
+"""The assembled Exudyn system of one ``beam3d`` solve (private; see :mod:`workbench.physics.beam3d`).
+
+:class:`_System` builds the geometrically exact beam in the model frame (beam axis = model x,
+``R_BASE_MODEL``), its clamp, masses, loads and eyelet tendons, and offers the setters the load
+ramp and the dynamics drive (tendon commands, load factor) and the readers of the results (base
+frame).  Built per call from plain parameters; nothing is kept between calls.  Checked by
+``tests/physics/test_beam3d*.py``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import exudyn as exu
+import numpy as np
+from exudyn.itemInterface import (
+    LoadForceVector,
+    LoadTorqueVector,
+    MarkerBodyRigid,
+    MarkerNodeRigid,
+    NodeRigidBodyEP,
+    NodeRigidBodyRotVecLG,
+    ObjectBeamGeometricallyExact,
+    ObjectConnectorReevingSystemSprings,
+    ObjectConnectorSpringDamper,
+    ObjectGround,
+)
+
+from ..models.result import ModelFailure, SolverOptions
+from ..robot import LoadCase, Robot
+from ._beam3d_layout import R_BASE_MODEL, element_layout, locate, tendon_routes
+from ._exudyn import add_gravity_loads, add_point_masses, clamp_coordinates, lumped_disk_masses, set_load_factor
+
+_SHEAR_FACTOR_IF_NONE = 100.0
+_REGULARIZATION_FORCE = 1e-3
+
+
+def beam_section(cs, damping: float) -> "exu.BeamSection":
+    """``BeamSection`` of a cross-section: ``diag(EA, GA, GA, GJ, EI, EI)``, mass and rotary inertia per length.
+
+    ``GA = CrossSection.GA`` or ``100 EA`` if None (shear-rigid limit); rotary inertia
+    ``mu EI/EA diag(2, 1, 1)`` (solid homogeneous section).  The damping matrix is ignored by
+    Exudyn 1.13.6 (``test_exudyn_ge_beam_ignores_section_damping``); it is 0 in dynamics.
+    """
+    GA = cs.GA if cs.GA is not None else _SHEAR_FACTOR_IF_NONE * cs.EA
+    K = np.diag([cs.EA, GA, GA, cs.GJ, cs.EI, cs.EI])
+    bs = exu.BeamSection()
+    bs.stiffnessMatrix = K
+    bs.dampingMatrix = damping * K
+    bs.massPerLength = cs.mass_per_length
+    bs.inertia = cs.mass_per_length * (cs.EI / cs.EA) * np.diag([2.0, 1.0, 1.0])
+    return bs
+
+
+class _System:
+    """The assembled Exudyn system of one beam3d solve, with its load setters and result readers.
+
+    Parameters
+    ----------
+    robot, load, options
+        The case; ``options.n_elements`` and ``options.damping`` are used here.
+    tendon_mode : {"none", "tension", "length"}
+        Which tendon objects to build (``"none"``: unloaded tendons are left out).
+    node_type : {"EP", "LG"}
+        Euler-parameter nodes (used) or Lie-group nodes (kept for measurements; they stall in
+        static Newton for skewed bending planes).
+
+    Attributes
+    ----------
+    loads : list of (load index, full vector)
+        Every ramped load in the model frame, in the order added (gravity, then vector loads).
+    tendon_objects, tendon_markers : list of lists
+        Per tendon: its connector objects and its markers (anchor first).
+    tendon_path0, tendon_rest0 : ndarray
+        Per tendon: reference path length through the eyelets, and rest length at full pretension.
+    """
+
+    def __init__(self, robot: Robot, load: LoadCase, options: SolverOptions, tendon_mode: str,
+                 node_type: str = "EP"):
+        self.SC = exu.SystemContainer()
+        self.mbs = self.SC.AddSystem()
+        self.node_s, elem_sec = element_layout(robot, options.n_elements)
+        self.elem_len = np.diff(self.node_s)
+        clamped = self._add_beam(robot, elem_sec, options.damping, node_type)
+        clamp_coordinates(self.mbs, self.nodes[0], clamped)
+        g_m = R_BASE_MODEL.T @ robot.gravity_in_base()
+        self.loads = self._add_masses(robot, g_m) + self._add_tip_loads(robot, load, g_m)
+        self.tendon_mode = tendon_mode
+        self.tendon_objects: list[list[int]] = []
+        self.tendon_markers: list[list[int]] = []
+        self.tendon_path0 = np.zeros(0)
+        self.tendon_rest0 = np.zeros(0)
+        if tendon_mode != "none":
+            self._add_tendons(robot, load)
+        self.mbs.Assemble()
+
+    # -- building -------------------------------------------------------------------------
+    def _add_beam(self, robot: Robot, elem_sec: np.ndarray, damping: float, node_type: str) -> tuple[int, ...]:
+        """Nodes and elements (cross-section at each element's midpoint); returns the clamped coordinates."""
+        mbs, node_s = self.mbs, self.node_s
+        if node_type == "EP":
+            self.nodes = [mbs.AddNode(NodeRigidBodyEP(referenceCoordinates=[float(s), 0, 0, 1, 0, 0, 0])) for s in node_s]
+            clamped = (0, 1, 2, 4, 5, 6)  # position and Euler parameters e1..e3 (e0 follows from |e| = 1)
+        else:
+            self.nodes = [mbs.AddNode(NodeRigidBodyRotVecLG(referenceCoordinates=[float(s), 0, 0, 0, 0, 0])) for s in node_s]
+            clamped = (0, 1, 2, 3, 4, 5)
+        starts = np.concatenate([[0.0], robot.section_ends[:-1]])
+        self.elements = []
+        for e in range(elem_sec.size):
+            j = int(elem_sec[e])
+            sec = robot.sections[j]
+            frac = (0.5 * (node_s[e] + node_s[e + 1]) - starts[j]) / sec.length
+            bs = beam_section(sec.cross_section_at(frac), damping)
+            self.elements.append(mbs.AddObject(ObjectBeamGeometricallyExact(
+                nodeNumbers=[self.nodes[e], self.nodes[e + 1]], length=float(self.elem_len[e]), sectionData=bs,
+            )))
+        return clamped
+
+    def _add_masses(self, robot: Robot, g_m: np.ndarray) -> list:
+        """Disk masses and a zero-offset payload as node masses; gravity on them and on the beam."""
+        lumped = lumped_disk_masses(robot, self.node_s, midpoint_weights=True)
+        pay = robot.payload
+        if pay.mass > 0 and not any(pay.offset):
+            lumped[-1] += pay.mass
+        points = add_point_masses(self.mbs, self.nodes, lumped)
+        if not np.any(g_m != 0.0):
+            return []
+        return [(ld, g_m) for ld in add_gravity_loads(self.mbs, self.elements + points)]
+
+    def _add_tip_loads(self, robot: Robot, load: LoadCase, g_m: np.ndarray) -> list:
+        """Weight of an offset payload (a force at the offset point), tip force and tip torque."""
+        mbs = self.mbs
+        loads = []
+        pay = robot.payload
+        if pay.mass > 0 and any(pay.offset) and np.any(g_m != 0.0):
+            off = np.asarray(pay.offset)  # tip frame (x, y, z) = local (y, z, x)
+            loc = [0.5 * self.elem_len[-1] + off[2], off[0], off[1]]
+            mk = mbs.AddMarker(MarkerBodyRigid(bodyNumber=self.elements[-1], localPosition=loc))
+            loads.append((mbs.AddLoad(LoadForceVector(markerNumber=mk, loadVector=[0, 0, 0])), pay.mass * g_m))
+        mtip = mbs.AddMarker(MarkerNodeRigid(nodeNumber=self.nodes[-1]))
+        F = R_BASE_MODEL.T @ np.asarray(load.tip_force)
+        M = R_BASE_MODEL.T @ np.asarray(load.tip_torque)
+        if np.any(F != 0):
+            loads.append((mbs.AddLoad(LoadForceVector(markerNumber=mtip, loadVector=[0, 0, 0])), F))
+        if np.any(M != 0):
+            loads.append((mbs.AddLoad(LoadTorqueVector(markerNumber=mtip, loadVector=[0, 0, 0])), M))
+        return loads
+
+    def _add_eyelets(self, ground: int, route: list, sigma: float) -> tuple[list[int], np.ndarray]:
+        """Rigid markers of one tendon route (anchor on ground, then eyelets); the straight segment lengths."""
+        c, s_ = math.cos(sigma), math.sin(sigma)
+        markers, pts = [], []
+        for k, (s, d) in enumerate(route):
+            if k == 0:
+                markers.append(self.mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localPosition=[0.0, d * c, d * s_])))
+            else:
+                e, xl = locate(self.node_s, s)
+                markers.append(self.mbs.AddMarker(
+                    MarkerBodyRigid(bodyNumber=self.elements[e], localPosition=[xl, d * c, d * s_])
+                ))
+            pts.append([s, d * c, d * s_])
+        return markers, np.linalg.norm(np.diff(np.asarray(pts), axis=0), axis=1)
+
+    def _add_tendons(self, robot: Robot, load: LoadCase) -> None:
+        """Tension mode: constant-force segments; length mode: one reeving rope per tendon."""
+        mbs, act = self.mbs, load.actuation
+        ground = mbs.AddObject(ObjectGround())
+        path0, rest0 = [], []
+        for (j, sigma, group), route in zip(robot.tendon_table(), tendon_routes(robot)):
+            markers, seg = self._add_eyelets(ground, route, sigma)
+            L0 = float(seg.sum())
+            path0.append(L0)
+            self.tendon_markers.append(markers)
+            if self.tendon_mode == "tension":
+                objs = [
+                    mbs.AddObject(ObjectConnectorSpringDamper(
+                        markerNumbers=[markers[k], markers[k + 1]], referenceLength=float(seg[k]),
+                        stiffness=0.0, damping=0.0, force=0.0
+                    ))
+                    for k in range(len(markers) - 1)
+                ]
+                rest0.append(L0)
+            else:
+                EAt = group.axial_stiffness
+                rest0.append(L0 / (1.0 + act.pretension / EAt))
+                objs = [mbs.AddObject(ObjectConnectorReevingSystemSprings(
+                    markerNumbers=markers, stiffnessPerLength=EAt, dampingPerLength=0.0, referenceLength=L0,
+                    regularizationForce=_REGULARIZATION_FORCE,
+                    sheavesAxes=exu.Vector3DList([[0.0, 0.0, 1.0]] * len(markers)), sheavesRadii=[0.0] * len(markers),
+                ))]
+            self.tendon_objects.append(objs)
+        self.tendon_path0 = np.asarray(path0)
+        self.tendon_rest0 = np.asarray(rest0)
+
+    # -- setters ----------------------------------------------------------------------------
+    def set_tendons(self, values: np.ndarray, lam_pre: float) -> None:
+        """Apply tendon commands ``values`` (tension [N] or length change [m]).
+
+        ``lam_pre`` scales the pretension shortening (static ramp); 1 in dynamics.
+        """
+        mbs = self.mbs
+        if self.tendon_mode == "tension":
+            for objs, T in zip(self.tendon_objects, values):
+                for o in objs:
+                    mbs.SetObjectParameter(o, "force", float(T))
+        elif self.tendon_mode == "length":
+            for objs, L0, r0, dl in zip(self.tendon_objects, self.tendon_path0, self.tendon_rest0, values):
+                rest = L0 + lam_pre * (r0 - L0) + float(dl)
+                if rest <= 0:
+                    raise ModelFailure(f"beam3d: tendon rest length {rest:.4g} m <= 0 (command too large)")
+                mbs.SetObjectParameter(objs[0], "referenceLength", float(rest))
+
+    def set_loads(self, lam: float) -> None:
+        """Every ramped load at ``lam`` times its full value."""
+        set_load_factor(self.mbs, self.loads, lam)
+
+    # -- readers (base frame) ---------------------------------------------------------------
+    def tendon_state(self) -> tuple[np.ndarray, np.ndarray]:
+        """Current tensions [N] and stretches (path length - rest length) [m] of every built tendon."""
+        mbs = self.mbs
+        n = len(self.tendon_objects)
+        T = np.zeros(n)
+        stretch = np.zeros(n)
+        if self.tendon_mode == "tension":
+            for i, objs in enumerate(self.tendon_objects):
+                T[i] = float(mbs.GetObjectParameter(objs[0], "force"))
+        elif self.tendon_mode == "length":
+            for i, (objs, markers) in enumerate(zip(self.tendon_objects, self.tendon_markers)):
+                pts = np.array([mbs.GetMarkerOutput(m, exu.OutputVariableType.Position) for m in markers])
+                length = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
+                rest = float(mbs.GetObjectParameter(objs[0], "referenceLength"))
+                EA = float(mbs.GetObjectParameter(objs[0], "stiffnessPerLength"))
+                stretch[i] = length - rest
+                T[i] = max(0.0, EA * stretch[i] / rest)
+        return T, stretch
+
+    def shape_scalars(self) -> tuple[float, float]:
+        """(length change [m], tip twist [rad]) from element strains and torsional curvature."""
+        mbs = self.mbs
+        dl = 0.0
+        tw = 0.0
+        for e, Le in zip(self.elements, self.elem_len):
+            g = np.asarray(mbs.GetObjectOutputBody(e, exu.OutputVariableType.StrainLocal, localPosition=[0, 0, 0]))
+            k = np.asarray(mbs.GetObjectOutputBody(e, exu.OutputVariableType.CurvatureLocal, localPosition=[0, 0, 0]))
+            Gam = np.array([1.0 + g[0], g[1], g[2]])
+            dl += Le * (np.linalg.norm(Gam) - 1.0)
+            tw += Le * k[0]
+        return float(dl), float(tw)
+
+    def tip_position(self) -> np.ndarray:
+        """Tip node position, base frame, ``(3,)`` [m]."""
+        p = self.mbs.GetNodeOutput(self.nodes[-1], exu.OutputVariableType.Position)
+        return R_BASE_MODEL @ np.asarray(p)
+
+    def tip_frame(self) -> np.ndarray:
+        """Base <- tip homogeneous transform ``(4, 4)``; columns = tip cross-section axes, z along the backbone."""
+        mbs = self.mbs
+        p = np.asarray(mbs.GetNodeOutput(self.nodes[-1], exu.OutputVariableType.Position))
+        A = np.asarray(mbs.GetNodeOutput(self.nodes[-1], exu.OutputVariableType.RotationMatrix)).reshape(3, 3)
+        T = np.eye(4)
+        T[:3, :3] = R_BASE_MODEL @ A @ R_BASE_MODEL.T
+        T[:3, 3] = R_BASE_MODEL @ p
+        return T
+
+    def positions(self, stations: np.ndarray) -> np.ndarray:
+        """Centreline points at reference stations, by the element's own interpolation, ``(m, 3)`` [m]."""
+        out = np.empty((stations.size, 3))
+        for i, s in enumerate(stations):
+            e, xl = locate(self.node_s, float(s))
+            p = self.mbs.GetObjectOutputBody(self.elements[e], exu.OutputVariableType.Position, localPosition=[xl, 0, 0])
+            out[i] = R_BASE_MODEL @ np.asarray(p)
+        return out
