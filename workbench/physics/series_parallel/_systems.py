@@ -316,13 +316,17 @@ def solve_stack(specs, base_pose, platform_guesses, leg_shapes, gravity, wrench,
     out = _solve(mbs, tol, max_iter, n_load_steps)
     if not out.converged:
         return out, None, None, None, (None, None)
-    n_nodes = leg_shapes[0][0].positions.shape[0]
-    legpos = np.zeros((len(specs), 6, n_nodes, 3))
-    legrot = np.zeros((len(specs), 6, n_nodes, 3, 3))
-    poses = np.tile(np.eye(4), (len(specs), 1, 1))
-    forces = np.zeros((len(specs), 6, 3))
-    moments = np.zeros((len(specs), 6, 3))
-    for k in range(len(specs)):
+    return (out, *_stack_outputs(mbs, len(specs), leg_shapes[0][0].positions.shape[0], pnodes, tip_joints))
+
+
+def _stack_outputs(mbs, n_modules, n_nodes, pnodes, tip_joints):
+    """Platform poses, tip forces and moments on the legs, and (leg node positions, frames) of a solved stack."""
+    legpos = np.zeros((n_modules, 6, n_nodes, 3))
+    legrot = np.zeros((n_modules, 6, n_nodes, 3, 3))
+    poses = np.tile(np.eye(4), (n_modules, 1, 1))
+    forces = np.zeros((n_modules, 6, 3))
+    moments = np.zeros((n_modules, 6, 3))
+    for k in range(n_modules):
         p, A = node_state(mbs, pnodes[k])
         poses[k, :3, :3] = A
         poses[k, :3, 3] = p
@@ -333,4 +337,4 @@ def solve_stack(specs, base_pose, platform_guesses, leg_shapes, gravity, wrench,
                 legpos[k, i, j], Aq = node_state(mbs, q)
                 legrot[k, i, j] = Aq @ C_EXU.T
             forces[k, i], moments[k, i] = _tip_wrench_on_leg(mbs, jt, A @ C_EXU, bm, 0.0, nd)
-    return out, poses, forces, moments, (legpos, legrot)
+    return poses, forces, moments, (legpos, legrot)

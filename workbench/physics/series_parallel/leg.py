@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation, Slerp
 
+from .. import _stepping
 from . import _systems as _ex
 from .geometry import (
     ModuleGeometry,
@@ -175,11 +176,11 @@ def _leg_pose_continuation(rod, p0, R0, L, T, n_el, g, tol, max_it, free_twist, 
     s_nodes = np.linspace(0.0, 1.0, n_el + 1)
     P = p0 + np.outer(s_nodes * L, R0[:, 2])
     R = np.tile(R0, (n_el + 1, 1, 1))
-    lam, step = 0.0, 0.125
     out = last_out
     F = M = None
-    while lam < 1.0:
-        lt = min(1.0, lam + step)
+
+    def step(lam, lt):
+        nonlocal out, P, R, F, M
         pt = (1.0 - lt) * p_start + lt * T[:3, 3]
         Rt = slerp([lt]).as_matrix()[0]
         Lt = hlen(pt, Rt) + lt * dL
@@ -190,13 +191,13 @@ def _leg_pose_continuation(rod, p0, R0, L, T, n_el, g, tol, max_it, free_twist, 
             rod, p0, R0, Lt, pt, Rt, _ex.LegShape(positions=Pg, rotations=Rg), g, tol, max_it, free_twist
         )
         if out.converged:
-            lam, P, R, F, M = lt, Pt, Rr, Ft, Mt
-            step = min(2.0 * step, 0.25)
-        else:
-            step *= 0.5
-            if step < min_step:
-                reason = f"continuation stalled at {lam:.3f} of the way to the tip pose: {out.reason}"
-                return _ex.StaticOutcome(False, out.iterations, out.residual, reason, out.wall_time), None, None, None, None
+            P, R, F, M = Pt, Rr, Ft, Mt
+        return out.converged
+
+    walk = _stepping.continuation(step, first=0.125, max_step=0.25, min_step=min_step)
+    if not walk.completed:
+        reason = f"continuation stalled at {walk.reached:.3f} of the way to the tip pose: {out.reason}"
+        return _ex.StaticOutcome(False, out.iterations, out.residual, reason, out.wall_time), None, None, None, None
     return out, F, M, P, R
 
 
@@ -229,42 +230,50 @@ def _leg_homotopy(geometry, p0, R0, guess, L_start, L_end, T_end, kw, min_step=1
     Tg[:3, :3] = guess.rotations[-1]
     Tg[:3, 3] = guess.positions[-1]
     slerp = Slerp([0.0, 1.0], Rotation.from_matrix(np.stack([Tg[:3, :3], T_end[:3, :3]])))
-    cur, lam, step = guess, 0.0, 0.25
+    cur = last = guess
     kw = dict(kw)
     kw.pop("tip_pose")
-    last = guess
-    while lam < 1.0:
-        lt = min(1.0, lam + step)
+
+    def step(lam, lt):
+        nonlocal cur, last
         Tt = np.eye(4)
         Tt[:3, :3] = slerp([lt]).as_matrix()[0]
         Tt[:3, 3] = (1.0 - lt) * Tg[:3, 3] + lt * T_end[:3, 3]
         last = leg_static(geometry, p0, R0, (1.0 - lt) * L_start + lt * L_end, tip_pose=Tt, initial_guess=cur, **kw)
         if last.converged:
-            lam, cur = lt, last
-            step = min(2.0 * step, 0.5)
-        else:
-            step *= 0.5
-            if step < min_step:
-                return last
-    return cur
+            cur = last
+        return last.converged
+
+    walk = _stepping.continuation(step, first=0.25, max_step=0.5, min_step=min_step)
+    return cur if walk.completed else last
 
 
 def _base_reaction_lumped(geometry, i, leg: LegSolution, Li, gravity):
     """``n_i(0)``, ``m_i(0)`` (about the hole): force and moment rod i exerts on the base.
 
     Exact for the discrete model: equilibrium of the whole leg under the tip wrench and the rod
-    weight lumped at the nodes (as in ``_series_parallel_exudyn._add_leg``).
+    weight lumped at the nodes (as in ``_systems._add_leg``).
     """
     P0, _ = hole_frames(geometry)
-    p = leg.positions
-    n0 = leg.tip_force.copy()
-    m0 = leg.tip_moment + np.cross(p[-1] - P0[i], leg.tip_force)
+    return _hole_reaction(leg.positions, leg.tip_force, leg.tip_moment, P0[i], Li,
+                          geometry.rod_params().weight_per_length, gravity)
+
+
+def _hole_reaction(positions, tip_force, tip_moment, hole, length, weight_per_length, gravity):
+    """Force and moment (about ``hole``) a leg exerts at its hole, from its tip wrench and weight.
+
+    ``positions`` ``(N+1, 3)`` are the leg nodes (hole first), ``tip_force``/``tip_moment`` the
+    wrench the tip support exerts on the leg, ``weight_per_length`` [kg/m] times ``gravity``
+    [m/s^2] lumped at the nodes (half weight at both ends), as in ``_systems._add_leg``.
+    """
+    n0 = tip_force.copy()
+    m0 = tip_moment + np.cross(positions[-1] - hole, tip_force)
     if gravity is not None:
-        N = p.shape[0] - 1
-        wts = np.full(N + 1, Li / N)
+        N = positions.shape[0] - 1
+        wts = np.full(N + 1, length / N)
         wts[0] *= 0.5
         wts[-1] *= 0.5
-        f = wts[:, None] * (geometry.rod_params().weight_per_length * gravity)[None, :]
+        f = wts[:, None] * (weight_per_length * gravity)[None, :]
         n0 = n0 + f.sum(axis=0)
-        m0 = m0 + np.sum(np.cross(p - P0[i], f), axis=0)
+        m0 = m0 + np.sum(np.cross(positions - hole, f), axis=0)
     return n0, m0

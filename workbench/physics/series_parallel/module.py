@@ -10,14 +10,12 @@ fold and home-cache tests).
 
 from __future__ import annotations
 
-import math
 import time
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial.transform import Rotation, Slerp
 
-from .branch import _branch_sign, _BranchCheckError
+from .branch import _branch_sign, _BranchCheckError, home_reference, walk_from_home
 from .geometry import (
     ModuleGeometry,
     _check_gravity,
@@ -25,9 +23,7 @@ from .geometry import (
     _check_n_elements,
     _check_pose,
     _check_wrench,
-    _interp_pose,
     home_pose,
-    rotation_vector,
 )
 from .leg import _base_reaction_lumped
 from .newton import _ik_newton, _resnorm
@@ -244,103 +240,46 @@ def module_inverse(
     kw = dict(w=w, g=g, n_el=n_el, length_tolerance=length_tolerance, leg_tolerance=leg_tolerance, fd_step=fd_step,
               counter=counter)
     direct_cap = max_iterations if path_steps == 0 else min(max_iterations, 8)
-    L, legs, ok, its, r, msg = _ik_newton(geometry, T, L0, None, max_iterations=direct_cap, **kw)
-    total_its = its
-    H = home_pose(geometry)
-    home: list = []  # lazily: [L, legs, det sign] of the home pose
+    L, legs, ok, total_its, r, msg = _ik_newton(geometry, T, L0, None, max_iterations=direct_cap, **kw)
+    cache = {} if home_cache is None else home_cache  # the home reference is solved at most once per call
 
-    cache_key = (geometry, None if w is None else w.tobytes(), None if g is None else g.tobytes(), n_el,
-                 length_tolerance, leg_tolerance, fd_step)
+    def home():
+        return home_reference(geometry, kw, max(max_iterations, 20), cache)
 
-    def home_state():
-        if not home and home_cache is not None and cache_key in home_cache:
-            home.extend(home_cache[cache_key])
-        if not home:
-            Lh, legs_h, okh, _, _, msgh = _ik_newton(geometry, H, _hermite_lengths(geometry, H), None,
-                                                    max_iterations=max(max_iterations, 20), **kw)
-            if not okh:
-                raise _BranchCheckError(f"branch check: IK of the home pose failed: {msgh}")
-            home.extend([Lh, legs_h, *_branch_sign(geometry, H, Lh, legs_h, kw, counter, with_smin=True)])
-            if home_cache is not None:
-                home_cache[cache_key] = tuple(home)
-        return home
-
-    at_home = bool(np.allclose(T, H, rtol=0.0, atol=1e-12))
+    at_home = bool(np.allclose(T, home_pose(geometry), rtol=0.0, atol=1e-12))
     direct_off_branch = False
     try:
-        if ok and check_branch and not at_home and _branch_sign(geometry, T, L, legs, kw, counter) != home_state()[2]:
+        if ok and check_branch and not at_home and _branch_sign(geometry, T, L, legs, kw, counter) != home().sign:
             ok, msg, direct_off_branch = False, "", True
     except _BranchCheckError as e:
         ok, msg, path_steps = False, str(e), 0
     if not ok and path_steps != 0:
-        # continuation along the SE(3) path home -> target, warm-starting L and the legs
-        slerp = Slerp([0.0, 1.0], Rotation.from_matrix(np.stack([H[:3, :3], T[:3, :3]])))
-        n_steps = path_steps if path_steps else max(
-            2, int(math.ceil(np.linalg.norm(T[:3, 3] - H[:3, 3]) / 0.04 + np.linalg.norm(rotation_vector(H[:3, :3].T @ T[:3, :3])) / 0.1))
-        )
-        lam, step = 0.0, 1.0 / n_steps
-        try:
-            Lc, legs_c, s_home, smin_home = home_state() if check_branch else (_hermite_lengths(geometry, H), None, 0.0, 0.0)
-        except _BranchCheckError as e:
-            lam, msg = -1.0, str(e)
-        off_branch_seen = False  # a step from the current state converged on another branch
-        while 0.0 <= lam < 1.0:
-            lt = min(1.0, lam + step)
-            Tt = np.eye(4)
-            Tt[:3, :3] = slerp([lt]).as_matrix()[0]
-            Tt[:3, 3] = (1 - lt) * H[:3, 3] + lt * T[:3, 3]
-            # predictor: previous L shifted by the change of the Hermite lengths
-            Lg = Lc + (_hermite_lengths(geometry, Tt) - _hermite_lengths(geometry, _interp_pose(H, T, slerp, lam)))
-            Ln, legs_n, okn, itn, rn, msgn = _ik_newton(geometry, Tt, Lg, legs_c, legs0_L=Lc, max_iterations=max_iterations, **kw)
-            total_its += itn
-            if okn and check_branch:
-                # a converged step on another branch is a failed step: a smaller one may stay on ours
-                try:
-                    if _branch_sign(geometry, Tt, Ln, legs_n, kw, counter) != s_home:
-                        okn, msgn, off_branch_seen = False, "converged on another branch", True
-                except _BranchCheckError as e:
-                    msg = str(e)
-                    break
-            if okn:
-                lam, Lc, legs_c, off_branch_seen = lt, Ln, legs_n, False
-                step = min(1.5 * step, 2.0 / n_steps)
-            else:
-                step *= 0.5
-                if step < 1.0 / (16 * n_steps):
-                    where = (f"{lam:.3f} of the way from home to the target (rotation "
-                             f"{math.degrees(lam * np.linalg.norm(rotation_vector(H[:3, :3].T @ T[:3, :3]))):.1f} deg, "
-                             f"translation {1e3 * lam * np.linalg.norm(T[:3, 3] - H[:3, 3]):.0f} mm)")
-                    if off_branch_seen:
-                        msg = (f"the IK solution branch connected to home ends near {where}: det d(balance)/dL changes "
-                               f"sign (fold or bifurcation), the target lies outside the workspace of that branch")
-                    else:
-                        msg = f"pose continuation stalled at {where}: {msgn}"
-                        if check_branch and legs_c is not None:
-                            try:
-                                _, smin = _branch_sign(geometry, _interp_pose(H, T, slerp, lam), Lc, legs_c, kw, counter,
-                                                       with_smin=True)
-                                msg += (f"; smallest singular value of the IK Jacobian there {smin / smin_home:.2g} x its "
-                                        f"home value" + (" (near a fold of the IK branch: workspace boundary)"
-                                                         if smin < 1e-2 * smin_home else ""))
-                            except _BranchCheckError:
-                                pass
-                    break
-        if lam >= 1.0:
-            L, legs, ok, r, msg = Lc, legs_c, True, rn, ""
+        walk = walk_from_home(geometry, T, kw, home=home if check_branch else None, path_steps=path_steps,
+                              max_iterations=max_iterations)
+        total_its += walk.iterations
+        msg = walk.reason
+        if walk.success:
+            L, legs, ok, r = walk.lengths, walk.legs, True, walk.residual
     if not ok and direct_off_branch:
         msg = ((msg + "; ") if msg else "") + ("direct Newton converged on another IK solution branch (sign of det "
                                                "d(balance)/dL differs from home's: buckled or looped legs), rejected")
+    return _module_ik(geometry, L, legs, ok, total_its, r, msg, g, n_el, counter[0], t_start)
+
+
+def _module_ik(geometry, L, legs, ok, iterations, r, msg, g, n_el, leg_solves, t_start) -> ModuleIK:
+    """The :class:`ModuleIK` of a solve: reactions at the holes on success, NaN everywhere on failure."""
     if not ok or legs is None or any(lg is None or not lg.converged for lg in legs):
         nan = np.full((6, 3), np.nan)
-        return ModuleIK(np.full(6, np.nan), False, total_its, float("nan") if r is None else _resnorm(geometry, r), msg or "IK failed",
-                        nan, nan, nan, nan, np.full((6, n_el + 1, 3), np.nan), counter[0], time.perf_counter() - t_start)
+        return ModuleIK(np.full(6, np.nan), False, iterations, float("nan") if r is None else _resnorm(geometry, r),
+                        msg or "IK failed", nan, nan, nan, nan, np.full((6, n_el + 1, 3), np.nan), leg_solves,
+                        time.perf_counter() - t_start)
     F = np.stack([lg.tip_force for lg in legs])
     M = np.stack([lg.tip_moment for lg in legs])
     base = [_base_reaction_lumped(geometry, i, legs[i], L[i], g) for i in range(6)]
     return ModuleIK(
-        lengths=L, success=True, iterations=total_its, residual=_resnorm(geometry, r), reason="",
+        lengths=L, success=True, iterations=iterations, residual=_resnorm(geometry, r), reason="",
         tip_forces=F, tip_moments=M,
         base_forces=np.stack([b[0] for b in base]), base_moments=np.stack([b[1] for b in base]),
-        leg_positions=np.stack([lg.positions for lg in legs]), leg_solves=counter[0],
+        leg_positions=np.stack([lg.positions for lg in legs]), leg_solves=leg_solves,
         wall_time=time.perf_counter() - t_start,
     )

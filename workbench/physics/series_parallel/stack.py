@@ -20,6 +20,7 @@ from typing import Sequence
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from .. import _stepping
 from . import _systems as _ex
 from .geometry import (
     ModuleGeometry,
@@ -33,7 +34,7 @@ from .geometry import (
     hole_frames,
     home_pose,
 )
-from .leg import LegSolution, leg_static
+from .leg import LegSolution, _hole_reaction, leg_static
 from .newton import _resnorm
 from .predictor import _leg_shape, _pose_from_lengths_hermite
 
@@ -43,7 +44,7 @@ def _module_inverse(*args, **kwargs):
 
     Looked up on ``workbench.physics.series_parallel`` when called (not bound at import), so a
     patch of that package attribute reaches the stack solvers, as when everything was one module
-    (``tests/physics/test_series_parallel.py::test_stack_inverse_calls_the_package_module_inverse``).
+    (``tests/physics/test_series_parallel_layout.py::test_stack_inverse_calls_the_package_module_inverse``).
     """
     from . import module_inverse
 
@@ -178,7 +179,28 @@ def stack_forward(
     g = _check_gravity(gravity)
     n_el = _check_n_elements(n_elements)
     B = np.eye(4) if base_pose is None else _check_pose(base_pose, "base_pose")
-    # geometric predictor, module by module (Eq 30 recursion)
+    guesses, shapes = _predict_stack(gs, Ls, B, initial_poses, g, n_el)
+    specs = [_spec(geo, Ls[k]) for k, geo in enumerate(gs)]
+    wr = None if w is None else (w[:3], w[3:])
+    out, poses, F, M, (legpos, legrot) = _ex.solve_stack(specs, B, guesses, shapes, g, wr, tolerance, max_iterations, 1)
+    if not out.converged and continuation:
+        out, poses, F, M, (legpos, legrot) = _stack_continuation(gs, Ls, B, g, wr, n_el, tolerance, max_iterations, out)
+    if not out.converged:
+        nanT = np.full((n, 4, 4), np.nan)
+        res = StackPose(nanT, nanT, np.full((n, 6, n_el + 1, 3), np.nan), False, out.iterations, float("nan"),
+                        out.reason or "static solve failed", time.perf_counter() - t_start)
+        return (res, np.full((n, 6, 3), np.nan), np.full((n, 6, 3), np.nan), None) if _return_legs else res
+    local = _local_poses(gs, B, poses)
+    worst = _worst_platform_balance(gs, Ls, poses, F, M, legpos, g, w)
+    res = StackPose(poses, local, legpos, True, out.iterations, worst, "", time.perf_counter() - t_start)
+    return (res, F, M, legrot) if _return_legs else res
+
+
+def _predict_stack(gs, Ls, B, initial_poses, g, n_el):
+    """Geometric predictor, module by module (Eq 30 recursion): global platform poses ``(n, 4, 4)``
+    and, per module, six leg shapes, each leg in equilibrium with its platform held at the
+    predicted pose (the Hermite shape alone is too far off for Newton on the whole module)."""
+    n = len(gs)
     guesses = np.empty((n, 4, 4))
     shapes = []
     Tb = B.copy()
@@ -193,8 +215,6 @@ def stack_forward(
             pb = Tb[:3, :3] @ P0[i] + Tb[:3, 3]
             Rb = Tb[:3, :3] @ R0[i]
             pt = guesses[k][:3, :3] @ A[i] + guesses[k][:3, 3]
-            # start each leg from its own equilibrium with the platform held at the predicted
-            # pose (the Hermite shape alone is too far off for Newton on the whole module)
             Tt = np.eye(4)
             Tt[:3, :3] = guesses[k][:3, :3]
             Tt[:3, 3] = pt
@@ -205,25 +225,28 @@ def stack_forward(
                 legs.append(_leg_shape(pb, Rb, Ls[k, i], pt, guesses[k][:3, :3], n_el, True))
         shapes.append(legs)
         Tb = guesses[k] @ geo.mount_transform()
-    specs = [_spec(geo, Ls[k]) for k, geo in enumerate(gs)]
-    wr = None if w is None else (w[:3], w[3:])
-    out, poses, F, M, (legpos, legrot) = _ex.solve_stack(specs, B, guesses, shapes, g, wr, tolerance, max_iterations, 1)
-    if not out.converged and continuation:
-        out, poses, F, M, (legpos, legrot) = _stack_continuation(gs, Ls, B, g, wr, n_el, tolerance, max_iterations, out)
-    if not out.converged:
-        nanT = np.full((n, 4, 4), np.nan)
-        res = StackPose(nanT, nanT, np.full((n, 6, n_el + 1, 3), np.nan), False, out.iterations, float("nan"),
-                        out.reason or "static solve failed", time.perf_counter() - t_start)
-        return (res, np.full((n, 6, 3), np.nan), np.full((n, 6, 3), np.nan), None) if _return_legs else res
-    # local poses (Eq 31) and the per-platform balance check in the stack base frame
+    return guesses, shapes
+
+
+def _local_poses(gs, B, poses):
+    """Platform k in module k's base frame (Eq 31), ``(n, 4, 4)``."""
     local = np.empty_like(poses)
     Tb = B.copy()
-    worst = 0.0
     for k, geo in enumerate(gs):
         local[k] = np.linalg.solve(Tb, poses[k])
         Tb = poses[k] @ geo.mount_transform()
+    return local
+
+
+def _worst_platform_balance(gs, Ls, poses, F, M, legpos, g, w):
+    """Worst platform balance over the stack (see :class:`StackPose`), stack base frame.
+
+    Forces on platform k: its legs' tips, the next module's holes (that module's hole reactions),
+    gravity, and the tip wrench on the last platform.
+    """
+    n = len(gs)
+    worst = 0.0
     for k, geo in enumerate(gs):
-        # forces on platform k: its legs' tips, the next module's holes, gravity, tip wrench
         Tk = poses[k]
         A = attachment_points(geo)
         pa = (Tk[:3, :3] @ A.T).T + Tk[:3, 3]
@@ -236,25 +259,16 @@ def stack_forward(
             Tbn = Tk @ geo.mount_transform()
             P0, _ = hole_frames(geo_n)
             for i in range(6):
-                leg = LegSolution(legpos[k + 1, i], np.empty((0, 3, 3)), F[k + 1, i], M[k + 1, i], True, 0)
                 hole = Tbn[:3, :3] @ P0[i] + Tbn[:3, 3]
-                n0 = leg.tip_force.copy()
-                m0 = leg.tip_moment + np.cross(leg.positions[-1] - hole, leg.tip_force)
-                if g is not None:
-                    Nn = leg.positions.shape[0] - 1
-                    wts = np.full(Nn + 1, Ls[k + 1, i] / Nn)
-                    wts[[0, -1]] *= 0.5
-                    f = wts[:, None] * (geo_n.rod_params().weight_per_length * g)[None, :]
-                    n0 = n0 + f.sum(axis=0)
-                    m0 = m0 + np.sum(np.cross(leg.positions - hole, f), axis=0)
+                n0, m0 = _hole_reaction(legpos[k + 1, i], F[k + 1, i], M[k + 1, i], hole, Ls[k + 1, i],
+                                        geo_n.rod_params().weight_per_length, g)
                 Fs = Fs + n0
                 Ms = Ms + m0 + np.cross(hole - Tk[:3, 3], n0)
         elif w is not None:
             Fs = Fs + w[:3]
             Ms = Ms + w[3:]
         worst = max(worst, _resnorm(geo, np.concatenate([Fs, Ms])))
-    res = StackPose(poses, local, legpos, True, out.iterations, worst, "", time.perf_counter() - t_start)
-    return (res, F, M, legrot) if _return_legs else res
+    return worst
 
 
 def _extrapolate_rot(R_prev, R_curr, c):
@@ -292,39 +306,56 @@ def _presolve_legs(gs, Ls, B, poses, g, n_el, guess_pos, guess_rot):
     return shapes
 
 
-def _stack_continuation(gs, Ls, B, g, wr, n_el, tol, max_it, last_out, min_step=1.0 / 256):
-    """Length continuation from the home configuration for :func:`stack_forward`."""
+def _stack_home(gs, B, n_el, tol, max_it):
+    """Home configuration of the stack (no loads): lengths by IK of each home pose, then the FK
+    (predictor + leg equilibria); ``(L_home, poses, leg positions, leg rotations)`` or None."""
     n = len(gs)
     L_home = np.empty((n, 6))
     for k, geo in enumerate(gs):
         ik = _module_inverse(geo, home_pose(geo), n_elements=n_el)
         if not ik.success:
-            return last_out, None, None, None, (None, None)
+            return None
         L_home[k] = ik.lengths
-    # home configuration of the stack (no loads): predictor + leg equilibria
     res = stack_forward(gs, L_home, base_pose=B, n_elements=n_el, tolerance=tol, max_iterations=max_it,
                         continuation=False, _return_legs=True)
     if not res[0].converged:
+        return None
+    return L_home, res[0].poses, res[0].leg_positions, res[3]
+
+
+def _secant_guess(prev, lam, lt, poses, legpos, legrot):
+    """Platform poses and leg states at ``lt`` extrapolated from the last two accepted states."""
+    if prev is None:
+        return poses, legpos, legrot
+    c = (lt - lam) / (lam - prev[0])
+    g_poses = poses.copy()
+    g_poses[:, :3, 3] += c * (poses[:, :3, 3] - prev[1][:, :3, 3])
+    g_poses[:, :3, :3] = _extrapolate_rot(prev[1][:, :3, :3], poses[:, :3, :3], c)
+    g_pos = legpos + c * (legpos - prev[2])
+    g_rot = _extrapolate_rot(prev[3], legrot, c)
+    return g_poses, g_pos, g_rot
+
+
+def _stack_continuation(gs, Ls, B, g, wr, n_el, tol, max_it, last_out, min_step=1.0 / 256):
+    """Length continuation from the home configuration for :func:`stack_forward`.
+
+    Lengths, gravity and tip wrench go linearly from home (no loads) to the requested ones
+    (``_stepping.continuation``: first step 1/4, doubling up to 1/2, stall below ``min_step``),
+    each step started from a secant predictor with every leg pre-solved at its new length.
+    """
+    home = _stack_home(gs, B, n_el, tol, max_it)
+    if home is None:
         return last_out, None, None, None, (None, None)
-    poses, legpos = res[0].poses, res[0].leg_positions
-    legrot = res[3]
-    lam, step = 0.0, 0.25
+    L_home, poses, legpos, legrot = home
     out = last_out
     F = M = None
     prev = None  # (lam, poses, legpos, legrot) of the step before: secant predictor
-    while lam < 1.0:
-        lt = min(1.0, lam + step)
+
+    def step(lam, lt):
+        nonlocal out, prev, poses, F, M, legpos, legrot
         Lt = L_home + lt * (Ls - L_home)
         specs = [_spec(geo, Lt[k]) for k, geo in enumerate(gs)]
-        if prev is None:
-            g_poses, g_pos, g_rot = poses, legpos, legrot
-        else:
-            c = (lt - lam) / (lam - prev[0])
-            g_poses = poses.copy()
-            g_poses[:, :3, 3] += c * (poses[:, :3, 3] - prev[1][:, :3, 3])
-            g_poses[:, :3, :3] = _extrapolate_rot(prev[1][:, :3, :3], poses[:, :3, :3], c)
-            g_pos = legpos + c * (legpos - prev[2])
-            g_rot = _extrapolate_rot(prev[3], legrot, c)
+        g_poses, g_pos, g_rot = _secant_guess(prev, lam, lt, poses, legpos, legrot)
         # every leg pre-solved with its new length at the predicted platform pose, warm-started from
         # the previous equilibrium: the old leg shapes with the new stress-free lengths carry an
         # axial misfit (EA dL / L, ~kN for 0.1 mm) that Newton on the whole module does not survive
@@ -333,13 +364,13 @@ def _stack_continuation(gs, Ls, B, g, wr, n_el, tol, max_it, last_out, min_step=
                                                      None if wr is None else (lt * wr[0], lt * wr[1]), tol, max_it, 1)
         if out.converged:
             prev = (lam, poses, legpos, legrot)
-            lam, poses, F, M, legpos, legrot = lt, P_, F_, M_, lp, lr
-            step = min(2.0 * step, 0.5)
-        else:
-            step *= 0.5
-            if step < min_step:
-                reason = f"length continuation from home stalled at {lam:.3f}: {out.reason}"
-                return _ex.StaticOutcome(False, out.iterations, out.residual, reason, out.wall_time), None, None, None, (None, None)
+            poses, F, M, legpos, legrot = P_, F_, M_, lp, lr
+        return out.converged
+
+    walk = _stepping.continuation(step, first=0.25, max_step=0.5, min_step=min_step)
+    if not walk.completed:
+        reason = f"length continuation from home stalled at {walk.reached:.3f}: {out.reason}"
+        return _ex.StaticOutcome(False, out.iterations, out.residual, reason, out.wall_time), None, None, None, (None, None)
     return out, poses, F, M, (legpos, legrot)
 
 
