@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ...robot.description import circular_section
 from . import _systems as _ex
 
 
@@ -26,8 +27,8 @@ class ModuleGeometry:
     sized so that the module reaches the paper's Fig 6 translations (+-200 mm) and twists (+-30 deg),
     and +-45 deg about x / y as tilts about the module's mid-height point.  Rotations about x / y
     about the platform centre stop short of 45 deg: the IK branch connected to home ends at
-    rx +-26.8 deg (fold), ry -21.6 deg (symmetry-breaking bifurcation) and ry ~+38 deg (see the
-    module docstring).
+    rx +-26.8 deg (fold), ry -21.6 deg (symmetry-breaking bifurcation) and ry ~+38 deg (see
+    ``docs/models.md``, "Series-parallel").
 
     Parameters
     ----------
@@ -103,14 +104,13 @@ class ModuleGeometry:
         return self.youngs_modulus / (2.0 + 2.0 * self.poisson_ratio)
 
     def rod_params(self) -> _ex.RodParams:
-        d = self.rod_diameter
-        A = math.pi * d**2 / 4.0
-        I = math.pi * d**4 / 64.0
+        """Section stiffnesses and weight per length of the legs (solid circular rod, no shear factor)."""
+        A, I, J = circular_section(self.rod_diameter)
         return _ex.RodParams(
             EA=self.youngs_modulus * A,
             GA=self.shear_modulus * A,
             EI=self.youngs_modulus * I,
-            GJ=self.shear_modulus * 2.0 * I,
+            GJ=self.shear_modulus * J,
             weight_per_length=self.density * A,
         )
 
