@@ -42,3 +42,9 @@ def test_stack_inverse_calls_the_package_module_inverse(monkeypatch):
     poses = np.stack([H, H @ geo.mount_transform() @ H])
     ik = sp.stack_inverse([geo, geo], poses)
     assert len(calls) == 1 and not ik.success and ik.reason == "module 2: patched"
+
+
+def test_arc_points_is_public_and_the_old_name_is_an_alias():
+    assert sp._arc_points is sp.arc_points and "arc_points" in sp.__all__
+    P, t = sp.arc_points(2.0, 0.3, np.array([0.0, 0.5]))
+    assert np.array_equal(P[0], np.zeros(3)) and np.allclose(np.linalg.norm(t, axis=1), 1.0)

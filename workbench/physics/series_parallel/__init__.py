@@ -22,7 +22,7 @@ One file per idea:
 * ``branch.py``     which IK solution branch a state is on (``det d(balance)/dL``);
 * ``module.py``     :func:`module_forward`, :func:`module_inverse` (one module);
 * ``stack.py``      :func:`stack_forward`, :func:`stack_inverse` (modules in series);
-* ``fit.py``        :func:`fit_constant_curvature` (the CC arc through the platforms);
+* ``fit.py``        :func:`fit_constant_curvature`, :func:`arc_points` (the CC arc through the platforms);
 * ``gap.py``        :func:`min_leg_gap` (leg interference);
 * ``_systems.py``   the Exudyn systems (private).
 
@@ -33,7 +33,7 @@ the chosen study range: ``docs/models.md``, "Series-parallel".  Checked by
 
 from __future__ import annotations
 
-from .fit import ArcFit, _arc_points, fit_constant_curvature
+from .fit import ArcFit, _arc_points, arc_points, fit_constant_curvature
 from .gap import _segment_distances, min_leg_gap
 from .geometry import (
     ModuleGeometry,
@@ -69,6 +69,7 @@ __all__ = [
     "stack_forward",
     "stack_inverse",
     "fit_constant_curvature",
+    "arc_points",
     "min_leg_gap",
     "rotation_vector",
 ]

@@ -50,8 +50,23 @@ class ArcFit:
     max_tangent_error: float
 
 
-def _arc_points(k, phi, s):
-    """Arc points and tangents, stable for k -> 0; s shape (n,) -> (n, 3), (n, 3)."""
+def arc_points(k, phi, s):
+    """Points and unit tangents of the constant-curvature arc of :class:`ArcFit`, stable for k -> 0.
+
+    Parameters
+    ----------
+    k : float
+        Curvature [1/m].
+    phi : float
+        Bending-plane angle from base x [rad].
+    s : ndarray, shape (n,)
+        Arc-length parameters [m].
+
+    Returns
+    -------
+    points, tangents : ndarray, shape (n, 3)
+        ``p(s)`` [m] (see :class:`ArcFit`) and ``p'(s)``, base frame.
+    """
     x = k * s
     # (1 - cos x)/k = s * (1 - cos x)/x ; sin x / k = s * sin x / x
     small = np.abs(x) < 1e-6
@@ -98,7 +113,7 @@ def fit_constant_curvature(platform_poses, base_pose=None) -> ArcFit:
     k0 = 2.0 * r_xy / d2 if d2 > 0 else 0.0
 
     def res(x):
-        Pa, _ = _arc_points(x[0], x[1], x[2:])
+        Pa, _ = arc_points(x[0], x[1], x[2:])
         return (Pa - P).ravel()
 
     best = None
@@ -110,7 +125,11 @@ def fit_constant_curvature(platform_poses, base_pose=None) -> ArcFit:
     if k < 0:  # same arc, opposite plane
         k, phi = -k, phi + math.pi
     phi = math.atan2(math.sin(phi), math.cos(phi))
-    Pa, ta = _arc_points(k, phi, s)
+    Pa, ta = arc_points(k, phi, s)
     e = np.linalg.norm(Pa - P, axis=1)
     ang = np.arccos(np.clip(np.sum(ta * Z, axis=1), -1.0, 1.0))
     return ArcFit(float(k), float(phi), s, e, ang, float(np.sqrt(np.mean(e**2))), float(e.max()), float(ang.max()))
+
+
+#: Deprecated: use :func:`arc_points` (the old private name, imported by the series-parallel study worker).
+_arc_points = arc_points

@@ -224,7 +224,8 @@ def module_inverse(
     home_cache : dict, optional
         Caller-owned dict in which the home-pose reference of the branch check is kept, keyed by
         geometry, loads and solver settings; pass the same dict to repeated calls (a sweep, the
-        modules of a stack) to solve the home pose once instead of per call.
+        modules of a stack) to solve the home pose once instead of per call (its values are
+        :class:`~workbench.physics.series_parallel.branch.HomeReference` tuples).
 
     Returns
     -------
