@@ -17,7 +17,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, Literal
 
-__all__ = ["RampExhausted", "RampInfo", "RampPolicy", "RampStalled", "ramp"]
+__all__ = ["ContinuationInfo", "RampExhausted", "RampInfo", "RampPolicy", "RampStalled", "continuation", "ramp"]
 
 
 @dataclass(frozen=True)
@@ -158,3 +158,84 @@ def ramp(
             elif lam < 1.0:
                 inc = min(1.0 - lam, p.growth * inc)
     return RampInfo(attempts=attempts, accepted=accepted, failed=failed, smallest_increment=smallest)
+
+
+# --------------------------------------------------------------------------- parameter continuation
+#
+# The series-parallel solvers walk a path parameter from 0 to 1 (a leg from the straight shape to
+# its tip pose, a leg between two lengths, a stack from its home lengths, a module along the pose
+# path from home).  Unlike the load ramp there is nothing to save or restore: each step starts
+# from the caller's last accepted state, which the step function replaces only when it accepts.
+# Checked by ``tests/physics/test_continuation.py`` (the step sequences of each caller's settings).
+
+
+@dataclass(frozen=True)
+class ContinuationInfo:
+    """Outcome of :func:`continuation`.
+
+    Attributes
+    ----------
+    reached : float
+        Last accepted path parameter (1.0 when ``completed``).
+    completed : bool
+        The walk reached 1; False: it stalled (the step fell below ``min_step``).
+    accepted, failed : int
+        Steps accepted and rejected.
+    step : float
+        Step size at the end (the one that fell below ``min_step`` when stalled).
+    """
+
+    reached: float
+    completed: bool
+    accepted: int
+    failed: int
+    step: float
+
+
+def continuation(
+    step: Callable[[float, float], bool],
+    *,
+    first: float,
+    max_step: float,
+    min_step: float,
+    growth: float = 2.0,
+) -> ContinuationInfo:
+    """Walk a path parameter ``lam`` from 0 to 1 with adaptive steps.
+
+    Each trial goes from the accepted ``lam`` to ``target = min(1, lam + h)``.  Accepted:
+    ``lam = target`` and ``h = min(growth h, max_step)``; rejected: ``h = h / 2``, and the walk
+    stalls once ``h < min_step``.
+
+    Parameters
+    ----------
+    step : callable
+        ``step(lam, target) -> bool``: try to move the caller's state from ``lam`` to ``target``;
+        True accepts (the caller has stored the new state), False rejects (the caller keeps the
+        state at ``lam``).  Exceptions propagate (a caller's abort).
+    first : float
+        First step size ``h``.
+    max_step : float
+        Cap on ``h`` after growing.
+    min_step : float
+        Stall threshold.
+    growth : float
+        Factor on ``h`` after an accepted step.
+
+    Returns
+    -------
+    ContinuationInfo
+    """
+    lam, h = 0.0, first
+    accepted = failed = 0
+    while lam < 1.0:
+        target = min(1.0, lam + h)
+        if step(lam, target):
+            lam = target
+            accepted += 1
+            h = min(growth * h, max_step)
+        else:
+            failed += 1
+            h *= 0.5
+            if h < min_step:
+                return ContinuationInfo(lam, False, accepted, failed, h)
+    return ContinuationInfo(lam, True, accepted, failed, h)

@@ -43,6 +43,8 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation, Slerp
 
+from ..robot.description import circular_section
+
 __all__ = [
     "RodStiffness",
     "RodSolution",
@@ -83,13 +85,16 @@ class RodStiffness:
 
     @classmethod
     def circular(cls, diameter: float, youngs_modulus: float, shear_modulus: float) -> "RodStiffness":
-        """Solid circular section: ``A = pi d^2/4``, ``I = pi d^4/64``, ``J = pi d^4/32`` (Eq 15)."""
+        """Solid circular section: ``A = pi d^2/4``, ``I = pi d^4/64``, ``J = pi d^4/32`` (Eq 15).
+
+        Areas from :func:`workbench.robot.description.circular_section`, the formula shared with
+        ``CrossSection.circular`` and the series-parallel ``ModuleGeometry.rod_params``.
+        """
         d = float(diameter)
         if not (math.isfinite(d) and d > 0):
             raise ValueError(f"diameter must be finite and > 0, got {diameter!r}")
-        A = math.pi * d**2 / 4.0
-        I = math.pi * d**4 / 64.0
-        return cls(EA=youngs_modulus * A, GA=shear_modulus * A, EI=youngs_modulus * I, GJ=shear_modulus * 2.0 * I)
+        A, I, J = circular_section(d)
+        return cls(EA=youngs_modulus * A, GA=shear_modulus * A, EI=youngs_modulus * I, GJ=shear_modulus * J)
 
     @property
     def K_se(self) -> np.ndarray:

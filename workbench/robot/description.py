@@ -43,6 +43,7 @@ __all__ = [
     "Payload",
     "Robot",
     "RobotDescriptionError",
+    "circular_section",
 ]
 
 
@@ -70,6 +71,29 @@ def _vector(name: str, value: Sequence[float], n: int = 3) -> tuple[float, ...]:
     if not np.all(np.isfinite(arr)):
         raise RobotDescriptionError(f"{name} must be finite, got {arr.tolist()}")
     return tuple(float(x) for x in arr)
+
+
+def circular_section(diameter: float) -> tuple[float, float, float]:
+    """Area and area moments of a solid circular section of diameter ``d`` [m].
+
+    The one formula behind :meth:`CrossSection.circular`,
+    ``workbench.reference.cosserat.RodStiffness.circular`` and
+    ``workbench.physics.series_parallel.ModuleGeometry.rod_params`` (each keeps its own type);
+    ``tests/reference/test_circular_section.py`` checks the three agree bit for bit.  The
+    diameter is not validated here (each caller does).
+
+    Returns
+    -------
+    area : float
+        ``A = pi d^2 / 4`` [m^2].
+    second_moment : float
+        ``I = pi d^4 / 64`` [m^4], about any diameter.
+    polar_moment : float
+        ``J = 2 I = pi d^4 / 32`` [m^4].
+    """
+    area = math.pi * diameter**2 / 4.0
+    second_moment = math.pi * diameter**4 / 64.0
+    return area, second_moment, 2.0 * second_moment
 
 
 @dataclass(frozen=True)
@@ -135,14 +159,13 @@ class CrossSection:
         nu = float(poisson_ratio)
         if not (-1.0 < nu < 0.5):
             raise RobotDescriptionError(f"poisson_ratio must be in (-1, 0.5), got {nu}")
-        area = math.pi * d**2 / 4.0
-        inertia = math.pi * d**4 / 64.0
+        area, inertia, polar = circular_section(d)
         G = E / (2.0 * (1.0 + nu))
         kappa_s = 6.0 * (1.0 + nu) / (7.0 + 6.0 * nu)
         return cls(
             EI=E * inertia,
             EA=E * area,
-            GJ=G * 2.0 * inertia,
+            GJ=G * polar,
             mass_per_length=rho * area,
             GA=kappa_s * G * area,
             diameter=d,

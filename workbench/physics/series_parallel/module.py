@@ -1,0 +1,286 @@
+"""Forward and inverse kinematics of one module (Eq 21-28).
+
+Forward kinematics: one static equilibrium solve of six GE-beam legs and the free platform (a
+one-module stack, :func:`workbench.physics.series_parallel.stack.stack_forward`).  Inverse
+kinematics: Newton over ``L`` (``newton.py``), with a fallback continuation along the SE(3) path
+from the home pose and a check that the solution stays on the IK branch connected to home
+(``branch.py``).  Checked by ``tests/physics/test_series_parallel.py`` (FK o IK round trips, the
+fold and home-cache tests).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from .branch import _branch_sign, _BranchCheckError, home_reference, walk_from_home
+from .geometry import (
+    ModuleGeometry,
+    _check_gravity,
+    _check_lengths,
+    _check_n_elements,
+    _check_pose,
+    _check_wrench,
+    home_pose,
+)
+from .leg import _base_reaction_lumped
+from .newton import _ik_newton, _resnorm
+from .predictor import _hermite_lengths
+from .stack import stack_forward
+
+
+@dataclass(frozen=True)
+class ModulePose:
+    """Forward kinematics of one module (static equilibrium, Eq 21-24).
+
+    Parameters
+    ----------
+    pose : ndarray, shape (4, 4)
+        Platform pose in the module base frame (base <- platform).
+    tip_forces, tip_moments : ndarray, shape (6, 3)
+        ``n_i(L_i)``, ``m_i(L_i)``: force [N] and moment [N m] the platform exerts on each rod
+        tip, module base frame.
+    leg_positions : ndarray, shape (6, N+1, 3)
+        Leg node positions [m], hole first.
+    converged : bool
+    iterations : int
+        Newton iterations of the static solve.
+    residual : float
+        Max-norm of the platform balance Eq 22 recomputed from the leg tip wrenches (forces in N,
+        moments divided by the platform radius, in N): an independent equilibrium check.
+    reason : str
+        Failure reason, "" when converged.
+    wall_time : float
+        Seconds.
+    """
+
+    pose: np.ndarray
+    tip_forces: np.ndarray
+    tip_moments: np.ndarray
+    leg_positions: np.ndarray
+    converged: bool
+    iterations: int
+    residual: float
+    reason: str = ""
+    wall_time: float = 0.0
+
+
+@dataclass(frozen=True)
+class ModuleIK:
+    """Inverse kinematics of one module (Eq 25-28).
+
+    Parameters
+    ----------
+    lengths : ndarray, shape (6,)
+        Insertion lengths L_i [m] (NaN when the IK failed: no partial answer is passed off as one).
+    success : bool
+        Newton converged (length update below ``length_tolerance``) and every leg solve converged.
+    iterations : int
+        Newton iterations over L.
+    residual : float
+        Max-norm of the platform balance Eq 22 at the returned L (forces in N, moments / platform
+        radius in N).
+    reason : str
+        Failure reason, "" on success.
+    tip_forces, tip_moments : ndarray, shape (6, 3)
+        ``n_i(L_i)``, ``m_i(L_i)`` at the solution, module base frame.
+    base_forces, base_moments : ndarray, shape (6, 3)
+        Force and moment (about the hole) each rod exerts on the base platform, ``n_i(0)``,
+        ``m_i(0)``, module base frame (what stack IK passes to the module below).
+    leg_positions : ndarray, shape (6, N+1, 3)
+        Leg node positions [m].
+    leg_solves : int
+        Number of single-leg static solves used.
+    wall_time : float
+        Seconds.
+    """
+
+    lengths: np.ndarray
+    success: bool
+    iterations: int
+    residual: float
+    reason: str
+    tip_forces: np.ndarray
+    tip_moments: np.ndarray
+    base_forces: np.ndarray
+    base_moments: np.ndarray
+    leg_positions: np.ndarray
+    leg_solves: int = 0
+    wall_time: float = 0.0
+
+
+def module_forward(
+    geometry: ModuleGeometry,
+    insertion_lengths,
+    wrench=None,
+    gravity=None,
+    *,
+    n_elements: int = 8,
+    initial_pose=None,
+    tolerance: float = 1e-10,
+    max_iterations: int = 50,
+) -> ModulePose:
+    """Forward kinematics of one module: static equilibrium for given insertion lengths (Eq 21-24).
+
+    One Exudyn static solve of six GE-beam legs and the free platform.  The start is a geometric
+    predictor: the platform pose whose cubic-Hermite legs have the given lengths.
+
+    Parameters
+    ----------
+    geometry : ModuleGeometry
+    insertion_lengths : array_like, shape (6,)
+        Free leg lengths hole -> platform L_i [m].
+    wrench : array_like, shape (6,), optional
+        External force [N] and moment [N m] on the platform at its origin, base frame.
+    gravity : array_like, shape (3,), optional
+        Gravitational acceleration in the base frame [m/s^2], e.g. ``(0, 0, -9.81)``; None = off.
+    n_elements : int
+        GE beam elements per leg.
+    initial_pose : array_like, shape (4, 4), optional
+        Starting guess for the predictor (default: home pose).
+    tolerance : float
+        Newton relative tolerance on the step size.
+    max_iterations : int
+        Newton iteration cap.
+
+    Returns
+    -------
+    ModulePose
+    """
+    L = _check_lengths(insertion_lengths)
+    st = stack_forward(
+        [geometry], L[None, :], wrench=wrench, gravity=gravity, n_elements=n_elements,
+        initial_poses=None if initial_pose is None else _check_pose(initial_pose, "initial_pose")[None],
+        tolerance=tolerance, max_iterations=max_iterations, _return_legs=True,
+    )
+    res, F, M, _ = st
+    return ModulePose(
+        pose=res.poses[0], tip_forces=F[0], tip_moments=M[0], leg_positions=res.leg_positions[0],
+        converged=res.converged, iterations=res.iterations, residual=res.residual, reason=res.reason,
+        wall_time=res.wall_time,
+    )
+
+
+def module_inverse(
+    geometry: ModuleGeometry,
+    target_pose,
+    wrench=None,
+    gravity=None,
+    *,
+    n_elements: int = 8,
+    initial_lengths=None,
+    length_tolerance: float = 1e-10,
+    max_iterations: int = 20,
+    leg_tolerance: float = 1e-11,
+    fd_step: float = 1e-7,
+    path_steps: int | None = None,
+    check_branch: bool = True,
+    home_cache: dict | None = None,
+) -> ModuleIK:
+    """Inverse kinematics of one module: insertion lengths that hold the platform at a pose (Eq 25-28).
+
+    With the platform pose prescribed, each leg is an independent two-point boundary-value
+    problem (hole condition Eq 21 at the base, clamp Eq 25-26 at the platform), solved with
+    Exudyn.  Newton over ``L`` drives the platform balance Eq 22 to zero; the Jacobian
+    ``d(balance)/dL`` is built column by column by forward differences (leg i depends on L_i
+    only, so a column costs one leg solve), reused (chord Newton) while the length updates
+    contract by at least a factor 4, with a backtracking line search on the balance residual.
+    Large motions fall back to continuation along the path from the home pose.
+
+    Parameters
+    ----------
+    geometry : ModuleGeometry
+    target_pose : array_like, shape (4, 4)
+        Desired platform pose in the module base frame.
+    wrench : array_like, shape (6,), optional
+        External force and moment on the platform at its origin, base frame [N, N m].
+    gravity : array_like, shape (3,), optional
+        Gravitational acceleration, base frame [m/s^2].
+    n_elements : int
+        GE beam elements per leg.
+    initial_lengths : array_like, shape (6,), optional
+        Start (default: cubic-Hermite leg lengths of the target pose).
+    length_tolerance : float
+        Converged when the max length update is below this [m].
+    max_iterations : int
+        Newton iteration cap.
+    leg_tolerance : float
+        Newton tolerance of each leg solve.
+    fd_step : float
+        Finite-difference step on L_i [m].
+    path_steps : int, optional
+        If Newton from the start fails, continue along the SE(3) path from the home pose to the
+        target in this many steps (adaptive halving; default: about one step per 40 mm and
+        0.1 rad); 0 disables the fallback.
+    check_branch : bool
+        Accept only solutions on the IK solution branch connected to the home pose (under the same
+        loads): the sign of ``det d(balance)/dL`` must equal its sign at home, at the solution and
+        at every continuation step (one extra Jacobian, six leg solves, per check).  A sign change
+        marks a fold or bifurcation of the branch (measured for the default module: rx 26.8 deg
+        about the platform centre); beyond it the legs only close on other branches (buckled,
+        looped legs), so the IK fails there with that reason instead of returning them.
+    home_cache : dict, optional
+        Caller-owned dict in which the home-pose reference of the branch check is kept, keyed by
+        geometry, loads and solver settings; pass the same dict to repeated calls (a sweep, the
+        modules of a stack) to solve the home pose once instead of per call (its values are
+        :class:`~workbench.physics.series_parallel.branch.HomeReference` tuples).
+
+    Returns
+    -------
+    ModuleIK
+    """
+    t_start = time.perf_counter()
+    T = _check_pose(target_pose, "target_pose")
+    w = _check_wrench(wrench)
+    g = _check_gravity(gravity)
+    n_el = _check_n_elements(n_elements)
+    L0 = _hermite_lengths(geometry, T) if initial_lengths is None else _check_lengths(initial_lengths).copy()
+    counter = [0]
+    kw = dict(w=w, g=g, n_el=n_el, length_tolerance=length_tolerance, leg_tolerance=leg_tolerance, fd_step=fd_step,
+              counter=counter)
+    direct_cap = max_iterations if path_steps == 0 else min(max_iterations, 8)
+    L, legs, ok, total_its, r, msg = _ik_newton(geometry, T, L0, None, max_iterations=direct_cap, **kw)
+    cache = {} if home_cache is None else home_cache  # the home reference is solved at most once per call
+
+    def home():
+        return home_reference(geometry, kw, max(max_iterations, 20), cache)
+
+    at_home = bool(np.allclose(T, home_pose(geometry), rtol=0.0, atol=1e-12))
+    direct_off_branch = False
+    try:
+        if ok and check_branch and not at_home and _branch_sign(geometry, T, L, legs, kw, counter) != home().sign:
+            ok, msg, direct_off_branch = False, "", True
+    except _BranchCheckError as e:
+        ok, msg, path_steps = False, str(e), 0
+    if not ok and path_steps != 0:
+        walk = walk_from_home(geometry, T, kw, home=home if check_branch else None, path_steps=path_steps,
+                              max_iterations=max_iterations)
+        total_its += walk.iterations
+        msg = walk.reason
+        if walk.success:
+            L, legs, ok, r = walk.lengths, walk.legs, True, walk.residual
+    if not ok and direct_off_branch:
+        msg = ((msg + "; ") if msg else "") + ("direct Newton converged on another IK solution branch (sign of det "
+                                               "d(balance)/dL differs from home's: buckled or looped legs), rejected")
+    return _module_ik(geometry, L, legs, ok, total_its, r, msg, g, n_el, counter[0], t_start)
+
+
+def _module_ik(geometry, L, legs, ok, iterations, r, msg, g, n_el, leg_solves, t_start) -> ModuleIK:
+    """The :class:`ModuleIK` of a solve: reactions at the holes on success, NaN everywhere on failure."""
+    if not ok or legs is None or any(lg is None or not lg.converged for lg in legs):
+        nan = np.full((6, 3), np.nan)
+        return ModuleIK(np.full(6, np.nan), False, iterations, float("nan") if r is None else _resnorm(geometry, r),
+                        msg or "IK failed", nan, nan, nan, nan, np.full((6, n_el + 1, 3), np.nan), leg_solves,
+                        time.perf_counter() - t_start)
+    F = np.stack([lg.tip_force for lg in legs])
+    M = np.stack([lg.tip_moment for lg in legs])
+    base = [_base_reaction_lumped(geometry, i, legs[i], L[i], g) for i in range(6)]
+    return ModuleIK(
+        lengths=L, success=True, iterations=iterations, residual=_resnorm(geometry, r), reason="",
+        tip_forces=F, tip_moments=M,
+        base_forces=np.stack([b[0] for b in base]), base_moments=np.stack([b[1] for b in base]),
+        leg_positions=np.stack([lg.positions for lg in legs]), leg_solves=leg_solves,
+        wall_time=time.perf_counter() - t_start,
+    )
