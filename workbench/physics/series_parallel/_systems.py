@@ -27,7 +27,7 @@ from exudyn.itemInterface import (
 )
 from scipy.spatial.transform import Rotation
 
-from .._exudyn import quiet_exudyn
+from .._exudyn import quiet_exudyn, settings
 
 #: Cosserat section frame -> Exudyn beam node frame (beam axis = local x).
 C_EXU = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]])
@@ -62,24 +62,13 @@ class StaticOutcome:
 
 
 def _settings(tol: float, max_iter: int, n_load_steps: int):
-    s = exu.SimulationSettings()
-    s.solution.file.write = False
-    s.solution.restart.write = False
-    s.solution.sensors.active = False
-    s.solution.sensors.writePeriod = 1e30
-    s.show.computationTime = False
-    s.show.statistics = False
-    s.show.globalTimers = False
-    st = s.staticSolver
-    st.verboseMode = 0
-    st.numberOfLoadSteps = int(n_load_steps)
-    st.newton.relativeTolerance = tol
-    st.newton.absoluteTolerance = 1e-14
-    st.newton.residualMode = 1
-    st.newton.maxIterations = int(max_iter)
-    st.adaptiveStep = n_load_steps > 1  # retrying a constraint-driven solve at a smaller "load" is pointless
-    st.minimumStepSize = 1e-3
-    return s
+    """Static settings of the leg and module solves (``tests/physics/test_exudyn_helpers.py`` pins the fields).
+
+    Exudyn's own load stepping is adaptive only for more than one step: retrying a
+    constraint-driven solve at a smaller "load" is pointless.
+    """
+    return settings(tol, max_iter, n_load_steps, absolute_tolerance=1e-14, adaptive=n_load_steps > 1,
+                    minimum_step_size=1e-3, sensors_active=False)
 
 
 def _section(rod: RodParams) -> "exu.BeamSection":
