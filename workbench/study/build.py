@@ -18,7 +18,7 @@ from typing import Any, Callable, Mapping
 
 import numpy as np
 
-__all__ = ["gravity_from_parameter", "build_robot", "build_load", "build_options"]
+__all__ = ["gravity_from_parameter", "resolve_robot", "build_robot", "build_load", "build_options"]
 
 
 def gravity_from_parameter(gamma: float, EI: float, mass_per_length: float, length: float) -> float:
@@ -38,12 +38,22 @@ def gravity_from_parameter(gamma: float, EI: float, mass_per_length: float, leng
     return float(gamma) * float(EI) / (float(mass_per_length) * float(length) ** 3)
 
 
-def build_robot(robot_params: Mapping[str, Any], derived: Mapping[str, Any] | None = None):
-    """Robot from ``{"preset": name, **preset parameters}`` and the derived parameters.
+def resolve_robot(robot_params: Mapping[str, Any], derived: Mapping[str, Any] | None = None
+                  ) -> tuple[Any, dict[str, Any]]:
+    """The robot of a case and the preset parameters it was built with.
 
-    ``derived["gravity_parameter"]`` (gamma) sets the preset's ``gravity`` from the backbone of a
-    uniform robot (every section the same cross-section, no taper); disks and payload are not
-    part of ``q``.
+    ``robot_params`` is ``{"preset": name, **preset parameters}`` as configured;
+    ``derived["gravity_parameter"]`` (gamma) replaces the preset's ``gravity`` by
+    :func:`gravity_from_parameter` of the backbone of a uniform robot (every section the same
+    cross-section, no taper; disks and payload are not part of ``q``).  The returned parameters
+    are those the robot ran with (gravity included), so ``build_robot(parameters)`` rebuilds the
+    same robot without the derived parameters -- they are what a result row records as
+    ``p.robot.*`` (``tests/study/test_build.py``).
+
+    Raises
+    ------
+    ValueError
+        gamma on a non-uniform robot, or invalid gamma (see :func:`gravity_from_parameter`).
     """
     from ..robot.presets import build_preset
 
@@ -57,7 +67,12 @@ def build_robot(robot_params: Mapping[str, Any], derived: Mapping[str, Any] | No
             raise ValueError("derived.gravity_parameter needs a uniform robot (same cross-section, no taper)")
         params["gravity"] = gravity_from_parameter(gamma, cs.EI, cs.mass_per_length, robot.length)
         robot = build_preset(name, **params)
-    return robot
+    return robot, {"preset": name, **params}
+
+
+def build_robot(robot_params: Mapping[str, Any], derived: Mapping[str, Any] | None = None):
+    """Robot from ``{"preset": name, **preset parameters}`` and the derived parameters (:func:`resolve_robot`)."""
+    return resolve_robot(robot_params, derived)[0]
 
 
 def build_load(robot, load: Mapping[str, Any], arc_actuation: Callable | None = None):

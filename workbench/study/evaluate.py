@@ -22,7 +22,7 @@ import time
 import traceback
 from typing import Any, Callable, Mapping, Sequence
 
-from .build import build_load, build_options, build_robot, gravity_from_parameter
+from .build import build_load, build_options, build_robot, gravity_from_parameter, resolve_robot
 from .params import canonical_json, flatten_params
 from .rows import failed_rows, row_from_result
 
@@ -73,8 +73,16 @@ def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str]
     arc_actuation : callable, optional
         Replaces ``workbench.models.cc.actuation_from_arc`` (tests).
     robot_cache : dict, optional
-        Memo of built robots keyed by their parameters (robots are frozen), shared by the
-        cases of one batch.
+        Memo of built robots (and the parameters they were built with) keyed by their
+        parameters (robots are frozen), shared by the cases of one batch.
+
+    Returns
+    -------
+    list of dict
+        One row per model (:mod:`workbench.study.rows`).  Its ``p.*`` cells are the parameters
+        the case ran with: ``p.robot.*`` rebuild the robot that ran (``p.robot.gravity`` is the
+        gravity derived from ``derived.gravity_parameter`` when that is set), while ``case_id``
+        stays the hash of the parameters as configured.
     """
     from ..models import quiet_if_loaded
 
@@ -82,12 +90,12 @@ def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str]
         from ..models import get_model as model_lookup
     try:
         if robot_cache is None:
-            robot = build_robot(params["robot"], params.get("derived"))
+            robot, robot_params = resolve_robot(params["robot"], params.get("derived"))
         else:
             key = canonical_json([params["robot"], params.get("derived")])
-            robot = robot_cache.get(key)
-            if robot is None:
-                robot = robot_cache[key] = build_robot(params["robot"], params.get("derived"))
+            if key not in robot_cache:
+                robot_cache[key] = resolve_robot(params["robot"], params.get("derived"))
+            robot, robot_params = robot_cache[key]
         load_params = params["load"]
         if params.get("scenario"):
             from .scenarios import load_with_scenario
@@ -97,7 +105,10 @@ def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str]
         options = build_options(params["solver"])
     except Exception as e:  # noqa: BLE001 - recorded as the case's failure reason
         return failed_rows(case_id, params, models, f"building the case failed: {_reason(e)}")
-    flat = flatten_params(params)
+    # the rows record the parameters the case ran with (the robot's derived gravity); the
+    # case id stays the hash of the parameters as configured
+    ran = {**params, "robot": robot_params}
+    flat = flatten_params(ran)
     rows = []
     for name in models:
         t0 = time.perf_counter()
@@ -106,9 +117,9 @@ def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str]
             with quiet_if_loaded():
                 res = fn(robot, load, options)
             wall = time.perf_counter() - t0
-            rows.append(row_from_result(res, case_id, name, params, robot, wall, flat))
+            rows.append(row_from_result(res, case_id, name, ran, robot, wall, flat))
         except Exception as e:  # noqa: BLE001 - ModelFailure, exudyn.SolverError, bugs: all recorded
-            rows.append(failed_rows(case_id, params, [name], _reason(e), time.perf_counter() - t0, flat)[0])
+            rows.append(failed_rows(case_id, ran, [name], _reason(e), time.perf_counter() - t0, flat)[0])
     return rows
 
 
