@@ -63,3 +63,51 @@ def test_a_case_that_cannot_be_built_records_its_configured_parameters(write_stu
     params = {**case.params, "robot": {**case.params["robot"], "poisson_ratio": 0.7}}
     rows = evaluate_case(case.case_id, params, ("cc",), fakes.lookup)
     assert rows[0]["status"] == "failed" and rows[0]["p.robot.gravity"] == case.params["robot"]["gravity"]
+
+
+WIRE_DELAY = '''
+[study]
+name = "wd"
+models = ["cc"]
+
+[robot]
+preset = "cojocaru_tronconic"
+n_sections = 1
+
+[scenario]
+name = "wire_delay"
+move_time = 2.0
+
+[load]
+mode = "length"
+pretension = 20.0
+analysis = "dynamic"
+duration = 8.0
+
+[sweep]
+product = { "scenario.delay" = [0.0, 1.5] }
+'''
+
+
+def test_a_stored_row_records_the_load_a_scenario_made(tmp_path):
+    p = tmp_path / "wd.toml"
+    p.write_text(WIRE_DELAY)
+    study = load_study(p)
+    ran = []
+
+    def lookup(name):
+        def run(robot, load, options):
+            ran.append((robot, load))
+            return fakes.arc(robot, load, options)
+        return run
+
+    run_study(study, tmp_path / "out", SerialExecutor(), model_lookup=lookup, progress=False)
+    df = read_table(tmp_path / "out").sort_values("p.scenario.delay")
+    assert set(df["case_id"]) == {c.case_id for c in expand(study)}
+    # the scenario's fields, not the configured [load] (duration 8.0, no length changes)
+    assert df["p.load.duration"].tolist() == [3.0, 4.5] and df["p.load.ramp_time"].tolist() == [2.0, 2.0]
+    assert df["p.load.start_delays"].tolist() == ["[0.0,0.0,0.0]", "[1.5,0.0,0.0]"]
+    for _, row in df.iterrows():
+        robot = build_robot(section_params(row, "robot"))
+        load = build_load(robot, section_params(row, "load"))  # no scenario needed to rebuild it
+        assert any(r == robot and ld == load for r, ld in ran)

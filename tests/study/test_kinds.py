@@ -52,7 +52,7 @@ def test_every_kind_has_the_protocol():
     for name in registry.KINDS:
         k = get_kind(name)
         assert k.name == name and k.flush_rows > 0 and callable(k.task)
-        for attr in ("load", "expand", "models", "run_options", "batch_size", "payload"):
+        for attr in ("load", "expand", "models", "recorded_params", "run_options", "batch_size", "payload"):
             assert callable(getattr(k, attr)), (name, attr)
 
 

@@ -18,7 +18,11 @@ from typing import Any, Callable, Mapping
 
 import numpy as np
 
-__all__ = ["gravity_from_parameter", "resolve_robot", "build_robot", "build_load", "build_options"]
+from .params import canonical_json
+from .scenarios import load_with_scenario
+
+__all__ = ["gravity_from_parameter", "resolve_robot", "build_robot", "resolve_case", "parameters_as_run",
+           "build_load", "build_options"]
 
 
 def gravity_from_parameter(gamma: float, EI: float, mass_per_length: float, length: float) -> float:
@@ -73,6 +77,48 @@ def resolve_robot(robot_params: Mapping[str, Any], derived: Mapping[str, Any] | 
 def build_robot(robot_params: Mapping[str, Any], derived: Mapping[str, Any] | None = None):
     """Robot from ``{"preset": name, **preset parameters}`` and the derived parameters (:func:`resolve_robot`)."""
     return resolve_robot(robot_params, derived)[0]
+
+
+def resolve_case(params: Mapping[str, Any], robot_cache: dict[str, Any] | None = None
+                 ) -> tuple[Any, dict[str, Any]]:
+    """The robot of a case and the parameters the case runs with.
+
+    The parameters are ``params`` with the robot's derived parameters applied
+    (:func:`resolve_robot`: ``robot.gravity`` from ``derived.gravity_parameter``) and the
+    scenario's load fields applied (``load_with_scenario``: e.g. ``length_changes``,
+    ``start_delays``, ``duration`` computed per case), so ``build_robot(parameters["robot"])`` and
+    ``build_load(robot, parameters["load"])`` rebuild exactly what ran.  These are the parameters
+    a result row records; the case id stays the hash of ``params`` as configured.
+
+    Parameters
+    ----------
+    params : dict
+        The case's resolved parameters as configured (:class:`~workbench.study.expand.Case`).
+    robot_cache : dict, optional
+        Memo of :func:`resolve_robot` results keyed by the robot's parameters (robots are frozen).
+    """
+    key = canonical_json([params["robot"], params.get("derived")])
+    if robot_cache is not None and key in robot_cache:
+        robot, robot_params = robot_cache[key]
+    else:
+        robot, robot_params = resolve_robot(params["robot"], params.get("derived"))
+        if robot_cache is not None:
+            robot_cache[key] = (robot, robot_params)
+    load = params["load"]
+    if params.get("scenario"):
+        load = load_with_scenario(robot, load, params["scenario"])
+    return robot, {**params, "robot": robot_params, "load": load}
+
+
+def parameters_as_run(params: Mapping[str, Any]) -> dict[str, Any]:
+    """The parameters a case runs with (:func:`resolve_case`), or ``params`` if the case cannot be built.
+
+    A case that cannot be built records its configured parameters (its rows are failed rows).
+    """
+    try:
+        return resolve_case(params)[1]
+    except Exception:  # noqa: BLE001 - the worker records the failure with its reason
+        return dict(params)
 
 
 def build_load(robot, load: Mapping[str, Any], arc_actuation: Callable | None = None):

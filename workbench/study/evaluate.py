@@ -22,8 +22,8 @@ import time
 import traceback
 from typing import Any, Callable, Mapping, Sequence
 
-from .build import build_load, build_options, build_robot, gravity_from_parameter, resolve_robot
-from .params import canonical_json, flatten_params
+from .build import build_load, build_options, build_robot, gravity_from_parameter, resolve_case
+from .params import flatten_params
 from .rows import failed_rows, row_from_result
 
 __all__ = [
@@ -80,34 +80,23 @@ def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str]
     -------
     list of dict
         One row per model (:mod:`workbench.study.rows`).  Its ``p.*`` cells are the parameters
-        the case ran with: ``p.robot.*`` rebuild the robot that ran (``p.robot.gravity`` is the
-        gravity derived from ``derived.gravity_parameter`` when that is set), while ``case_id``
-        stays the hash of the parameters as configured.
+        the case ran with (:func:`~workbench.study.build.resolve_case`): ``p.robot.*`` rebuild
+        the robot that ran (``p.robot.gravity`` derived from ``derived.gravity_parameter``),
+        ``p.load.*`` the load (a scenario's fields applied); ``case_id`` stays the hash of the
+        parameters as configured.
     """
     from ..models import quiet_if_loaded
 
     if model_lookup is None:
         from ..models import get_model as model_lookup
     try:
-        if robot_cache is None:
-            robot, robot_params = resolve_robot(params["robot"], params.get("derived"))
-        else:
-            key = canonical_json([params["robot"], params.get("derived")])
-            if key not in robot_cache:
-                robot_cache[key] = resolve_robot(params["robot"], params.get("derived"))
-            robot, robot_params = robot_cache[key]
-        load_params = params["load"]
-        if params.get("scenario"):
-            from .scenarios import load_with_scenario
-
-            load_params = load_with_scenario(robot, load_params, params["scenario"])
-        load = build_load(robot, load_params, arc_actuation)
-        options = build_options(params["solver"])
+        # the rows record the parameters the case runs with (derived gravity, scenario load
+        # fields applied); the case id stays the hash of the parameters as configured
+        robot, ran = resolve_case(params, robot_cache)
+        load = build_load(robot, ran["load"], arc_actuation)
+        options = build_options(ran["solver"])
     except Exception as e:  # noqa: BLE001 - recorded as the case's failure reason
         return failed_rows(case_id, params, models, f"building the case failed: {_reason(e)}")
-    # the rows record the parameters the case ran with (the robot's derived gravity); the
-    # case id stays the hash of the parameters as configured
-    ran = {**params, "robot": robot_params}
     flat = flatten_params(ran)
     rows = []
     for name in models:

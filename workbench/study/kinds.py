@@ -26,6 +26,7 @@ from pathlib import Path
 from typing import Any, Callable, Protocol, Sequence
 
 from .. import registry
+from .build import parameters_as_run
 from .evaluate import evaluate_batch
 from .expand import Case, expand
 from .spec import Study, load_study
@@ -63,6 +64,9 @@ class StudyKind(Protocol):
     def models(self, spec: Any) -> tuple[str, ...]:
         """The ``model`` values every case writes one row for."""
 
+    def recorded_params(self, spec: Any, case: Case) -> dict[str, Any]:
+        """The parameters the rows of ``case`` record as ``p.*`` (those it runs with; they fix the column types)."""
+
     def run_options(self, spec: Any, **options: Any) -> Any:
         """Check the run's extra options (``model_lookup``, ``arc_actuation``); what :meth:`payload` gets."""
 
@@ -93,6 +97,10 @@ class SweepKind:
 
     def models(self, spec: Study) -> tuple[str, ...]:
         return tuple(spec.models)
+
+    def recorded_params(self, spec: Study, case: Case) -> dict[str, Any]:
+        """:func:`~workbench.study.build.parameters_as_run` (derived gravity, scenario load fields)."""
+        return parameters_as_run(case.params)
 
     def run_options(self, spec: Study, *, model_lookup: Callable | None = None,
                     arc_actuation: Callable | None = None) -> tuple[Callable | None, Callable | None]:

@@ -61,8 +61,11 @@ class RunSummary:
 
 
 def _execute(kind: StudyKind, spec: Any, session: RunSession, executor: Executor, batch_size: int | None,
-             options: Any) -> None:
-    """Submit the session's cases in batches; rerun a crashed batch case by case."""
+             options: Any, recorded: dict[str, dict[str, Any]]) -> None:
+    """Submit the session's cases in batches; rerun a crashed batch case by case.
+
+    A case whose worker died gets a failed row per model, recording ``recorded[case_id]``.
+    """
     todo = session.todo
     size = batch_size or kind.batch_size(len(todo), getattr(executor, "slots", 1))
     pending = [todo[i:i + size] for i in range(0, len(todo), size)]
@@ -76,7 +79,7 @@ def _execute(kind: StudyKind, spec: Any, session: RunSession, executor: Executor
                 if len(batch) > 1:  # find the culprit: rerun the batch case by case
                     retry.extend([c] for c in batch)
                     continue
-                out = [failed_rows(batch[0].case_id, batch[0].params, models, out.reason)]
+                out = [failed_rows(batch[0].case_id, recorded[batch[0].case_id], models, out.reason)]
             session.record(out, len(batch))
         pending = retry
 
@@ -127,13 +130,14 @@ def run_cases(
     """
     run_opts = kind.run_options(spec, **options)
     cases = kind.expand(spec)
+    recorded = {c.case_id: kind.recorded_params(spec, c) for c in cases}
     executor = executor or SerialExecutor()
     session = RunSession.open(
-        folder, spec, cases, (flatten_params(c.params) for c in cases),
+        folder, spec, cases, (flatten_params(p) for p in recorded.values()),
         getattr(executor, "name", type(executor).__name__), resume=resume, progress=progress,
         flush_rows=kind.flush_rows if flush_rows is None else flush_rows, flush_seconds=flush_seconds)
     with session, executor:
-        _execute(kind, spec, session, executor, batch_size, run_opts)
+        _execute(kind, spec, session, executor, batch_size, run_opts, recorded)
     return summarize(session.folder, n_cases=len(cases), n_run=len(session.todo),
                      wall_time=time.perf_counter() - session.t0)
 

@@ -41,6 +41,10 @@ class SeriesParallelKind:
     def models(self, spec: SeriesParallelStudy) -> tuple[str, ...]:
         return MODELS
 
+    def recorded_params(self, spec: SeriesParallelStudy, case: Case) -> dict[str, Any]:
+        """The case's parameters: nothing is derived from them before a case runs."""
+        return case.params
+
     def run_options(self, spec: SeriesParallelStudy, *, model_lookup: Callable | None = None,
                     arc_actuation: Callable | None = None) -> None:
         """No options: ``model_lookup`` / ``arc_actuation`` (sweep-study test hooks) are refused."""
