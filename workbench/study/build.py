@@ -4,11 +4,13 @@ Plain data in (the resolved ``{"robot": ..., "load": ..., "solver": ..., "derive
 case, see :class:`~workbench.study.expand.Case`), frozen values out.  Used by the workers
 (:func:`workbench.study.evaluate.evaluate_case`), by validation (every case is dry-built, so an
 infeasible command is an input error before anything runs) and by the report (rebuilding a
-stored row).  Imports no Exudyn; the preset registry and the CC arc-to-tendon map are imported
-when first used.
+stored row).  :func:`resolve_case` is the one rule for the parameters a case *runs with* (the
+robot's derived gravity, a scenario's load fields): result rows record those, so a stored row
+rebuilds exactly the robot and load that ran.  Imports no Exudyn; the preset registry and the CC
+arc-to-tendon map are imported when first used.
 
 Checked by ``tests/study/test_evaluate.py`` (gamma -> gravity, loads) and
-``tests/study/test_build.py``.
+``tests/study/test_build.py`` (rebuilding the robot and load of stored rows).
 """
 
 from __future__ import annotations
