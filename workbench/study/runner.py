@@ -41,6 +41,7 @@ from .spec import Study
 __all__ = ["RunSummary", "finish_run", "open_run_manifest", "run_cases", "run_study", "read_manifest",
            "package_versions", "git_commit", "study_name", "summarize"]
 
+
 @dataclass
 class RunSummary:
     """Outcome of :func:`run_cases` (counts over the whole table, including earlier runs)."""
