@@ -15,13 +15,18 @@ debugging: a crashing case takes the command down).
 
 Exit codes: 0 every case ok, 1 some cases failed, 2 bad input (invalid study file, folder
 mismatch), 130 interrupted.
+
+``run`` and ``validate`` choose the study kind once (:func:`workbench.study.kinds.kind_of` reads
+``[study] kind``, :func:`~workbench.study.kinds.get_kind` finds it in ``workbench.registry.KINDS``)
+and then use only that kind's ``load`` / ``expand`` / ``models`` and the one runner
+:func:`workbench.study.run_cases`.  Checked by ``tests/study/test_cli.py``,
+``tests/study/test_spec.py`` and ``tests/study/test_kinds.py``.
 """
 
 from __future__ import annotations
 
 import argparse
 import importlib
-import importlib.util
 import sys
 from pathlib import Path
 from typing import Sequence
@@ -76,10 +81,10 @@ def _resolve(dotted: str):
 
 def _print_summary(summary, reports_dir: Path | None = None, report_note: str | None = None,
                    show_run: bool = True) -> None:
-    from .study.runner import read_manifest
+    from .study.runner import read_manifest, study_name
 
     man = read_manifest(summary.folder)
-    name = man.get("study", {}).get("study", {}).get("name", "?")
+    name = study_name(man, "?")
     runs = man.get("runs", [])
     print(f"study {name!r}: {summary.folder}")
     this_run = f" (this run: {summary.n_run} run, {summary.n_skipped} already stored)" if show_run else ""
@@ -114,43 +119,40 @@ def _print_summary(summary, reports_dir: Path | None = None, report_note: str | 
 
 
 def _build_report(data_dir: Path, out_dir: Path) -> str:
-    """Report hook: ``workbench.report.build_report(data_dir, out_dir)`` if that module exists."""
-    if importlib.util.find_spec("workbench.report") is None:
-        return "skipped (workbench.report is not installed in this branch)"
-    report = importlib.import_module("workbench.report")
-    build = getattr(report, "build_report", None)
-    if build is None:
-        return "skipped (workbench.report has no build_report)"
-    out = build(data_dir, out_dir)
+    """Build the HTML report of ``data_dir`` into ``out_dir``; what to print as its location."""
+    from .report import build_report
+
+    out = build_report(data_dir, out_dir)
     return str(out if out is not None else out_dir)
 
 
+def _load(args):
+    """``(kind, validated study)`` of ``args.study``: the one place the study kind is chosen."""
+    from .study import get_kind, kind_of
+
+    kind = get_kind(kind_of(args.study))
+    return kind, kind.load(args.study, max_cases=args.max_cases)
+
+
 def _cmd_validate(args) -> int:
-    from .motion import expand_motions, is_motion_study, load_motion_study
-    from .study import StudyError, count_cases, load_study
+    from .study import StudyError
 
     try:
-        if is_motion_study(args.study):
-            study = load_motion_study(args.study, max_cases=args.max_cases)
-            n_cases, models = len(expand_motions(study)), ("series_parallel", "cc_fit")
-        else:
-            study = load_study(args.study, max_cases=args.max_cases)
-            n_cases, models = count_cases(study), tuple(study.models)
+        kind, study = _load(args)
     except StudyError as e:
         _err(e.problems)
         return 2
+    n_cases, models = len(kind.expand(study)), kind.models(study)
     print(f"{args.study}: ok: study {study.name!r}, {n_cases} cases x {len(models)} models "
           f"({', '.join(models)}), config hash {study.config_hash}")
     return 0
 
 
 def _cmd_run(args) -> int:
-    from .motion import MotionStudy, is_motion_study, load_motion_study, run_loaded_motion_study
-    from .study import DaskExecutor, IsolatedExecutor, SerialExecutor, StudyError, load_study, run_study
+    from .study import DaskExecutor, IsolatedExecutor, SerialExecutor, StudyError, run_cases
 
     try:
-        loader = load_motion_study if is_motion_study(args.study) else load_study
-        study = loader(args.study, max_cases=args.max_cases)
+        kind, study = _load(args)
     except StudyError as e:
         _err(e.problems)
         return 2
@@ -170,9 +172,8 @@ def _cmd_run(args) -> int:
     arc = _resolve(args.arc_actuation) if args.arc_actuation else None
     progress = {"auto": None, "on": True, "off": False}[args.progress]
     try:
-        runner = run_loaded_motion_study if isinstance(study, MotionStudy) else run_study
-        summary = runner(study, folder, executor, resume=args.resume, model_lookup=lookup,
-                             arc_actuation=arc, progress=progress, flush_rows=args.flush_rows)
+        summary = run_cases(kind, study, folder, executor, resume=args.resume, progress=progress,
+                            flush_rows=args.flush_rows, model_lookup=lookup, arc_actuation=arc)
     except StudyError as e:
         _err(e.problems)
         return 2
@@ -199,9 +200,9 @@ def _cmd_show(args) -> int:
         _err([f"{folder}: not a study result folder (no {MANIFEST})"])
         return 2
     summary = summarize(folder)
-    from .study.runner import read_manifest
+    from .study.runner import read_manifest, study_name
 
-    name = read_manifest(folder).get("study", {}).get("study", {}).get("name", folder.name)
+    name = study_name(read_manifest(folder), folder.name)
     _print_summary(summary, reports_dir=Path("reports") / name, show_run=False)
     return summary.exit_code
 

@@ -55,13 +55,11 @@ def run_study_object(study, out_dir: str | Path) -> pd.DataFrame:
 
 def run_small_study(path: str | Path, out_dir: str | Path) -> pd.DataFrame:
     """Run the small study at ``path`` into ``out_dir`` (must not hold results); golden-form table."""
-    from workbench.motion import is_motion_study, run_motion_study
-    from workbench.study import load_study, read_table
+    from workbench.study import SerialExecutor, get_kind, kind_of, read_table, run_cases
 
-    if is_motion_study(path):  # series-parallel motion studies have their own runner
-        run_motion_study(path, out_dir)
-        return golden_frame(read_table(out_dir))
-    return golden_frame(run_study_object(load_study(str(path)), out_dir))
+    kind = get_kind(kind_of(path))  # the study's kind ([study] kind), as the CLI chooses it
+    run_cases(kind, kind.load(str(path)), Path(out_dir), SerialExecutor(), progress=False)
+    return golden_frame(read_table(out_dir))
 
 
 def _max_abs_position(cell: Any) -> float:

@@ -11,6 +11,7 @@ from typing import Callable, Protocol
 
 from .. import registry
 from ..robot import LoadCase, Robot
+from ._console import quiet_if_loaded
 from .result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 
 __all__ = [
@@ -21,6 +22,7 @@ __all__ = [
     "SolverInfo",
     "SolverOptions",
     "get_model",
+    "quiet_if_loaded",
 ]
 
 

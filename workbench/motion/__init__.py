@@ -1,10 +1,10 @@
-"""Motion studies of Huang et al.'s flexible series-parallel trunk (single module and stacks).
+"""Deprecated: import from ``workbench.experiments.series_parallel`` (the series-parallel study kind).
 
-A sibling of :mod:`workbench.study` for models driven by platform poses rather than by
-``run(robot, load, options)``: :func:`load_motion_study` (strict TOML validation, one-line
-:class:`~workbench.study.spec.StudyError` messages), :func:`expand_motions` (stable case ids),
-:func:`evaluate_motion_case` (pure worker: IK, FK check, CC fit) and :func:`run_motion_study`
-(same result store, manifest and row schema as the generic runner).
+``workbench.motion`` was the sibling pipeline of the series-parallel platform-pose studies; the
+study kind now lives in ``workbench/experiments/series_parallel/`` (``spec``, ``expand``,
+``worker``, ``kind``) and runs on the one study pipeline (:func:`workbench.study.run_cases`).
+This package keeps every name it had (``MotionStudy`` is
+:class:`~workbench.experiments.series_parallel.spec.SeriesParallelStudy`).
 """
 
 from .expand import expand_motions, motion_values

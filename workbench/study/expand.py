@@ -3,21 +3,31 @@
 Each case carries its fully resolved parameters and a stable ``case_id``: the first 16 hex
 digits of the SHA-256 of the canonical JSON of those parameters.  The id depends only on the
 parameter values (not on the case's position in the sweep, the study name or the models), so
-reruns and resumes match cases exactly.
+reruns and resumes match cases exactly.  Imports nothing but :mod:`workbench.study.params`, so the
+spec can expand a study while validating it (no cycle).
+
+Checked by ``tests/study/test_expand.py``.
 """
 
 from __future__ import annotations
 
 import itertools
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 
 from .params import case_id_for, flatten_params
-from .spec import Study
 
 __all__ = ["Case", "expand", "count_cases", "case_id_for", "flatten_params"]
+
+
+class SweepSpec(Protocol):
+    """What expansion reads of a validated :class:`workbench.study.spec.Study` (no import of the spec)."""
+
+    base: dict[str, dict[str, Any]]
+    sweep: dict[str, Any]
+    seed: int
 
 
 @dataclass(frozen=True)
@@ -43,7 +53,7 @@ class Case:
     swept: dict[str, Any]
 
 
-def _blocks(study: Study) -> list[list[dict[str, Any]]]:
+def _blocks(study: SweepSpec) -> list[list[dict[str, Any]]]:
     sw = study.sweep
     blocks: list[list[dict[str, Any]]] = []
     for path, values in sw.get("product", {}).items():
@@ -81,7 +91,7 @@ def _samples(spec: dict[str, Any], seed: int, tag: int, *, latin: bool) -> list[
     return [{p: cols[p][i] for p in cols} for i in range(n)]
 
 
-def count_cases(study: Study) -> int:
+def count_cases(study: SweepSpec) -> int:
     """Number of cases :func:`expand` would produce (without expanding)."""
     n = 1
     sw = study.sweep
@@ -97,7 +107,7 @@ def count_cases(study: Study) -> int:
     return n
 
 
-def expand(study: Study) -> list[Case]:
+def expand(study: SweepSpec) -> list[Case]:
     """All cases of ``study``, in a deterministic order (blocks' Cartesian product)."""
     cases = []
     for i, combo in enumerate(itertools.product(*_blocks(study))):

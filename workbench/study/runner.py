@@ -1,35 +1,50 @@
-"""Run a study: expand, skip finished cases (resume), execute, store, manifest, summary."""
+"""Run a study: one driver for every study kind, and the summary of a result folder.
+
+:func:`run_cases` runs the cases of any :class:`~workbench.study.kinds.StudyKind` through one
+:class:`~workbench.study.session.RunSession` (manifest, run record, store, progress bar, finish):
+it expands the study, skips the cases already stored (resume), submits batches of cases to the
+executor and stores each case's rows as they arrive.  A batch whose worker dies is rerun case by
+case, so the crash is blamed on its case (a failed row per model with the executor's reason).
+:func:`run_study` is ``run_cases(SWEEP, ...)``; :func:`summarize` counts a stored table.
+
+``open_run_manifest``, ``finish_run``, ``package_versions``, ``git_commit``, ``read_manifest``,
+``_now`` and ``_write_manifest`` moved to :mod:`workbench.study.session` and are re-exported here.
+
+Checked by ``tests/study/test_store.py``, ``tests/study/test_executors.py``, ``tests/study/test_cli.py``,
+``tests/study/test_kinds.py`` and ``tests/motion/test_motion_run.py``.
+"""
 
 from __future__ import annotations
 
-import datetime as _dt
-import json
-import os
-import platform
-import socket
-import subprocess
-import sys
 import time
 from dataclasses import dataclass, field
-from importlib import metadata
 from pathlib import Path
 from typing import Any, Callable
 
-from .evaluate import evaluate_batch, failed_rows
 from .executors import Executor, SerialExecutor, WorkerCrash
-from .expand import expand, flatten_params
-from .spec import Study, StudyError
-from .store import MANIFEST, ResultStore, atomic_write_bytes
+from .kinds import SWEEP, StudyKind
+from .params import flatten_params
+from .rows import failed_rows
+from .session import (  # all but RunSession re-exported (their old home; deprecated here)
+    RunSession,
+    _now,
+    _write_manifest,
+    finish_run,
+    git_commit,
+    open_run_manifest,
+    package_versions,
+    read_manifest,
+    study_name,
+)
+from .spec import Study
 
-__all__ = ["RunSummary", "finish_run", "open_run_manifest", "run_study", "read_manifest", "package_versions", "git_commit"]
-
-_PACKAGES = ("trunk-workbench", "exudyn", "numpy", "scipy", "pandas", "pyarrow", "dask",
-             "distributed", "pydantic", "tqdm")
+__all__ = ["RunSummary", "finish_run", "open_run_manifest", "run_cases", "run_study", "read_manifest",
+           "package_versions", "git_commit", "study_name", "summarize"]
 
 
 @dataclass
 class RunSummary:
-    """Outcome of :func:`run_study` (counts over the whole table, including earlier runs)."""
+    """Outcome of :func:`run_cases` (counts over the whole table, including earlier runs)."""
 
     folder: Path
     n_cases: int
@@ -46,88 +61,87 @@ class RunSummary:
         return 1 if self.n_failed else 0
 
 
-def _now() -> str:
-    return _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+def _execute(kind: StudyKind, spec: Any, session: RunSession, executor: Executor, batch_size: int | None,
+             options: Any, recorded: dict[str, dict[str, Any]]) -> None:
+    """Submit the session's cases in batches; rerun a crashed batch case by case.
+
+    A case whose worker died gets a failed row per model, recording ``recorded[case_id]``.
+    """
+    todo = session.todo
+    size = batch_size or kind.batch_size(len(todo), getattr(executor, "slots", 1))
+    pending = [todo[i:i + size] for i in range(0, len(todo), size)]
+    models = kind.models(spec)
+    while pending:
+        retry: list[list] = []
+        payloads = [kind.payload(spec, b, options) for b in pending]
+        for i, out in executor.imap_unordered(kind.task, payloads):
+            batch = pending[i]
+            if isinstance(out, WorkerCrash):
+                if len(batch) > 1:  # find the culprit: rerun the batch case by case
+                    retry.extend([c] for c in batch)
+                    continue
+                out = [failed_rows(batch[0].case_id, recorded[batch[0].case_id], models, out.reason)]
+            session.record(out, len(batch))
+        pending = retry
 
 
-def package_versions() -> dict[str, str | None]:
-    """Installed versions (from package metadata; nothing is imported)."""
-    out: dict[str, str | None] = {"python": platform.python_version()}
-    for p in _PACKAGES:
-        try:
-            out[p] = metadata.version(p)
-        except metadata.PackageNotFoundError:
-            out[p] = None
-    if out.get("trunk-workbench") is None:
-        from .. import __version__
+def run_cases(
+    kind: StudyKind,
+    spec: Any,
+    folder: str | Path,
+    executor: Executor | None = None,
+    *,
+    resume: bool = False,
+    progress: bool | None = None,
+    flush_rows: int | None = None,
+    flush_seconds: float = 2.0,
+    batch_size: int | None = None,
+    **options: Any,
+) -> RunSummary:
+    """Run every (remaining) case of ``spec``, a validated study of ``kind``, into ``folder``.
 
-        out["trunk-workbench"] = __version__
-    return out
-
-
-def git_commit() -> dict[str, Any]:
-    """Commit of the workbench source tree (``None`` outside git) and whether it was dirty."""
-    root = Path(__file__).resolve().parents[2]
-    try:
-        head = subprocess.run(["git", "-C", str(root), "rev-parse", "HEAD"], capture_output=True,
-                              text=True, timeout=10)
-        if head.returncode != 0:
-            return {"commit": None, "dirty": None}
-        st = subprocess.run(["git", "-C", str(root), "status", "--porcelain", "--untracked-files=no"],
-                            capture_output=True, text=True, timeout=10)
-        return {"commit": head.stdout.strip(), "dirty": bool(st.stdout.strip())}
-    except (OSError, subprocess.TimeoutExpired):
-        return {"commit": None, "dirty": None}
-
-
-def read_manifest(folder: str | Path) -> dict[str, Any]:
-    return json.loads((Path(folder) / MANIFEST).read_text())
-
-
-def _write_manifest(folder: Path, manifest: dict[str, Any]) -> None:
-    data = json.dumps(manifest, indent=2, sort_keys=False).encode()
-    atomic_write_bytes(folder / MANIFEST, lambda f: f.write(data))
-
-
-
-def open_run_manifest(folder: Path, config_hash: str, resume: bool,
-                      fresh: Callable[[], dict[str, Any]]) -> dict[str, Any]:
-    """The manifest a run continues (``resume``) or starts (``fresh()``); refuses to mix runs.
+    Parameters
+    ----------
+    kind : StudyKind
+        E.g. :data:`~workbench.study.kinds.SWEEP` or ``get_kind(kind_of(path))``.
+    spec : object
+        What ``kind.load`` returned.
+    folder : path-like
+        Output folder (created).  Without ``resume`` it must not hold results yet.
+    executor : Executor, optional
+        Default :class:`SerialExecutor`.  Entered and exited here.
+    resume : bool
+        Skip cases whose rows are already stored; refuses a folder whose manifest has a
+        different config hash.
+    progress : bool, optional
+        Show a tqdm bar (default: only when stderr is a TTY).
+    flush_rows, flush_seconds : int, float
+        When buffered rows are written as a part (see :class:`ResultStore`); ``flush_rows``
+        defaults to ``kind.flush_rows``.
+    batch_size : int, optional
+        Cases per task; default ``kind.batch_size(n, executor.slots)``.
+    **options
+        Passed to ``kind.run_options`` (sweep: ``model_lookup``, ``arc_actuation``, see
+        :func:`~workbench.study.evaluate.evaluate_case`; picklable for processes).
 
     Raises
     ------
     StudyError
-        The folder holds results and ``resume`` is off; the stored config hash differs; or
-        the folder holds Parquet parts without a manifest.
+        Options the kind refuses, or folder/resume mismatch (user errors: the CLI exits with 2).
     """
-    if (folder / MANIFEST).exists():
-        old = read_manifest(folder)
-        name = (old.get("study") or {}).get("study", {}).get("name")
-        if not resume:
-            raise StudyError([f"{folder}: already holds results of study {name!r}; "
-                              f"use --resume to continue it or --out to choose another folder"])
-        if old.get("config_hash") != config_hash:
-            raise StudyError([f"{folder}: --resume refused: the study's config hash {config_hash} differs from "
-                              f"the stored run's {old.get('config_hash')} (parameters, sweep, seed or models "
-                              f"changed); use another --out"])
-        return old
-    if folder.exists() and any(folder.glob("part-*.parquet")):
-        raise StudyError([f"{folder}: holds Parquet parts but no {MANIFEST}; refusing to mix results"])
-    return fresh()
+    run_opts = kind.run_options(spec, **options)
+    cases = kind.expand(spec)
+    recorded = {c.case_id: kind.recorded_params(spec, c) for c in cases}
+    executor = executor or SerialExecutor()
+    session = RunSession.open(
+        folder, spec, cases, (flatten_params(p) for p in recorded.values()),
+        getattr(executor, "name", type(executor).__name__), resume=resume, progress=progress,
+        flush_rows=kind.flush_rows if flush_rows is None else flush_rows, flush_seconds=flush_seconds)
+    with session, executor:
+        _execute(kind, spec, session, executor, batch_size, run_opts, recorded)
+    return summarize(session.folder, n_cases=len(cases), n_run=len(session.todo),
+                     wall_time=time.perf_counter() - session.t0)
 
-
-def finish_run(folder: Path, manifest: dict[str, Any], run_rec: dict[str, Any], store: ResultStore,
-               bar: Any, t0: float) -> None:
-    """Flush the store, close the progress bar and record the run's end in the manifest.
-
-    Called from a ``finally`` block, so an interrupted run still leaves a consistent folder.
-    """
-    store.close()
-    if bar is not None:
-        bar.close()
-    run_rec["end"] = _now()
-    run_rec["wall_time"] = round(time.perf_counter() - t0, 3)
-    _write_manifest(folder, manifest)
 
 def run_study(
     study: Study,
@@ -142,100 +156,20 @@ def run_study(
     flush_seconds: float = 2.0,
     batch_size: int | None = None,
 ) -> RunSummary:
-    """Run every (remaining) case of ``study`` and store the rows in ``folder``.
+    """Run every (remaining) case of the sweep study ``study`` into ``folder``: ``run_cases(SWEEP, ...)``.
 
-    Parameters
-    ----------
-    study : Study
-    folder : path-like
-        Output folder (created).  Without ``resume`` it must not hold results yet.
-    executor : Executor, optional
-        Default :class:`SerialExecutor`.  Entered and exited here.
-    resume : bool
-        Skip cases whose rows are already stored; refuses a folder whose manifest has a
-        different config hash.
-    model_lookup, arc_actuation : callable, optional
-        Passed to :func:`~workbench.study.evaluate.evaluate_case` (picklable for processes).
-    progress : bool, optional
-        Show a tqdm bar (default: only when stderr is a TTY).
-    flush_rows, flush_seconds : int, float
-        When buffered rows are written as a part (see :class:`ResultStore`).
-    batch_size : int, optional
-        Cases per task.  Default: ``ceil(n / (8 * executor.slots))`` capped to [1, 32], which
-        amortises the per-task cost of process executors while keeping the load balanced.
-        A batch whose worker dies is rerun case by case, so the crash is blamed on its case.
-
-    Raises
-    ------
-    StudyError
-        Folder/resume mismatch (a user error: the CLI exits with 2).
+    See :func:`run_cases` for the parameters; ``model_lookup`` and ``arc_actuation`` are passed to
+    :func:`~workbench.study.evaluate.evaluate_case`.  A batch whose worker dies is rerun case by
+    case, so the crash is blamed on its case.
     """
-    folder = Path(folder)
-    cases = expand(study)
-    config_hash = study.config_hash
-    manifest = open_run_manifest(folder, config_hash, resume, lambda: {
-        "study": study.resolved(), "study_file": study.path, "config_hash": config_hash,
-        "n_cases": len(cases), "versions": package_versions(), "git": git_commit(), "runs": [],
-    })
-    folder.mkdir(parents=True, exist_ok=True)
-
-    store = ResultStore(folder, (flatten_params(c.params) for c in cases), flush_rows, flush_seconds)
-    store.cleanup_temporaries()
-    finished = store.finished_case_ids()
-    todo = [c for c in cases if c.case_id not in finished]
-    executor = executor or SerialExecutor()
-    run_rec = {"host": socket.gethostname(), "pid": os.getpid(), "platform": platform.platform(),
-               "executor": getattr(executor, "name", type(executor).__name__),
-               "start": _now(), "end": None, "cases_to_run": len(todo), "cases_done": 0}
-    manifest["runs"].append(run_rec)
-    if resume:
-        manifest["versions"] = package_versions()
-        manifest["git"] = git_commit()
-    _write_manifest(folder, manifest)
-
-    show = progress if progress is not None else sys.stderr.isatty()
-    n_ok = n_failed = 0
-    t0 = time.perf_counter()
-    bar = None
-    if todo and show:
-        from tqdm import tqdm
-
-        bar = tqdm(total=len(todo), unit="case", dynamic_ncols=True, file=sys.stderr)
-    try:
-        with executor:
-            size = batch_size or min(32, max(1, -(-len(todo) // (8 * max(1, getattr(executor, "slots", 1))))))
-            pending = [todo[i:i + size] for i in range(0, len(todo), size)]
-            while pending:
-                retry: list[list] = []
-                payloads = [([(c.case_id, c.params) for c in b], study.models, model_lookup, arc_actuation)
-                            for b in pending]
-                for i, out in executor.imap_unordered(evaluate_batch, payloads):
-                    batch = pending[i]
-                    if isinstance(out, WorkerCrash):
-                        if len(batch) > 1:  # find the culprit: rerun the batch case by case
-                            retry.extend([c] for c in batch)
-                            continue
-                        out = [failed_rows(batch[0].case_id, batch[0].params, study.models, out.reason)]
-                    for rows in out:
-                        store.add(rows)
-                        if all(r["status"] == "ok" for r in rows):
-                            n_ok += 1
-                        else:
-                            n_failed += 1
-                    run_rec["cases_done"] += len(batch)
-                    if bar is not None:
-                        bar.set_postfix_str(f"ok={n_ok} failed={n_failed}", refresh=False)
-                        bar.update(len(batch))
-                pending = retry
-    finally:
-        finish_run(folder, manifest, run_rec, store, bar, t0)
-
-    return summarize(folder, n_cases=len(cases), n_run=len(todo), wall_time=time.perf_counter() - t0)
+    return run_cases(SWEEP, study, folder, executor, resume=resume, progress=progress, flush_rows=flush_rows,
+                     flush_seconds=flush_seconds, batch_size=batch_size, model_lookup=model_lookup,
+                     arc_actuation=arc_actuation)
 
 
 def summarize(folder: str | Path, *, n_cases: int | None = None, n_run: int = 0,
               wall_time: float = float("nan")) -> RunSummary:
-    """Counts over the stored table of ``folder``."""
+    """Counts over the stored table of ``folder`` (``n_cases`` default: the manifest's)."""
     import pandas as pd
 
     folder = Path(folder)

@@ -1,0 +1,46 @@
+"""study/session.py: one run session for every study kind (manifest, run record, store, finish)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+import study_fakes as fakes
+from workbench.study import SerialExecutor, expand, load_study, read_manifest, run_study, study_name
+from workbench.study.session import RunSession
+
+
+def test_study_name_ends_the_manifest_chains():
+    assert study_name({"study": {"study": {"name": "q"}}}) == "q"
+    assert study_name({}) is None and study_name({}, "?") == "?"
+    assert study_name({"study": None}, "d") == "d"
+
+
+def test_resume_appends_a_run_and_refreshes_the_provenance(tmp_path, write_study):
+    study = load_study(write_study())
+    out = tmp_path / "out"
+    run_study(study, out, SerialExecutor(), model_lookup=fakes.lookup, progress=False)
+    man = read_manifest(out)
+    man["versions"] = {"numpy": "0"}  # as if an older install had written the folder
+    (out / "_manifest.json").write_text(json.dumps(man))
+    s = run_study(study, out, SerialExecutor(), model_lookup=fakes.lookup, progress=False, resume=True)
+    assert s.n_run == 0 and s.n_skipped == 1
+    man = read_manifest(out)
+    assert len(man["runs"]) == 2 and man["runs"][1]["cases_to_run"] == 0
+    assert man["versions"]["numpy"] != "0" and man["runs"][1]["end"] is not None
+
+
+def test_an_interrupted_run_still_finishes_its_manifest(tmp_path, write_study):
+    study = load_study(write_study())
+    cases = expand(study)
+    out = tmp_path / "out"
+    session = RunSession.open(out, study, cases, ({} for _ in cases), "test", progress=False)
+    with pytest.raises(KeyboardInterrupt):
+        with session:
+            session.record([[{"case_id": cases[0].case_id, "model": "cc", "status": "ok", "error": "",
+                              "wall_time": 0.0}]], 1)
+            raise KeyboardInterrupt
+    man = read_manifest(out)
+    assert man["runs"][0]["end"] is not None and man["runs"][0]["cases_done"] == 1
+    assert session.n_ok == 1 and session.store.finished_case_ids() == {cases[0].case_id}

@@ -1,0 +1,57 @@
+"""Series-parallel expansion (pure): a validated study -> one case per platform motion value.
+
+A case's ``params`` are plain data ``{"motion": {...}, "geometry": {...}, "solver": {...}}``
+(``p.motion.kind`` = ``module`` | ``stack``, ``shape``, ``value``, ``n_modules``, ``plane``, and
+``pivot`` only where a file gives one); its ``case_id`` is
+:func:`workbench.study.params.case_id_for` of those params, so it depends only on the values, not
+on the order of the motions or the study name.  Was ``workbench/motion/expand.py``.
+
+Checked by ``tests/motion/test_motion_spec.py`` (determinism, ids, values).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ...study.expand import Case
+from ...study.params import case_id_for
+from .spec import SeriesParallelStudy
+
+__all__ = ["expand_motions", "motion_values"]
+
+
+def motion_values(amplitude: float, samples: int, symmetric: bool) -> list[float]:
+    """``linspace(-a, a, n)`` (symmetric) or ``linspace(a/n, a, n)``; exact zeros kept exact."""
+    if symmetric:
+        v = np.linspace(-amplitude, amplitude, samples) if samples > 1 else np.array([amplitude])
+    else:
+        v = np.linspace(amplitude / samples, amplitude, samples)
+    return [0.0 if abs(x) < 1e-15 * amplitude else float(x) for x in v]
+
+
+def expand_motions(study: SeriesParallelStudy) -> list[Case]:
+    """All cases, module motions first (file order), then stack motions; duplicates merged."""
+    cases: list[Case] = []
+    seen: set[str] = set()
+
+    def add(motion: dict[str, Any]) -> None:
+        params = {"motion": motion, "geometry": dict(study.geometry), "solver": dict(study.solver)}
+        cid = case_id_for(params)
+        if cid in seen:
+            return
+        seen.add(cid)
+        swept = {f"motion.{k}": v for k, v in motion.items()}
+        cases.append(Case(case_id=cid, index=len(cases), params=params, swept=swept))
+
+    for m in study.motions.get("module", []):
+        for v in motion_values(m["amplitude"], m["samples"], m["symmetric"]):
+            motion = {"kind": "module", "shape": m["axis"], "value": v, "n_modules": 1, "plane": 0.0}
+            if m.get("pivot") is not None:  # rx / ry about a centre on the module axis (absent: platform centre)
+                motion["pivot"] = float(m["pivot"])
+            add(motion)
+    for m in study.motions.get("stack", []):
+        for v in motion_values(m["amplitude"], m["samples"], m["symmetric"]):
+            add({"kind": "stack", "shape": m["shape"], "value": v, "n_modules": m["n_modules"], "plane": m["plane"]})
+    return cases

@@ -1,0 +1,63 @@
+"""The series-parallel study kind: Huang's trunk driven by platform poses, on the one study pipeline.
+
+:data:`KIND` is the :class:`~workbench.study.kinds.StudyKind` that ``workbench.registry.KINDS``
+names for ``[study] kind = "series_parallel"``: it loads the file (:mod:`.spec`), expands the
+motions into cases (:mod:`.expand`) and evaluates one case per task (:mod:`.worker`; each case
+costs seconds, so batching would only unbalance the workers).  Each case writes the rows
+``target``, ``series_parallel`` and ``cc_fit``.  Everything else -- run session, manifest, store,
+executors, crash handling, CLI and report -- is the generic pipeline's
+(:func:`workbench.study.runner.run_cases`).
+
+Checked by ``tests/motion/test_motion_run.py`` and ``tests/study/test_kinds.py``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any, Callable, Sequence
+
+from ...study.expand import Case
+from ...study.messages import StudyError
+from .expand import expand_motions
+from .spec import KIND_NAME, SeriesParallelStudy, load_series_parallel_study
+from .worker import MODELS, evaluate_motion_batch
+
+__all__ = ["KIND", "SeriesParallelKind"]
+
+
+class SeriesParallelKind:
+    """The series-parallel study kind (see the module docstring)."""
+
+    name = KIND_NAME
+    flush_rows = 64
+    task = staticmethod(evaluate_motion_batch)
+
+    def load(self, path: str | Path, max_cases: int | None = None) -> SeriesParallelStudy:
+        return load_series_parallel_study(path, max_cases=max_cases)
+
+    def expand(self, spec: SeriesParallelStudy) -> list[Case]:
+        return expand_motions(spec)
+
+    def models(self, spec: SeriesParallelStudy) -> tuple[str, ...]:
+        return MODELS
+
+    def recorded_params(self, spec: SeriesParallelStudy, case: Case) -> dict[str, Any]:
+        """The case's parameters: nothing is derived from them before a case runs."""
+        return case.params
+
+    def run_options(self, spec: SeriesParallelStudy, *, model_lookup: Callable | None = None,
+                    arc_actuation: Callable | None = None) -> None:
+        """No options: ``model_lookup`` / ``arc_actuation`` (sweep-study test hooks) are refused."""
+        if model_lookup is not None or arc_actuation is not None:
+            raise StudyError([f"{spec.path}: --model-lookup / --arc-actuation do not apply to a series_parallel "
+                              f"motion study"])
+
+    def batch_size(self, n_cases: int, slots: int) -> int:
+        return 1
+
+    def payload(self, spec: SeriesParallelStudy, cases: Sequence[Case], options: Any) -> list[tuple[str, dict]]:
+        return [(c.case_id, c.params) for c in cases]
+
+
+#: The series-parallel study kind (``registry.KINDS["series_parallel"]``).
+KIND = SeriesParallelKind()
