@@ -31,6 +31,8 @@ import sys
 from pathlib import Path
 from typing import Sequence
 
+from .report.command import add_report_arguments, report_command
+
 __all__ = ["main"]
 
 
@@ -59,9 +61,7 @@ def _parser() -> argparse.ArgumentParser:
     s.add_argument("folder", help="e.g. data/example")
 
     rp = sub.add_parser("report", help="write the HTML comparison report of a study result folder")
-    rp.add_argument("folder", help="e.g. data/quickstart")
-    rp.add_argument("--out", help="output folder (default reports/<study name>)")
-    rp.add_argument("--formats", default="png,svg", help="figure file formats, comma separated (png,svg,pdf)")
+    add_report_arguments(rp)
 
     v = sub.add_parser("validate", help="check a study file without running it")
     v.add_argument("study")
@@ -208,17 +208,7 @@ def _cmd_show(args) -> int:
 
 
 def _cmd_report(args) -> int:
-    from .study.store import MANIFEST
-
-    folder = Path(args.folder)
-    if not (folder / MANIFEST).exists():
-        _err([f"{folder}: not a study result folder (no {MANIFEST})"])
-        return 2
-    from .report import build_report
-
-    formats = tuple(x for x in args.formats.split(",") if x)
-    print(build_report(folder, args.out, formats=formats))
-    return 0
+    return report_command(args)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

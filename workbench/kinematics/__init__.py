@@ -8,33 +8,10 @@ function is vectorised over leading batch dimensions ``(..., n)``, checks its in
 (errors state the expected shape), and is exact and smooth as ``kappa -> 0`` (series
 branches for ``sin x/x`` and ``(1 - cos x)/x``).
 
-Modules
--------
-:mod:`.arc`
-    :func:`section_transform`, :func:`forward_kinematics` (tip or backbone frames at arc-length
-    stations), :func:`backbone_points`, :func:`jacobian` (analytic 6 x 3n tip twist Jacobian).
-:mod:`.planar`
-    Hannan & Walker planar model: :func:`planar_forward_kinematics` (Eq. 6-7, App. A),
-    :func:`planar_jacobian` (Eq. 9, App. B with its three sign errata fixed),
-    :func:`spatial_from_planar`, :func:`planar_from_spatial_transform`.
-:mod:`.redundancy`
-    Resolved-rate IK with damped least squares and a null-space task (Eq. 10-11):
-    :func:`planar_inverse_kinematics`, :func:`spatial_inverse_kinematics` -> :class:`IKResult`;
-    :func:`follow_path` -> :class:`PathResult`; :func:`line_path`.
-:mod:`.tendons`
-    :func:`tendon_lengths_from_arc`, :func:`arc_from_tendon_lengths` and the multi-section
-    :func:`tendon_lengths_from_arcs`, :func:`arcs_from_tendon_lengths`.
-:mod:`.hannan_walker`
-    Cable geometry, Eq. 1-3: :func:`joint_angle_from_cable_change`,
-    :func:`cable_change_from_joint_angle`, :func:`curvature_from_joint_angle`,
-    :func:`joint_angle_from_curvature`, :func:`curvature_from_cable_change`.
-:mod:`.tronconic`
-    Cojocaru et al. 3-wire tronconic sections: :func:`wire_lengths_tronconic` (Eq. 4-11),
-    :func:`wire_length_jacobian` (Eq. 23-24), :func:`virtual_compression` (Eq. 12),
-    :func:`plan_constant_speed_move` -> :class:`WireMove` (Eq. 13-30).
-:mod:`.centre_of_arc`
-    Shao et al.: :func:`centre_of_arc_pose` (Eq. 1-3), :func:`centre_of_arc_jacobian`
-    (Eq. 4-5, corrected), :class:`SingularConfiguration` (``k = 0``).
+Modules: :mod:`.arc` (section transforms, FK, backbone points, the 6 x 3n Jacobian), :mod:`.planar`
+(Hannan & Walker Eq. 6-9, App. B errata fixed), :mod:`.redundancy` (resolved-rate IK, null space, Eq.
+10-11), :mod:`.tendons` (tendon lengths <-> arcs), :mod:`.hannan_walker` (cable geometry, Eq. 1-3),
+:mod:`.tronconic` (Cojocaru Eq. 4-30), :mod:`.centre_of_arc` (Shao Eq. 1-5, corrected).
 
 Example
 -------
@@ -51,9 +28,6 @@ Example
 ((5, 3), True)
 >>> kin.jacobian(kappa, phi, ell).shape           # (kappa_1, phi_1, ell_1, kappa_2, ...)
 (6, 9)
->>> batch = kin.forward_kinematics(np.zeros((1000, 3)), np.zeros((1000, 3)), np.full((1000, 3), 0.1))
->>> batch.shape, round(float(batch[0, 2, 3]), 12)  # straight: tip at z = 0.3 m
-((1000, 4, 4), 0.3)
 >>> L = kin.tendon_lengths_from_arc(5.0, 0.4, 0.2, sigma=[0.0, 2.0944, 4.1888], d=0.01)
 >>> k, p, l = kin.arc_from_tendon_lengths(L, [0.0, 2.0944, 4.1888], 0.01)
 >>> [round(float(v), 6) for v in (k, p, l)]

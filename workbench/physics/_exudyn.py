@@ -9,12 +9,12 @@ and, through the models, by their validation tests.
 
 from __future__ import annotations
 
-import contextlib
-from typing import Callable, Iterator, Sequence
+from typing import Callable, Sequence
 
 import exudyn as exu
 import numpy as np
 
+from ..models import quiet_if_loaded
 from ..models.result import SolverOptions
 
 __all__ = [
@@ -34,18 +34,9 @@ __all__ = [
 SolverError = exu.SolverError
 
 
-@contextlib.contextmanager
-def quiet_exudyn() -> Iterator[None]:
-    """Silence Exudyn's console output inside the block.
-
-    ``exu.config.printToConsole`` is process-global, so it is saved and restored.
-    """
-    old = exu.config.printToConsole
-    exu.config.printToConsole = False
-    try:
-        yield
-    finally:
-        exu.config.printToConsole = old
+#: Exudyn's console off inside a ``with`` block, saved and restored (one implementation:
+#: :func:`workbench.models.quiet_if_loaded`; Exudyn is always loaded here).
+quiet_exudyn = quiet_if_loaded
 
 
 def _no_files(s: "exu.SimulationSettings", sensors_active: bool | None = None) -> None:

@@ -8,7 +8,18 @@ and ``_manifest.json``; conventions in :mod:`workbench.report.load`) and writes
 ``load_study`` are the deprecated names of :class:`ResultSet` and :func:`load_results`.
 """
 
-from .build import build_report, main
-from .load import ResultSet, Study, load_results, load_study
+from typing import Any
 
 __all__ = ["ResultSet", "Study", "build_report", "load_results", "load_study", "main"]
+
+_LAZY = {"build_report": ".build", "main": ".command", "ResultSet": ".load", "Study": ".load",
+         "load_results": ".load", "load_study": ".load"}
+
+
+def __getattr__(name: str) -> Any:
+    """Import the builder (matplotlib, pandas) only when a name is used (PEP 562)."""
+    if name in _LAZY:
+        import importlib
+
+        return getattr(importlib.import_module(_LAZY[name], __name__), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

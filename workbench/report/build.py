@@ -4,8 +4,8 @@
 (:func:`workbench.compare.compare_table`) and draws, inside one ``matplotlib.rc_context(STYLE)``,
 first the study-specific figure sets of ``workbench.registry.FIGURES`` whose ``matches(results)``
 is true (in registry order; the report names no study), then the generic builders of
-:data:`.figures.GENERIC_FIGURES`.  :func:`add_report_arguments` + :func:`report_command` are the
-one report command line (``workbench report`` and ``python -m workbench.report``, :func:`main`).
+:data:`.figures.GENERIC_FIGURES`.  :mod:`.command` holds the one report command line
+(``workbench report`` and ``python -m workbench.report``).
 Checked by ``tests/report/`` and the report tier of ``tests/regression``.
 """
 
@@ -17,7 +17,7 @@ import io
 import json
 from datetime import datetime
 from pathlib import Path
-from typing import Any, Iterable, Sequence
+from typing import Any, Sequence
 
 import matplotlib
 import numpy as np
@@ -25,11 +25,10 @@ import pandas as pd
 
 from .. import registry
 from ..compare.table import compare_table
-from ..study.store import MANIFEST
 from .figures import GENERIC_FIGURES, STYLE, ReportFigure, code_categories, fmt, model_label, pair_label, short_label
 from .load import ResultSet, load_results, numeric
 
-__all__ = ["add_report_arguments", "build_report", "main", "report_command", "study_figure_sets"]
+__all__ = ["build_report", "study_figure_sets"]
 
 _PNG_META = {"Software": None}
 _SVG_META = {"Creator": None, "Date": None, "Format": None, "Type": None}
@@ -293,39 +292,3 @@ def _page(study: ResultSet, cmp, summary, failed, fcols, sections, fig_names) ->
         f"<h2>Figures</h2><p class='note'>{toc}</p>{''.join(sections)}{spec_html}"
         "</body></html>"
     )
-
-
-def add_report_arguments(parser) -> None:
-    """The arguments of the report command (``folder``, ``--out``, ``--formats``) on an argparse parser.
-
-    Shared by ``workbench report`` and ``python -m workbench.report`` (one command line, one code path).
-    """
-    parser.add_argument("folder", help="e.g. data/quickstart")
-    parser.add_argument("--out", help="output folder (default reports/<study name>)")
-    parser.add_argument("--formats", default="png,svg", help="figure file formats, comma separated (png,svg,pdf)")
-
-
-def report_command(args) -> int:
-    """Run the report command for parsed :func:`add_report_arguments` arguments; return the exit code.
-
-    Refuses a folder without ``_manifest.json`` (exit 2, the message on stderr); otherwise builds
-    the report and prints the path of ``report.html`` (exit 0).
-    """
-    import sys
-
-    folder = Path(args.folder)
-    if not (folder / MANIFEST).exists():
-        print(f"{folder}: not a study result folder (no {MANIFEST})", file=sys.stderr)
-        return 2
-    formats = tuple(x for x in args.formats.split(",") if x)
-    print(build_report(folder, args.out, formats=formats))
-    return 0
-
-
-def main(argv: Iterable[str] | None = None) -> int:
-    """Command line: ``python -m workbench.report data/<study> [--out DIR] [--formats png,svg]``."""
-    import argparse
-
-    ap = argparse.ArgumentParser(prog="workbench report", description="Write the HTML comparison report of a study.")
-    add_report_arguments(ap)
-    return report_command(ap.parse_args(list(argv) if argv is not None else None))

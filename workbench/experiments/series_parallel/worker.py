@@ -273,9 +273,9 @@ def _cc_fit_row(base: Mapping[str, Any], fk_poses: np.ndarray | None, n: int, h:
         from ...physics.series_parallel import fit_constant_curvature
 
         fit = fit_constant_curvature(fk_poses)
-        from ...physics.series_parallel import _arc_points  # the fitted arc's points and tangents
+        from ...physics.series_parallel import arc_points  # the fitted arc's points and tangents
 
-        Pa, ta = _arc_points(fit.curvature, fit.phi, fit.arc_lengths)
+        Pa, ta = arc_points(fit.curvature, fit.phi, fit.arc_lengths)
         poses = np.tile(np.eye(4), (n, 1, 1))
         for k in range(n):
             poses[k, :3, :3] = _frame(fit.curvature * fit.arc_lengths[k], fit.phi)

@@ -35,7 +35,7 @@ def matches(results) -> bool:
 
 def _robot_and_load(row: Mapping[str, Any]):
     """The robot, the load case and the scenario parameters a stored row ran with."""
-    from ...study.evaluate import build_load, build_robot
+    from ...study.build import build_load, build_robot
     from ...study.scenarios import load_with_scenario
 
     robot = build_robot(section_params(row, "robot"), section_params(row, "derived"))
