@@ -181,3 +181,13 @@ while True:
     assert len(store.finished_case_ids()) == len(df)
     for p in store.part_files():
         assert pq.read_metadata(p).num_rows == 50
+
+
+def test_resume_into_a_folder_with_other_column_types_is_refused_before_running(tmp_path):
+    from workbench.study.store import SchemaMismatch
+
+    # an older version recorded p.load.length_changes as null (-> double); this one records JSON strings
+    ResultStore(tmp_path, [{"p.load.length_changes": None, "p.robot.length": 0.8}])
+    with pytest.raises(SchemaMismatch, match=r"p\.load\.length_changes is double there, string now"):
+        ResultStore(tmp_path, [{"p.load.length_changes": "[0.01,-0.01]", "p.robot.length": 0.8}])
+    ResultStore(tmp_path, [{"p.load.length_changes": None, "p.robot.length": 0.9}])  # same types: fine

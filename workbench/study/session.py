@@ -37,7 +37,7 @@ from pathlib import Path
 from typing import Any, Callable, Iterable, Mapping, Sequence
 
 from .messages import StudyError
-from .store import MANIFEST, ResultStore, atomic_write_bytes
+from .store import MANIFEST, ResultStore, SchemaMismatch, atomic_write_bytes
 
 __all__ = ["RunSession", "finish_run", "git_commit", "open_run_manifest", "package_versions", "read_manifest",
            "study_name"]
@@ -198,7 +198,11 @@ class RunSession:
             "n_cases": len(cases), "versions": package_versions(), "git": git_commit(), "runs": [],
         })
         folder.mkdir(parents=True, exist_ok=True)
-        store = ResultStore(folder, param_rows, flush_rows, flush_seconds)
+        try:
+            store = ResultStore(folder, param_rows, flush_rows, flush_seconds)
+        except SchemaMismatch as e:
+            raise StudyError([f"{folder}: --resume refused: {e} (the folder was written by another workbench "
+                              f"version that recorded these parameters differently); use another --out"]) from None
         store.cleanup_temporaries()
         finished = store.finished_case_ids()
         todo = [c for c in cases if c.case_id not in finished]

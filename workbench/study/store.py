@@ -32,7 +32,8 @@ from typing import Any, Iterable, Mapping
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-__all__ = ["ResultStore", "atomic_write_bytes", "read_table", "array_shapes", "MANIFEST", "SCHEMA_FILE"]
+__all__ = ["ResultStore", "SchemaMismatch", "atomic_write_bytes", "read_table", "array_shapes", "MANIFEST",
+           "SCHEMA_FILE"]
 
 MANIFEST = "_manifest.json"
 SCHEMA_FILE = "part-0000000000000000000-schema.parquet"
@@ -83,6 +84,16 @@ def _param_type(values: Iterable[Any]) -> pa.DataType:
     return pa.string()
 
 
+class SchemaMismatch(ValueError):
+    """A folder's stored column types differ from the types this run would write (``columns``: name -> (stored, new))."""
+
+    def __init__(self, columns: dict[str, tuple[str, str]]):
+        self.columns = columns
+        shown = ", ".join(f"{k} is {a} there, {b} now" for k, (a, b) in list(columns.items())[:3])
+        more = f" (+{len(columns) - 3} more)" if len(columns) > 3 else ""
+        super().__init__(f"stored column types differ from this run's: {shown}{more}")
+
+
 def _canonical_order(fields: Mapping[str, pa.DataType]) -> list[tuple[str, pa.DataType]]:
     core = [(n, t) for n, t in CORE_COLUMNS]
     rest = sorted(n for n in fields if n not in _CORE_NAMES)
@@ -116,17 +127,25 @@ class ResultStore:
         self._fields: dict[str, pa.DataType] = {n: t for n, t in CORE_COLUMNS}
         self._shapes: dict[str, list[int]] = {"tip_frame": [4, 4], "positions": [-1, 3]}
         schema_path = self.folder / SCHEMA_FILE
+        stored: dict[str, pa.DataType] = {}
         if schema_path.exists():
             old = pq.read_schema(schema_path)
-            self._fields.update({f.name: f.type for f in old})
+            stored = {f.name: f.type for f in old}
+            self._fields.update(stored)
             if old.metadata and _SHAPES_KEY in old.metadata:
                 self._shapes.update(json.loads(old.metadata[_SHAPES_KEY]))
         values: dict[str, list[Any]] = {}
         for row in param_rows:
             for k, v in row.items():
                 values.setdefault(k, []).append(v)
+        clash = {}
         for k, vs in values.items():
-            self._fields.setdefault(k, _param_type(vs))
+            new = _param_type(vs)
+            if k in stored and stored[k] != new and any(v is not None for v in vs):
+                clash[k] = (str(stored[k]), str(new))
+            self._fields.setdefault(k, new)
+        if clash:  # appending would fail at the first write, after the cases were computed
+            raise SchemaMismatch(clash)
         self._schema: pa.Schema | None = None
         self._write_schema_if_changed()
 
