@@ -56,17 +56,28 @@ def check_scenario(raw: Any) -> tuple[dict[str, Any] | None, list[str]]:
         return None, [f"scenario.name: unknown scenario {name!r}{suggest(name, sorted(SCENARIOS))}"
                       .replace("; known keys:", "; known scenarios:")]
     defaults = scenario_parameters(name)
-    out: dict[str, Any] = {"name": name, **defaults}
+    values, problems = check_named_params("scenario", raw, defaults, f"scenario {name!r}", skip="name")
+    return {"name": name, **values}, problems
+
+
+def check_named_params(section: str, raw: Mapping[str, Any], defaults: Mapping[str, Any], owner: str,
+                       skip: str) -> tuple[dict[str, Any], list[str]]:
+    """The parameters of a preset or scenario: the defaults with ``raw``'s checked values applied.
+
+    Returns ``(values, problems)``: one problem per unknown key (with a suggestion) or bad value,
+    as ``"<section>.<key>: ..."``; ``skip`` is the key that names the owner (``preset``/``name``).
+    """
+    out: dict[str, Any] = dict(defaults)
     problems = []
     for k, v in raw.items():
-        if k == "name":
+        if k == skip:
             continue
         if k not in defaults:
-            problems.append(f"scenario.{k}: unknown parameter of scenario {name!r}{suggest(k, list(defaults))}")
+            problems.append(f"{section}.{k}: unknown parameter of {owner}{suggest(k, list(defaults))}")
             continue
         cv, prob = check_robot_value(k, v, defaults[k])
         if prob:
-            problems.append(f"scenario.{k}: {prob}")
+            problems.append(f"{section}.{k}: {prob}")
         else:
             out[k] = cv
     return out, problems

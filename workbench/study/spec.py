@@ -46,6 +46,7 @@ from .checks import (
     case_rules,
     check_cases,
     check_override,
+    check_named_params,
     check_scenario,
     check_sweep,
     known_paths,
@@ -242,19 +243,8 @@ def _resolve_robot(rraw: Any) -> tuple[dict[str, Any] | None, dict[str, Any], li
     defaults, problems = _preset_defaults(preset)
     if defaults is None:
         return None, {}, problems
-    robot_base: dict[str, Any] = {"preset": preset, **defaults}
-    for k, v in rraw.items():
-        if k == "preset":
-            continue
-        if k not in defaults:
-            problems.append(f"robot.{k}: unknown parameter of preset {preset!r}{suggest(k, list(defaults))}")
-            continue
-        cv, prob = check_robot_value(k, v, defaults[k])
-        if prob:
-            problems.append(f"robot.{k}: {prob}")
-        else:
-            robot_base[k] = cv
-    return robot_base, defaults, problems
+    values, more = check_named_params("robot", rraw, defaults, f"preset {preset!r}", skip="preset")
+    return {"preset": preset, **values}, defaults, problems + more
 
 
 def _load_and_derived_rules(sections: Mapping[str, BaseModel], rraw: Any,
