@@ -34,8 +34,9 @@ _SPARSE_FROM = 16
 #: after every success, give up below an increment of 1e-6.
 _STATIC_RAMP = RampPolicy(first_increment=1.0, growth=2.0, grow_after=1, cap="one", min_increment=1e-6)
 
-_ROPES_HINT = ("; eyelet ropes on the rigid-body chain converge only linearly in Newton (numerical, "
-               "not a physical instability): use SpringLinkParams(backend='tree') where possible")
+_BODIES_HINT = ("; the rigid-body chain's static Newton converges only linearly under large joint reactions "
+                "(Exudyn's iteration matrix lacks their geometric stiffness; numerical, not a physical "
+                "instability): use backend='tree' (solver.spring_link_backend = \"tree\" or \"auto\")")
 
 
 def _use_sparse(settings, model) -> None:  # noqa: ANN001
@@ -103,7 +104,7 @@ def _static_ramp(model: _Chain, options: SolverOptions, params: SpringLinkParams
         info = ramp(attempt, model.save_state, model.restore_state, max_attempts=options.max_load_steps,
                     policy=_STATIC_RAMP)
     except RampExhausted as err:
-        hint = _ROPES_HINT if eyelet_ropes and model.rigid_bodies else ""
+        hint = _BODIES_HINT if model.rigid_bodies and not model.axial else ""
         raise ModelFailure(
             f"spring_link: static load ramp exceeded options.max_load_steps={options.max_load_steps} "
             f"(reached load factor {err.lam:.4g}){hint}"
