@@ -154,6 +154,25 @@ def test_dynamic_settles_to_static():
     assert np.linalg.norm(dyn.tip_position - stat.tip_position) < 1e-4
 
 
+def test_dynamic_series_labels_each_state_with_its_own_time():
+    """Exudyn's pre-step callback gets the END time of the coming step: the recorded state (at
+    the step's start) is labelled with the start time, its tensions are the commands of that
+    time, and the time axis is the one ANCF records for the same case (0, h, ..., duration)."""
+    robot = steel_rod(gravity=9.81, base_orientation="horizontal")
+    act = TendonActuation("tension", (30.0, 0.0))
+    load = LoadCase(actuation=act, analysis="dynamic", duration=0.05, ramp_time=0.02)
+    opts = SolverOptions(n_elements=8, damping=0.05, time_step=5e-3)
+    dyn = run(robot, load, opts)
+    steps = np.linspace(0.0, 0.05, 11)
+    np.testing.assert_allclose(dyn.time, steps, atol=1e-12)
+    np.testing.assert_allclose(get_model("ancf")(robot, load, opts).time, dyn.time, atol=1e-12)
+    commands = np.array([act.command_at(t, load.ramp_time) for t in steps])
+    np.testing.assert_allclose(dyn.series["tendon_tensions"], commands, atol=1e-12)
+    start = run(robot, LoadCase(actuation=TendonActuation("tension", (0.0, 0.0))), opts)
+    np.testing.assert_allclose(dyn.series["tip_position"][0], start.tip_position, atol=1e-9)
+    assert np.linalg.norm(dyn.series["tip_position"][1] - start.tip_position) > 1e-7  # it moved after one step
+
+
 def test_bad_inputs():
     robot = steel_rod(n_sections=2)
     with pytest.raises(ValueError, match="multiple of the number of sections"):

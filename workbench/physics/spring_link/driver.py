@@ -164,19 +164,27 @@ def _solve_dynamic(model: _Chain, params: SpringLinkParams, t0: float) -> Physic
         rec_tip.append(r.tip_position.copy())
         rec_T.append(r.tendon_tensions.copy())
 
-    def pre_step(mbs, t):  # noqa: ANN001 - Exudyn callback signature
+    def command(t: float) -> None:
         cmd = start if act is None else act.command_at(t, load.ramp_time)
         if model.mode == "length":
             model._L0 = model.rest_lengths(np.asarray(cmd), 1.0)
             model.update_active_set()
         model.set_tendons(np.asarray(cmd), 1.0)
-        record(t, model.result(SolverInfo(True)))
+
+    def pre_step(mbs, t):  # noqa: ANN001 - Exudyn callback signature
+        # Exudyn passes the END time of the coming step; the state is the one at its start
+        t_state = float(t) - float(solver.it.currentStepSize)
+        while rec_t and rec_t[-1] >= t_state - 1e-12:  # a retried (reduced) step: same start
+            rec_t.pop(), rec_tip.pop(), rec_T.pop()
+        command(t_state)  # the state is recorded with the commands it was solved for
+        record(t_state, model.result(SolverInfo(True)))
+        command(float(t))  # the commands of the coming step, at its end time
         return True
 
+    solver = exu.MainSolverImplicitSecondOrder()
     model.mbs.SetPreStepUserFunction(pre_step)
     settings = dynamic_settings(model.options, load.duration)
     _use_sparse(settings, model)
-    solver = exu.MainSolverImplicitSecondOrder()
     try:
         solver.SolveSystem(model.mbs, settings)
     except exu.SolverError as err:
