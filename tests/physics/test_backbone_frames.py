@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from workbench.physics._backbone_frames import MAX_FRAMES, backbone_series, frame_stride
+from workbench.models.backbone_frames import MAX_FRAMES, backbone_series, frame_stride
 
 
 def test_frame_stride_keeps_at_most_max_frames():
@@ -32,14 +32,14 @@ def _dynamic_case(model: str):
     from workbench.robot.presets import build_preset
 
     robot = build_preset("steel_rod", gravity=9.81, base_orientation="horizontal")
-    act = None if model == "ancf3d" else actuation_from_arc(robot, kappa=[1.0], phi=[0.0], mode="tension")
+    act = None if model == "ancf3d" else actuation_from_arc(robot, kappa=[1.0], phi=[0.0], mode="length" if model == "cc" else "tension")
     load = LoadCase(actuation=act, analysis="dynamic", duration=0.2, ramp_time=0.1)
     opts = SolverOptions(n_elements=4, time_step=2e-3, n_stations=7,
                          tendon_model="eyelets" if model == "beam3d" else "continuum")
     return get_model(model)(robot, load, opts)
 
 
-@pytest.mark.parametrize("model", ["ancf", "beam3d", "ancf3d", "spring_link"])
+@pytest.mark.parametrize("model", ["cc", "ancf", "beam3d", "ancf3d", "spring_link"])
 def test_dynamic_models_store_backbone_frames_ending_in_the_final_shape(model):
     res = _dynamic_case(model)
     bb, bt = np.asarray(res.series["backbone"]), np.asarray(res.series["backbone_time"])

@@ -51,7 +51,7 @@ import numpy as np
 from ..models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ..robot import LoadCase, Robot
 from . import _ancf_geometry as geo
-from ._backbone_frames import backbone_series, frame_stride
+from ..models.backbone_frames import backbone_series, frame_stride
 from ._ancf_problem import PlanarModelError, _Problem, _problem, _Tendon, _tendon_sign  # noqa: F401 (re-exported)
 from .tendon_loads import (
     ramp_load,

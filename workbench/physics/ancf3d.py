@@ -204,8 +204,8 @@ def _dynamic(system: _System, load: LoadCase, options: SolverOptions, stations: 
              ) -> tuple[np.ndarray, dict, int]:
     """Generalised-alpha from the current state; returns (times, series, n_steps).
 
-    ``series`` includes decimated backbone frames at ``stations`` (:mod:`._backbone_frames`)."""
-    from ._backbone_frames import backbone_series, frame_stride
+    ``series`` includes decimated backbone frames at ``stations`` (:mod:`workbench.models.backbone_frames`)."""
+    from ..models.backbone_frames import backbone_series, frame_stride
     from ._exudyn import dynamic_settings
 
     exu = system.exu

@@ -176,7 +176,7 @@ class _Recorder:
 
 def _kept_frames(times: np.ndarray, frames: list) -> dict[str, np.ndarray]:
     """``series.backbone`` / ``backbone_time`` of the recorded samples that kept a backbone."""
-    from ._backbone_frames import backbone_series
+    from ..models.backbone_frames import backbone_series
 
     keep = [i for i, f in enumerate(frames) if f is not None]
     return backbone_series(times[keep], [frames[i] for i in keep]) if keep else {}
@@ -185,10 +185,10 @@ def _kept_frames(times: np.ndarray, frames: list) -> dict[str, np.ndarray]:
 def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bool, stations: np.ndarray):
     """Static equilibrium at t = 0, then generalised-alpha; returns (accepted, attempts, n_steps, times, series).
 
-    ``series`` includes decimated backbone frames at ``stations`` (:mod:`._backbone_frames`)."""
+    ``series`` includes decimated backbone frames at ``stations`` (:mod:`workbench.models.backbone_frames`)."""
     import exudyn as exu
 
-    from ._backbone_frames import frame_stride
+    from ..models.backbone_frames import frame_stride
     from ._exudyn import dynamic_settings
 
     act = load.actuation

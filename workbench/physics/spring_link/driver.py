@@ -19,7 +19,7 @@ import numpy as np
 from ...models.inputs import check_model_inputs
 from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ...robot import LoadCase, Robot
-from .._backbone_frames import backbone_series, frame_stride
+from ...models.backbone_frames import backbone_series, frame_stride
 from .._stepping import RampExhausted, RampPolicy, RampStalled, ramp
 from .chain import _Chain
 from .geometry import ChainGeometry, chain_geometry_from_robot
