@@ -21,6 +21,7 @@ from matplotlib.colors import LogNorm, Normalize
 from matplotlib.figure import Figure
 
 from .load import ResultSet, numeric
+from .units import UNIT_DEPENDS_ON, label_of, unit_groups
 from .style import (
     THRESHOLDS,
     ReportFigure,
@@ -53,8 +54,10 @@ def _below_statement(x: np.ndarray, err: np.ndarray, xname: str, what: str, cats
     """'stays below 1 % of L for x <= a' style statement (x sorted ascending).
 
     For a categorical axis (``cats``: names of the codes in ``x``) the errors are listed."""
-    order = np.argsort(x)
-    x, err = x[order], err[order]
+    # worst error per x value (other parameters vary too): independent of the row order
+    xu = np.unique(x)
+    err = np.array([np.max(err[x == v]) for v in xu])
+    x = xu
     if cats:
         return f"{what}: " + ", ".join(f"{cats[int(c)]} {fmt(e)} % of L" for c, e in zip(x, err)) + "."
     parts = []
@@ -80,19 +83,23 @@ def _pair_rows(cmp: pd.DataFrame, ref: str, m: str) -> pd.DataFrame:
 def _metric_panel(ax, study: ResultSet, cmp: pd.DataFrame, a: str, pairs, col: str, texts: list) -> None:
     """One metric against axis ``a``, a line per model pair (the reference pairs solid)."""
     allv = []
-    for ref, m in pairs:
+    cat = a in study.categories
+    for k, (ref, m) in enumerate(pairs):
         sub = _pair_rows(cmp, ref, m)
         x, y = numeric(sub[a]), numeric(sub[col])
-        o = np.argsort(x)
+        o = np.argsort(x, kind="mergesort")
         x, y = x[o], y[o]
         is_ref = ref == study.reference
-        ax.plot(x, y, marker="o" if is_ref else "s", ms=3.5 if is_ref else 3,
+        if cat:  # categories: grouped markers side by side, never a line between two categories
+            x = x + 0.12 * (k - (len(pairs) - 1) / 2)
+        ax.plot(x, y, marker="o" if is_ref else "s", ms=4.5 if cat else 3.5 if is_ref else 3,
                 color=model_color(m, study.models) if is_ref else "0.45",
-                ls="-" if is_ref else (":", "-.", "--")[len(allv) % 3], label=pair_label(ref, m))
+                ls="none" if cat else "-" if is_ref else (":", "-.", "--")[len(allv) % 3], label=pair_label(ref, m))
         allv.append(y)
         if col == "tip_error_pct" and is_ref and np.isfinite(y).any():
             good = np.isfinite(y)
-            texts.append(_below_statement(x[good], y[good], short_label(a, study.labels), f"{pair_label(ref, m)}: tip error",
+            xs = numeric(sub[a])[o]
+            texts.append(_below_statement(xs[good], y[good], short_label(a, study.labels), f"{pair_label(ref, m)}: tip error",
                                           study.categories.get(a)))
     v = np.concatenate(allv) if allv else np.array([])
     if _log_worthy(v):
@@ -105,8 +112,71 @@ def _metric_panel(ax, study: ResultSet, cmp: pd.DataFrame, a: str, pairs, col: s
     _category_ticks(ax, study, a, "x")
 
 
+def _dependent_unit_column(cmp: pd.DataFrame, a: str) -> str | None:
+    """The column that sets the unit of axis ``a`` (:data:`.units.UNIT_DEPENDS_ON`), if the table has it."""
+    dep = UNIT_DEPENDS_ON.get(a[2:] if a.startswith("p.") else a)
+    if dep is None:
+        return None
+    return next((c for c in (dep[0], f"p.{dep[0]}") if c in cmp.columns), None)
+
+
+def _line_keys(g: pd.DataFrame, a: str, dep_col: str) -> pd.Series:
+    """One line per ``dep_col`` value and per value of the other parameters that vary with it (e.g. a pivot)."""
+    others = [c for c in g.columns if str(c).startswith("p.") and c not in (a, dep_col)
+              and g[c].astype(str).nunique() > 1 and g.groupby(g[dep_col].astype(str))[c].nunique(dropna=False).max() > 1]
+    key = g[dep_col].astype(str)
+    for c in others:
+        v = g[c]
+        key = key + np.where(v.isna(), "", ", " + short_label(c, {}) + " " + v.astype(str))
+    return key
+
+
+def _errors_by_unit(study: ResultSet, cmp: pd.DataFrame, a: str, pairs, metrics, dep_col: str) -> ReportFigure:
+    """One row of panels per unit of ``a`` (never two units on one axis), a colour per ``dep_col`` value."""
+    groups = {u: idx for u, idx in unit_groups(cmp, a).items() if len(idx)}
+    main = [p for p in pairs if p[0] == study.reference] or pairs[:1]
+    fig = Figure(figsize=(3.6 * len(metrics) + 1.6, 3.0 * len(groups) + 0.6), layout="constrained")
+    axs = fig.subplots(len(groups), len(metrics), squeeze=False)
+    styles = ["-", "--", ":", "-."]
+    palette = colormaps["tab10"]
+    texts = []
+    for i, (unit, idx) in enumerate(groups.items()):
+        g = cmp.loc[idx]
+        keys = _line_keys(g, a, dep_col)
+        values = list(dict.fromkeys(keys))
+        for j, (col, lab) in enumerate(metrics):
+            ax = axs[i, j]
+            for k, (ref, m) in enumerate(main):
+                for c, v in enumerate(values):
+                    sub = _pair_rows(g[keys == v], ref, m).sort_values(a, kind="mergesort")
+                    ax.plot(numeric(sub[a]), numeric(sub[col]), marker="o", ms=3, ls=styles[k % 4],
+                            color=palette(c % 10), label=v if k == 0 else None)
+                    if col == "tip_error_pct" and k == 0 and len(sub):
+                        texts.append(f"{v}: max {fmt(np.nanmax(numeric(sub[col])))} % of L")
+            ax.set_xlabel(label_of(a, study.labels, unit=unit or "?"))
+            ax.set_ylabel(lab)
+            if _log_worthy(numeric(g[col])):
+                ax.set_yscale("log")
+        handles, labs = axs[i, 0].get_legend_handles_labels()
+        if len(main) > 1:
+            from matplotlib.lines import Line2D
+
+            handles += [Line2D([], [], color="0.3", ls=styles[k % 4]) for k in range(len(main))]
+            labs += [pair_label(r, m) for r, m in main]
+        axs[i, -1].legend(handles, labs, frameon=False, fontsize=7, loc="center left", bbox_to_anchor=(1.02, 0.5))
+    pair_txt = " and ".join(pair_label(r, m) for r, m in main)
+    summary = (f"Errors of {pair_txt} against {short_label(a, study.labels)}, one row per unit "
+               f"({', '.join(u or 'unknown unit' for u in groups)}), one colour per {short_label(dep_col, study.labels)}"
+               + (", line style per comparison" if len(main) > 1 else "") + f". {pair_label(*main[0])} tip error: "
+               + "; ".join(texts) + ".")
+    return ReportFigure(f"error_vs_{_slug(a)}", f"Errors vs {short_label(a, study.labels)}", fig, summary)
+
+
 def _errors_one_axis(study: ResultSet, cmp: pd.DataFrame, a: str, pairs) -> ReportFigure:
     metrics = [m for m in _ONE_AXIS_METRICS if m[0] in cmp and np.isfinite(numeric(cmp[m[0]])).any()]
+    dep_col = _dependent_unit_column(cmp, a)
+    if dep_col is not None:
+        return _errors_by_unit(study, cmp, a, pairs, metrics, dep_col)
     fig = Figure(figsize=(3.6 * len(metrics) + 0.4, 3.5), layout="constrained")
     axs = np.atleast_1d(fig.subplots(1, len(metrics), squeeze=False)[0])
     texts: list[str] = []
@@ -121,13 +191,19 @@ def _errors_one_axis(study: ResultSet, cmp: pd.DataFrame, a: str, pairs) -> Repo
 def _colour_lines(axs, study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str, main, norm, cmap) -> np.ndarray:
     """Tip error against ``x_ax``, one line per ``c_ax`` value (worst over the rest); all plotted values."""
     allv = []
+    x_cat, c_cat = x_ax in study.categories, c_ax in study.categories
     for ax, (ref, m) in zip(axs, main):
         sub = _pair_rows(cmp, ref, m)
         g = sub.assign(_x=numeric(sub[x_ax]), _c=numeric(sub[c_ax]), _e=numeric(sub["tip_error_pct"]))
         g = g.groupby(["_c", "_x"], as_index=False)["_e"].max()
-        for cv, gg in g.groupby("_c"):
+        n_c = g["_c"].nunique()
+        for k, (cv, gg) in enumerate(g.groupby("_c")):
             gg = gg.sort_values("_x")
-            ax.plot(gg["_x"], gg["_e"], marker="o", ms=3, color=cmap(norm(cv)))
+            # a categorical x: grouped markers side by side (no line between categories)
+            x = gg["_x"] + (0.6 * (k - (n_c - 1) / 2) / max(n_c, 1) if x_cat else 0.0)
+            color = colormaps["tab10"](int(cv) % 10) if c_cat else cmap(norm(cv))
+            label = study.categories[c_ax][int(cv)] if c_cat else None
+            ax.plot(x, gg["_e"], marker="o", ms=4 if x_cat else 3, ls="none" if x_cat else "-", color=color, label=label)
             allv.append(gg["_e"].to_numpy())
         ax.set_title(pair_label(ref, m))
         ax.set_xlabel(axis_label(x_ax, study.labels))
@@ -152,7 +228,8 @@ def _two_axes_summary(study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str,
                                           study.categories.get(x_ax)))
     rest = [short_label(a, study.labels) for a in axes[2:]]
     worst = f" (worst case over {', '.join(rest)})" if rest else ""
-    return (f"Tip error vs {short_label(x_ax, study.labels)}, one line per value of "
+    what = "one marker group per category of" if x_ax in study.categories else "one line per value of"
+    return (f"Tip error vs {short_label(x_ax, study.labels)}, {what} "
             f"{short_label(c_ax, study.labels)} (colour){worst}; dotted lines at 1, 5, 10 % of L. " + " ".join(texts))
 
 
@@ -172,10 +249,12 @@ def _errors_two_axes(study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str, 
         for t in THRESHOLDS:
             ax.axhline(t, color="0.5", lw=0.7, ls=":")
     axs[0].set_ylabel("tip position error [% L]")
-    cb = fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=list(axs), shrink=0.9)
-    cb.set_label(axis_label(c_ax, study.labels))
-    if c_ax in study.categories:
-        cb.set_ticks(range(len(study.categories[c_ax])), labels=study.categories[c_ax])
+    if c_ax in study.categories:  # categories: a legend, not a colour bar
+        axs[-1].legend(title=axis_label(c_ax, study.labels), frameon=False, fontsize=8, loc="upper left",
+                       bbox_to_anchor=(1.02, 1.0))
+    else:
+        cb = fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=list(axs), shrink=0.9)
+        cb.set_label(axis_label(c_ax, study.labels))
     summary = _two_axes_summary(study, cmp, x_ax, c_ax, main, axes)
     return ReportFigure(f"error_vs_{_slug(x_ax)}", f"Tip error vs {short_label(x_ax, study.labels)}", fig, summary)
 
