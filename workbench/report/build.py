@@ -30,7 +30,8 @@ from ..study.store import MANIFEST, array_shapes
 from .casetable import case_table
 from .figures import GENERIC_FIGURES, STYLE, ReportFigure, code_categories, pair_label
 from .load import ResultSet, load_results, numeric
-from .page import PageContext, render_page
+from .context import PageContext
+from .page import render_page
 from .sections import esc
 from .viewer import viewer_scenes
 

@@ -13,45 +13,15 @@ offline.  Checked by ``tests/report/test_report_build.py`` and the browser tests
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass, field
 from importlib import resources
 from typing import Any, Callable, Mapping, Sequence
 
-import pandas as pd
 from jinja2 import Environment, select_autoescape
 from markupsafe import Markup
 
-from .load import ResultSet
+from .context import PageContext, Section
 
 __all__ = ["PageContext", "SECTIONS", "Section", "asset_text", "json_block", "render_page"]
-
-
-@dataclass(frozen=True)
-class Section:
-    """One part of the page: ``id`` is its HTML anchor, ``html`` trusted (already escaped) markup."""
-
-    id: str
-    title: str
-    html: str
-    heading: bool = True
-
-
-@dataclass(frozen=True)
-class PageContext:
-    """What a section builder may use."""
-
-    study: ResultSet
-    cmp: pd.DataFrame
-    summary: pd.DataFrame
-    failed: pd.DataFrame
-    failed_columns: tuple[str, ...]
-    figures_html: tuple[str, ...]
-    figure_names: tuple[str, ...]
-    downloads: tuple[tuple[str, str, str], ...] = ()
-    """``(file name, data URI or relative path, description)`` per download link."""
-    viewer_cases: int = 0
-    viewer_left_out: int = 0
-    extra: Mapping[str, Any] = field(default_factory=dict)
 
 
 #: The page's sections, in order: names of builders in :mod:`.sections` (``module:function`` for others).

@@ -19,7 +19,7 @@ import numpy as np
 import pandas as pd
 
 from .load import ResultSet, numeric
-from .page import PageContext, Section
+from .context import PageContext, Section
 from .style import fmt, model_label, short_label
 
 __all__ = ["esc", "html_table", "provenance_section", "failed_section", "summary_section", "cases_section",
