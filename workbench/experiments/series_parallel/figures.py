@@ -7,7 +7,8 @@ types (x/y/z translations, rx/ry/rz rotations, stack shapes), so the overview gr
 ``p.motion.shape``: (a) the 3-module platform positions, target vs Exudyn FK vs the fitted CC
 arc; (b) CC-fit position error vs amplitude per stack shape; (c) single-module IK->FK round-trip
 error vs amplitude per axis, failed (unreached) poses marked with crosses.  A second figure shows
-the legs along the single-module motions: compression relative to the Euler load, and clearance.
+the legs along the single-module motions: compression relative to the Euler load, and clearance;
+:mod:`.leg_figures` draws the legs themselves (Huang Figs 6 and 10).
 Checked by ``tests/motion/test_motion_run.py`` and the report tier of ``tests/regression``.
 """
 
@@ -163,5 +164,7 @@ def matches(results) -> bool:
 
 
 def figures(results, cmp: pd.DataFrame) -> list[ReportFigure]:
-    """:func:`motion_figures` of all rows of the study (failed rows included)."""
-    return motion_figures(results.results)
+    """:func:`motion_figures` of all rows (failed included), then the leg shapes (Huang Figs 6 and 10)."""
+    from .leg_figures import leg_shape_figures
+
+    return motion_figures(results.results) + leg_shape_figures(results.results)
