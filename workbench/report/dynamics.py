@@ -161,7 +161,9 @@ def compression_split_figures(study: ResultSet, cmp: pd.DataFrame) -> list[Repor
         return []
     pairs = list(dict.fromkeys(zip(sub["reference"], sub["model"])))
     n = len(pairs)
-    fig = Figure(figsize=(4.2 * n + 0.4, 3.4), layout="constrained")
+    n_bars = max(len(sub[(sub["reference"] == r) & (sub["model"] == m)]) for r, m in pairs)
+    n_lines = max(1, len([a for a in study.axes if a in sub]))
+    fig = Figure(figsize=(max(4.2, 0.55 * n_bars + 1.0) * n + 0.4, 3.2 + 0.25 * n_lines), layout="constrained")
     axs = np.atleast_1d(fig.subplots(1, n, squeeze=False)[0])
     colors = ["#4c72b0", "#dd8452", "#55a868"]
     names = ["backbone compression", "tendon stretch", "shape distortion"]
