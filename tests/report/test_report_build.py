@@ -141,7 +141,7 @@ def test_one_d_summary_statement_matches_metrics(reports):
     # statement: "stays below 1 % of L for κL ≤ <largest bend angle before first exceedance>"
     first_bad = sub[sub.tip_error_pct >= 1.0]["p.load.bend_angle"].min()
     expected = below[below < first_bad].max()
-    assert f"CC vs ANCF: tip error stays below 1 % of L for κL ≤ {expected:.3g}" in cap
+    assert f"CC vs ANCF: tip error stays below 1 % of L for κL ≤ {expected:.3g} rad" in cap  # value with its unit
 
 
 def test_default_out_dir_is_the_run_folder_name(tmp_path, monkeypatch):

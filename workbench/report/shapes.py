@@ -194,10 +194,11 @@ def _figure_legend(fig, axs, extra=([], [])) -> None:
     fig.legend(handles, labs, loc="outside lower center", ncol=max(1, len(labs)), frameon=False)
 
 
-def _summary(study: ResultSet, cmp: pd.DataFrame, how: str, spatial: bool, known: bool) -> str:
+def _summary(study: ResultSet, cmp: pd.DataFrame, how: str, spatial: bool, known: bool, gravity: bool) -> str:
     f = study.frame
     proj = f" Top row: {f} x-z projection, bottom row: {f} y-z projection." if spatial else f" Projection on the {f} x-z plane."
-    frame_txt = ("World frame: z up, gravity along world −z (legend)." if f == "world" and known else
+    frame_txt = ("World frame: z up, no gravity in these cases." if f == "world" and known and not gravity else
+                 "World frame: z up, gravity along world −z (legend)." if f == "world" and known else
                  "World frame = the study's base frame (no mounting given)." if f == "world" else
                  "Base frame (backbone along base +z), gravity arrow in base coordinates.")
     summary = (f"Backbones of the {how}, in parameter order; equal axis scaling, base at the grey square, tips dotted. "
@@ -248,4 +249,4 @@ def shape_overlay_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFig
     known = all(k for *_, k in data)
     _figure_legend(fig, axs, _gravity_legend(data) if study.frame == "world" and known else ([], []))
     return [ReportFigure("shapes", f"Backbone shapes ({study.frame} frame)", fig,
-                         _summary(study, cmp, how, spatial, known), cases=tuple(dict.fromkeys(d[0] for d in data)))]
+                         _summary(study, cmp, how, spatial, known, any(np.linalg.norm(d[4]) > 0 for d in data)), cases=tuple(dict.fromkeys(d[0] for d in data)))]

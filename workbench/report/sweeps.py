@@ -36,6 +36,7 @@ from .style import (
     model_color,
     pair_label,
     short_label,
+    value_text,
 )
 
 __all__ = ["error_vs_parameter_figures", "validity_map_figures"]
@@ -50,30 +51,43 @@ _ONE_AXIS_METRICS = [
 # --------------------------------------------------------------------------------------
 # error vs swept parameter
 # --------------------------------------------------------------------------------------
-def _below_statement(x: np.ndarray, err: np.ndarray, xname: str, what: str, cats: Sequence[str] | None = None) -> str:
-    """'stays below 1 % of L for x <= a' style statement (x sorted ascending).
+def _below_statement(x: np.ndarray, err: np.ndarray, xname: str, what: str, cats: Sequence[str] | None = None,
+                     val=fmt) -> str:
+    """'stays below 1 % of L for x <= a' style statement (worst error per x value, x ascending).
 
-    For a categorical axis (``cats``: names of the codes in ``x``) the errors are listed."""
+    For a categorical axis (``cats``: names of the codes in ``x``) the errors are listed.
+    ``val`` formats an x value (with its unit)."""
     # worst error per x value (other parameters vary too): independent of the row order
     xu = np.unique(x)
     err = np.array([np.max(err[x == v]) for v in xu])
     x = xu
     if cats:
         return f"{what}: " + ", ".join(f"{cats[int(c)]} {fmt(e)} % of L" for c, e in zip(x, err)) + "."
-    parts = []
+    bounds: list[tuple[list[float], int | None]] = []  # (thresholds, last index below them; None = all)
     for t in THRESHOLDS:
         below = err < t
-        if below.all():
-            parts.append(f"stays below {fmt(t)} % of L over the whole sweep")
-            break
         if not below[0]:
             continue
-        k = int(np.argmin(below))  # first index at/above threshold
-        parts.append(f"stays below {fmt(t)} % of L for {xname} ≤ {fmt(x[k - 1])}")
+        k = None if below.all() else int(np.argmin(below)) - 1
+        if bounds and bounds[-1][1] == k:
+            bounds[-1][0].append(t)
+        else:
+            bounds.append(([t], k))
+        if k is None:
+            break
+    parts = []
+    for ts, k in bounds:
+        tt = " and ".join(fmt(t) for t in ts)
+        if k is None:
+            parts.append(f"stays below {tt} % of L over the whole sweep")
+        elif k == 0:
+            parts.append(f"stays below {tt} % of L only at the smallest {xname} swept ({val(x[0])})")
+        else:
+            parts.append(f"stays below {tt} % of L for {xname} ≤ {val(x[k])}")
     if not parts:
-        parts.append(f"exceeds {fmt(THRESHOLDS[-1])} % of L already at {xname} = {fmt(x[0])}")
+        parts.append(f"exceeds {fmt(THRESHOLDS[-1])} % of L already at {xname} = {val(x[0])}")
     i = int(np.nanargmax(err))
-    return f"{what} " + "; ".join(parts) + f" (max {fmt(err[i])} % at {xname} = {fmt(x[i])})."
+    return f"{what} " + "; ".join(parts) + f" (max {fmt(err[i])} % at {xname} = {val(x[i])})."
 
 
 def _pair_rows(cmp: pd.DataFrame, ref: str, m: str) -> pd.DataFrame:
@@ -100,7 +114,7 @@ def _metric_panel(ax, study: ResultSet, cmp: pd.DataFrame, a: str, pairs, col: s
             good = np.isfinite(y)
             xs = numeric(sub[a])[o]
             texts.append(_below_statement(xs[good], y[good], short_label(a, study.labels), f"{pair_label(ref, m)}: tip error",
-                                          study.categories.get(a)))
+                                          study.categories.get(a), val=lambda v: value_text(a, v, study.labels)))
     v = np.concatenate(allv) if allv else np.array([])
     if _log_worthy(v):
         ax.set_yscale("log")
@@ -222,10 +236,10 @@ def _two_axes_summary(study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str,
         x, y = numeric(s2[x_ax]), numeric(s2["tip_error_pct"])
         good = np.isfinite(x) & np.isfinite(y)
         if good.any():
-            lo_txt = study.categories[c_ax][int(lo_c)] if c_ax in study.categories else fmt(lo_c)
+            lo_txt = study.categories[c_ax][int(lo_c)] if c_ax in study.categories else value_text(c_ax, lo_c, study.labels)
             texts.append(_below_statement(x[good], y[good], short_label(x_ax, study.labels),
                                           f"{pair_label(ref, m)} at {short_label(c_ax, study.labels)} = {lo_txt}: tip error",
-                                          study.categories.get(x_ax)))
+                                          study.categories.get(x_ax), val=lambda v: value_text(x_ax, v, study.labels)))
     rest = [short_label(a, study.labels) for a in axes[2:]]
     worst = f" (worst case over {', '.join(rest)})" if rest else ""
     what = "one marker group per category of" if x_ax in study.categories else "one line per value of"
