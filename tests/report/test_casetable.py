@@ -55,3 +55,14 @@ def test_downloads_are_embedded_and_match_the_files(tmp_path):
     assert base64.b64decode(links["results.csv"]) == (page.parent / "results.csv").read_bytes()
     full = pd.read_parquet(io.BytesIO(base64.b64decode(links["results.parquet"])))
     assert len(full) == len(pd.read_csv(page.parent / "results.csv")) and "positions" in full.columns
+
+
+def test_figure_points_link_to_existing_table_rows(tmp_path):
+    data = write_study(tmp_path / "data" / "s2d", "2d")
+    html = build_report(data, tmp_path / "rep", formats=()).read_text()
+    table = _block(html, "wb-cases")
+    rows = {f"case-{r['case']}-{r['cells']['model']}" for r in table["rows"]}
+    links = re.findall(r"<a class='pt' href='#([^']+)' title='[^']*' style='left:([\d.]+)%;top:([\d.]+)%'>", html)
+    assert len(links) > 20
+    assert {h for h, _, _ in links} <= rows                               # every point opens a real row
+    assert all(0 <= float(x) <= 100 and 0 <= float(y) <= 100 for _, x, y in links)

@@ -80,13 +80,30 @@ def _write_figures(figs: list[ReportFigure], figdir: Path, formats: Sequence[str
             f.figure.savefig(figdir / f"{f.name}.pdf", format="pdf", metadata={"Creator": None, "Producer": None})
         b64 = base64.b64encode(png).decode("ascii")
         cases = f" · {len(f.cases)} case(s), listed in the table" if f.cases else ""
+        links = _point_links_html(f)
+        hint = " · click a marked point for its row in the case table" if links else ""
         sections.append(
             f"<figure id='fig-{esc(f.name)}' data-figure='{esc(f.name)}'>"
-            f"<h3>{esc(f.title)}</h3>"
-            f"<img alt='{esc(f.title)}' src='data:image/png;base64,{b64}' onclick=\"this.classList.toggle('zoomed')\">"
-            f"<figcaption>{esc(f.summary)}<span class='note'>{esc(cases)}</span></figcaption></figure>"
+            f"<h3>{esc(f.title)}</h3><div class='figwrap'>"
+            f"<img alt='{esc(f.title)}' src='data:image/png;base64,{b64}' onclick=\"this.parentNode.classList.toggle('zoomed')\">"
+            f"{links}</div><figcaption>{esc(f.summary)}<span class='note'>{esc(cases + hint)}</span></figcaption></figure>"
         )
     return sections
+
+
+def _point_links_html(f: ReportFigure) -> str:
+    """Links over the figure's clickable points (percent positions: they follow the scaled image)."""
+    if not f.points:
+        return ""
+    W, H = f.figure.canvas.get_width_height()  # pixels at the saved dpi (savefig.dpi = figure.dpi)
+    out = []
+    for ax, x, y, cid, model, tip in f.points:
+        px, py = ax.transData.transform((x, y))
+        if not (np.isfinite(px) and np.isfinite(py)) or not (0 <= px <= W and 0 <= py <= H):
+            continue
+        out.append(f"<a class='pt' href='#case-{esc(cid)}-{esc(model)}' title='{esc(tip)}' "
+                   f"style='left:{100 * px / W:.2f}%;top:{100 * (1 - py / H):.2f}%'></a>")
+    return "".join(out)
 
 
 def _summary_table(cmp: pd.DataFrame) -> pd.DataFrame:

@@ -22,7 +22,7 @@ from matplotlib.figure import Figure
 from ..compare.table import array_cell, row_positions
 from .load import ResultSet, numeric
 from .scene import case_scene, gravity_in, to_frame
-from .style import ReportFigure, _case_title, _ref_pairs, fmt, model_color, model_label, pair_label
+from .style import ReportFigure, _case_title, _ref_pairs, fmt, model_color, model_label, pair_label, point_links
 
 __all__ = ["shape_overlay_figures", "backbone_frames", "peak_error_time"]
 
@@ -229,10 +229,13 @@ def shape_overlay_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFig
     ncol = len(data)
     fig = Figure(figsize=(panel_w * ncol + 0.4, (panel_h + 1.0) * len(views) + 0.5), layout="constrained")
     axs = np.atleast_2d(fig.subplots(len(views), ncol, squeeze=False))
+    points = []
     for j, (cid, row0, per, sub, g, _) in enumerate(data):
         for i, (a, b, la, lb) in enumerate(views):
             ax = axs[i, j]
             _draw_backbones(ax, per, models, study.reference, a, b)
+            points += point_links(ax, [p[-1, a] for p in per.values()], [p[-1, b] for p in per.values()],
+                                  [cid] * len(per), list(per), [f"{model_label(m)} tip, case {str(cid)[:8]}" for m in per])
             base = next(iter(per.values()))[0]
             ax.plot([base[a]], [base[b]], marker="s", color="0.4", ms=5)
             ax.set_xlim(lo[a] - pad, hi[a] + pad)
@@ -249,4 +252,5 @@ def shape_overlay_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFig
     known = all(k for *_, k in data)
     _figure_legend(fig, axs, _gravity_legend(data) if study.frame == "world" and known else ([], []))
     return [ReportFigure("shapes", f"Backbone shapes ({study.frame} frame)", fig,
-                         _summary(study, cmp, how, spatial, known, any(np.linalg.norm(d[4]) > 0 for d in data)), cases=tuple(dict.fromkeys(d[0] for d in data)))]
+                         _summary(study, cmp, how, spatial, known, any(np.linalg.norm(d[4]) > 0 for d in data)),
+                         cases=tuple(dict.fromkeys(d[0] for d in data)), points=tuple(points))]

@@ -33,6 +33,7 @@ __all__ = [
     "fmt",
     "code_categories",
     "value_text",
+    "point_links",
 ]
 
 #: rcParams used for every report figure (applied with ``matplotlib.rc_context``).
@@ -66,6 +67,18 @@ class ReportFigure:
     summary: str
     cases: tuple[str, ...] = ()
     """``case_id`` of every case the figure draws (the per-case table links to the figure)."""
+    points: tuple[tuple[Any, float, float, str, str, str], ...] = ()
+    """Clickable points ``(axes, x, y, case_id, model, tooltip)`` in data coordinates: the page puts a link to
+    that case's table row over each (:func:`point_links`)."""
+
+
+def point_links(ax, x, y, case_ids, models, tips) -> list[tuple[Any, float, float, str, str, str]]:
+    """``ReportFigure.points`` entries for plotted points (finite ones only)."""
+    out = []
+    for xi, yi, c, m, t in zip(x, y, case_ids, models, tips):
+        if np.isfinite(xi) and np.isfinite(yi):
+            out.append((ax, float(xi), float(yi), str(c), str(m), str(t)))
+    return out
 
 
 def model_label(m: str) -> str:

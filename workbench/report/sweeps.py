@@ -35,6 +35,7 @@ from .style import (
     fmt,
     model_color,
     pair_label,
+    point_links,
     short_label,
     value_text,
 )
@@ -94,7 +95,8 @@ def _pair_rows(cmp: pd.DataFrame, ref: str, m: str) -> pd.DataFrame:
     return cmp[(cmp["reference"] == ref) & (cmp["model"] == m)]
 
 
-def _metric_panel(ax, study: ResultSet, cmp: pd.DataFrame, a: str, pairs, col: str, texts: list) -> None:
+def _metric_panel(ax, study: ResultSet, cmp: pd.DataFrame, a: str, pairs, col: str, texts: list,
+                  points: list | None = None) -> None:
     """One metric against axis ``a``, a line per model pair (the reference pairs solid)."""
     allv = []
     cat = a in study.categories
@@ -109,6 +111,9 @@ def _metric_panel(ax, study: ResultSet, cmp: pd.DataFrame, a: str, pairs, col: s
         ax.plot(x, y, marker="o" if is_ref else "s", ms=4.5 if cat else 3.5 if is_ref else 3,
                 color=model_color(m, study.models) if is_ref else "0.45",
                 ls="none" if cat else "-" if is_ref else (":", "-.", "--")[len(allv) % 3], label=pair_label(ref, m))
+        if points is not None:
+            ids = sub["case_id"].to_numpy()[o]
+            points += point_links(ax, x, y, ids, [m] * len(ids), [f"{pair_label(ref, m)}, case {str(c)[:8]}" for c in ids])
         allv.append(y)
         if col == "tip_error_pct" and is_ref and np.isfinite(y).any():
             good = np.isfinite(y)
@@ -194,22 +199,24 @@ def _errors_one_axis(study: ResultSet, cmp: pd.DataFrame, a: str, pairs) -> Repo
     fig = Figure(figsize=(3.6 * len(metrics) + 0.4, 3.5), layout="constrained")
     axs = np.atleast_1d(fig.subplots(1, len(metrics), squeeze=False)[0])
     texts: list[str] = []
+    points: list = []
     for ax, (col, lab) in zip(axs, metrics):
-        _metric_panel(ax, study, cmp, a, pairs, col, texts)
+        _metric_panel(ax, study, cmp, a, pairs, col, texts, points)
         ax.set_ylabel(lab)
     axs[0].legend(frameon=False)
     return ReportFigure(f"error_vs_{_slug(a)}", f"Errors vs {short_label(a, study.labels)}", fig,
-                        " ".join(texts) or "Errors of each model pair along the sweep.")
+                        " ".join(texts) or "Errors of each model pair along the sweep.", points=tuple(points))
 
 
-def _colour_lines(axs, study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str, main, norm, cmap) -> np.ndarray:
+def _colour_lines(axs, study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str, main, norm, cmap,
+                  points: list | None = None) -> np.ndarray:
     """Tip error against ``x_ax``, one line per ``c_ax`` value (worst over the rest); all plotted values."""
     allv = []
     x_cat, c_cat = x_ax in study.categories, c_ax in study.categories
     for ax, (ref, m) in zip(axs, main):
         sub = _pair_rows(cmp, ref, m)
-        g = sub.assign(_x=numeric(sub[x_ax]), _c=numeric(sub[c_ax]), _e=numeric(sub["tip_error_pct"]))
-        g = g.groupby(["_c", "_x"], as_index=False)["_e"].max()
+        g = sub.assign(_x=numeric(sub[x_ax]), _c=numeric(sub[c_ax]), _e=numeric(sub["tip_error_pct"])).dropna(subset=["_e"])
+        g = g.loc[g.groupby(["_c", "_x"])["_e"].idxmax()]  # the worst case over the other axes, with its case id
         n_c = g["_c"].nunique()
         for k, (cv, gg) in enumerate(g.groupby("_c")):
             gg = gg.sort_values("_x")
@@ -219,6 +226,9 @@ def _colour_lines(axs, study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str
             label = study.categories[c_ax][int(cv)] if c_cat else None
             ax.plot(x, gg["_e"], marker="o", ms=4 if x_cat else 3, ls="none" if x_cat else "-", color=color, label=label)
             allv.append(gg["_e"].to_numpy())
+            if points is not None:
+                points += point_links(ax, x, gg["_e"], gg["case_id"], [m] * len(gg),
+                                      [f"{pair_label(ref, m)}, case {str(c)[:8]}" for c in gg["case_id"]])
         ax.set_title(pair_label(ref, m))
         ax.set_xlabel(axis_label(x_ax, study.labels))
         _category_ticks(ax, study, x_ax, "x")
@@ -254,7 +264,8 @@ def _errors_two_axes(study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str, 
     cvals = np.unique(numeric(cmp[c_ax])[np.isfinite(numeric(cmp[c_ax]))])
     norm = (LogNorm if _is_geometric(cvals) else Normalize)(vmin=cvals.min(), vmax=cvals.max())
     cmap = colormaps["viridis"]
-    v = _colour_lines(axs, study, cmp, x_ax, c_ax, main, norm, cmap)
+    points: list = []
+    v = _colour_lines(axs, study, cmp, x_ax, c_ax, main, norm, cmap, points)
     for ax in axs:
         if _log_worthy(v):
             ax.set_yscale("log")
@@ -270,7 +281,8 @@ def _errors_two_axes(study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str, 
         cb = fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=list(axs), shrink=0.9)
         cb.set_label(axis_label(c_ax, study.labels))
     summary = _two_axes_summary(study, cmp, x_ax, c_ax, main, axes)
-    return ReportFigure(f"error_vs_{_slug(x_ax)}", f"Tip error vs {short_label(x_ax, study.labels)}", fig, summary)
+    return ReportFigure(f"error_vs_{_slug(x_ax)}", f"Tip error vs {short_label(x_ax, study.labels)}", fig, summary,
+                        points=tuple(points))
 
 
 def error_vs_parameter_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFigure]:
