@@ -134,9 +134,9 @@ _DEFINITIONS = (
     "<p class='note'>Errors compare each model with the reference at the same case. Tip error: distance between tip "
     "positions, in metres and in % of the robot length L. Orientation error: angle of the relative tip rotation. "
     "Shape error: maximum / RMS distance between the backbones at matched reference arc-length stations. "
-    "Curvature: best-fit circle per section. The files <code>metrics.csv</code>, <code>summary.csv</code>, "
-    "<code>results.csv</code> and <code>failed.csv</code> next to this report hold the tables; "
-    "<code>figures/</code> holds each figure as PNG and SVG.</p>"
+    "Curvature: best-fit circle per section. The tables are embedded in this page (Cases, Downloads) and "
+    "written next to it (<code>metrics.csv</code>, <code>summary.csv</code>, <code>results.csv</code>, "
+    "<code>failed.csv</code>, <code>results.parquet</code>); <code>figures/</code> holds each figure as a file.</p>"
 )
 
 
