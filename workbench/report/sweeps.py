@@ -344,7 +344,7 @@ def _validity_text(study: ResultSet, ref: str, m: str, where: str, xs, ys, E, a0
 
 
 def _validity_panel(ax, study: ResultSet, cmp: pd.DataFrame, panel, facet, a0: str, a1: str, norm):
-    """Draw one heat map; return ``(mesh, sentence, missing cells?)`` or ``None`` for an empty panel."""
+    """Draw one heat map; return ``(mesh, sentence, missing cells?, point links)`` or ``None`` for an empty panel."""
     ref, m, fv = panel
     sub = _pair_rows(cmp, ref, m)
     where = ""
@@ -368,7 +368,14 @@ def _validity_panel(ax, study: ResultSet, cmp: pd.DataFrame, panel, facet, a0: s
     _category_ticks(ax, study, a1, "y")
     ax.set_title(pair_label(ref, m) + where)
     missing = _mark_missing(ax, xs, ys, E)
-    return mesh, _validity_text(study, ref, m, where, xs, ys, E, a0, a1), missing
+    # every cell links to its worst case (the maximum over the other axes)
+    c = pd.DataFrame({"x": numeric(sub[a0]), "y": numeric(sub[a1]), "e": numeric(sub["tip_error_pct"]),
+                      "case_id": sub["case_id"].to_numpy()}).dropna(subset=["x", "y", "e"])
+    worst = c.loc[c.groupby(["y", "x"])["e"].idxmax()]
+    points = point_links(ax, worst["x"], worst["y"], worst["case_id"], [m] * len(worst),
+                         [f"{pair_label(ref, m)}{where}: {fmt(e)} % of L, case {str(k)[:8]}"
+                          for e, k in zip(worst["e"], worst["case_id"])])
+    return mesh, _validity_text(study, ref, m, where, xs, ys, E, a0, a1), missing, points
 
 
 def validity_map_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFigure]:
@@ -395,10 +402,12 @@ def validity_map_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFigu
     texts = []
     mesh = None
     missing_note = False
+    points: list = []
     for ax, panel in zip(axs, panels):
         drawn = _validity_panel(ax, study, cmp, panel, facet, a0, a1, norm)
         if drawn is not None:
-            mesh, text, missing = drawn
+            mesh, text, missing, pts = drawn
+            points += pts
             texts.append(text)
             missing_note = missing_note or missing
     if mesh is None:
@@ -412,7 +421,7 @@ def validity_map_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFigu
     extra = f" (maximum over {', '.join(short_label(a, study.labels) for a in rest)})" if rest else ""
     per = f", one panel per {short_label(facet, study.labels)}" if facet else ""
     summary = "Validity map: heat map of the tip error, contour lines at 1 %, 5 % and 10 % of L" + per + extra + ". " + " ".join(texts)
-    return [ReportFigure("validity_map", "Validity map of constant curvature", fig, summary)]
+    return [ReportFigure("validity_map", "Validity map of constant curvature", fig, summary, points=tuple(points))]
 
 
 def _region_statement(xs, ys, E, a0, a1, study: ResultSet) -> str:
