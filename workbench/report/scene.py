@@ -5,9 +5,9 @@ parameters rebuild the robot that ran, ``docs/architecture.md``) and keeps what 
 the base pose (world <- base), gravity in the world frame, disk stations and tendon routing.
 A row without a rebuildable robot (e.g. a series-parallel stack, whose module base *is* the
 world frame, z up) gets the identity pose and ``known = False``.  :func:`to_frame` maps base-frame
-points into the figure's frame; :func:`disk_rings` and :func:`tendon_paths` place disks and
-tendons on a drawn backbone with a rotation-minimising frame (the backbone's twist is not
-stored, so tendon paths are drawn without it).  Checked by ``tests/report/test_scene.py``.
+points into the figure's frame (the 3-D viewer places disks and tendons on the drawn backbone
+itself, ``assets/viewer.js``).  Checked by ``tests/report/test_viewer.py`` (world frame, gravity
+along world -z, base frame on request) and ``tests/robot/test_frames.py``.
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ from ..robot.frames import base_points_to_world, base_vectors_to_world
 from ..study.build import build_robot
 from ..study.params import section_params
 
-__all__ = ["CaseScene", "case_scene", "to_frame", "gravity_in", "disk_rings", "tendon_paths"]
+__all__ = ["CaseScene", "case_scene", "to_frame", "gravity_in", "base_vectors_in"]
 
 
 @dataclass(frozen=True)
@@ -81,55 +81,6 @@ def gravity_in(scene: CaseScene, frame: str) -> np.ndarray:
     if frame == "world":
         return scene.gravity_world
     return scene.gravity_world @ scene.rotation  # world -> base
-
-
-def _rm_frames(P: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Tangents and a rotation-minimising normal pair along a polyline ``(m, 3)`` (base x transported)."""
-    d = np.gradient(P, axis=0)
-    t = d / np.maximum(np.linalg.norm(d, axis=1, keepdims=True), 1e-15)
-    e1 = np.zeros_like(P)
-    e = np.array([1.0, 0.0, 0.0])
-    for i in range(len(P)):
-        e = e - np.dot(e, t[i]) * t[i]
-        n = np.linalg.norm(e)
-        e = e / n if n > 1e-12 else np.cross(t[i], [0.0, 1.0, 0.0])
-        e1[i] = e
-    return t, e1, np.cross(t, e1)
-
-
-def _on_backbone(P: np.ndarray, stations: np.ndarray, s: np.ndarray):
-    t, e1, e2 = _rm_frames(P)
-    c = np.stack([np.interp(s, stations, P[:, k]) for k in range(3)], -1)
-    a = np.stack([np.interp(s, stations, e1[:, k]) for k in range(3)], -1)
-    b = np.stack([np.interp(s, stations, e2[:, k]) for k in range(3)], -1)
-    return c, a, b
-
-
-def disk_rings(P, stations, scene: CaseScene, n: int = 20) -> np.ndarray:
-    """Disk outlines on a base-frame backbone: ``(n_disks, n + 1, 3)`` base-frame points [m]."""
-    P, st = np.asarray(P, float), np.asarray(stations, float)
-    keep = (scene.disk_radius > 0) & (scene.disk_s <= st[-1] + 1e-9)
-    if not keep.any() or len(P) < 2:
-        return np.zeros((0, n + 1, 3))
-    c, a, b = _on_backbone(P, st, scene.disk_s[keep])
-    u = np.linspace(0, 2 * np.pi, n + 1)
-    r = scene.disk_radius[keep][:, None, None]
-    return c[:, None, :] + r * (np.cos(u)[None, :, None] * a[:, None, :] + np.sin(u)[None, :, None] * b[:, None, :])
-
-
-def tendon_paths(P, stations, scene: CaseScene) -> list[np.ndarray]:
-    """One base-frame polyline per tendon, through its disks from the base plate to its end [m]."""
-    P, st = np.asarray(P, float), np.asarray(stations, float)
-    out = []
-    for sigma, d0, d1, s_end in scene.tendons:
-        s = np.r_[0.0, scene.disk_s[scene.disk_s <= s_end + 1e-12]]
-        s = s[s <= st[-1] + 1e-9]
-        if s.size < 2:
-            continue
-        c, a, b = _on_backbone(P, st, s)
-        d = (d0 + (d1 - d0) * s / s_end)[:, None]
-        out.append(c + d * (np.cos(sigma) * a + np.sin(sigma) * b))
-    return out
 
 
 def base_vectors_in(v, scene: CaseScene, frame: str) -> np.ndarray:
