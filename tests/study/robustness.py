@@ -17,6 +17,15 @@ one line for one mistake.  ``kills`` runs a 30-case study of fake 20 ms models
 until done and compares the table with an uninterrupted run bit for bit.  ``concurrent`` starts
 two runs into one folder at the same moment and counts trials where exactly one ran and no row
 is stored twice.  The counts are what issue 19 asks to report; nothing here asserts.
+
+Last measured (2026-12-02, 2 shared cores): ``inputs``: 1 141 configs tried, 915 rejected with
+exit 2, 226 accepted (valid mutations, listed), 0 tracebacks, 0 over the 20 s budget (the 10^6-case
+sweep included), 7 with two lines for one mistake, 11 whose line does not name the mutated key
+(scenario parameters that make the scenario infeasible: the line names ``scenario``); 21 bad
+command lines / broken folders: 21 one line + exit 2, 0 tracebacks.  ``kills --n 10``: 30
+interruptions (20 SIGKILL, 10 SIGTERM: 10 of 10 exit 143), every trial completed by ``--resume``:
+10 of 10 tables bit-identical to the uninterrupted run, 0 duplicate rows.  ``concurrent --n 4``:
+4 of 4 trials exactly one run, the other refused with one line, 0 duplicate rows, 0 tracebacks.
 """
 
 from __future__ import annotations
