@@ -18,7 +18,7 @@ Where it differs from the Exudyn models: the tendon is continuous (no eyelets; `
 a continuum (no elements: ``options.n_elements`` is unused, the accuracy follows
 ``options.newton_tolerance``), and it is static only.  Limits: a shooting method needs a
 predictor close enough to the solution; the load ramp provides it (``options.max_load_steps``
-attempts).  Validation: ``tests/physics/test_cosserat.py`` and the validation matrix
+attempts).  Validation: ``tests/physics/test_cosserat_model.py`` and the validation matrix
 (``tests/physics/test_validation_matrix.py``, ``docs/models.md``).
 """
 

@@ -8,7 +8,7 @@ the previous one.  Outputs (base frame): positions at ``options.n_stations`` sta
 output of the final integration), tip frame ``R(L)``, ``length_change`` = integral of
 ``|v| - 1``, ``tip_twist`` = integral of ``u_3``, tensions; ``extras``: ``newton_iterations``,
 ``load_steps``, ``shots`` (integrated trajectories) and ``tip_residual``.  Checked by
-``tests/physics/test_cosserat.py``.
+``tests/physics/test_cosserat_model.py``.
 """
 
 from __future__ import annotations

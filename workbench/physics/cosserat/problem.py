@@ -5,7 +5,7 @@ along base +z with its cross-section frame equal to the base frame (material axi
 axis 1 = base x), so a tendon at angle ``sigma`` and offset ``d`` sits at
 ``r(s) = d(s) (cos sigma, sin sigma, 0)`` in the material frame.  Integration segments end at
 every section end (the set of tendons changes there) and at every disk that carries mass (its
-weight is a point force on the centreline).  Checked by ``tests/physics/test_cosserat.py``.
+weight is a point force on the centreline).  Checked by ``tests/physics/test_cosserat_model.py``.
 """
 
 from __future__ import annotations

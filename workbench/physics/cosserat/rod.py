@@ -21,7 +21,7 @@ enter only through the strain law: ``(v, u)`` solve
 
 by Newton from the guess ``w_i || e3`` (exact without shear and twist, where every section is an
 exact arc).  The Jacobian of this system is R&W's matrix ``[K_se + A, G; B, K_bt + H]`` (Eq 17).
-Checked by ``tests/physics/test_cosserat.py`` (CC arcs exact, elastica, tendon-free rod = the
+Checked by ``tests/physics/test_cosserat_model.py`` (CC arcs exact, elastica, tendon-free rod = the
 shooting reference :mod:`workbench.reference.cosserat`, planar ANCF, beam3d eyelets).
 """
 

@@ -9,7 +9,7 @@ difference quotients see one discretisation); the step is backtracked until the 
 falls.  Large loads are reached with the common load ramp (:func:`workbench.physics._stepping.ramp`:
 external loads and tendon tensions move together along a straight path from the last converged
 point; the first attempt is the whole way, a failure halves the increment), each Newton started
-from a secant predictor.  Checked by ``tests/physics/test_cosserat.py``.
+from a secant predictor.  Checked by ``tests/physics/test_cosserat_model.py``.
 """
 
 from __future__ import annotations
