@@ -52,6 +52,8 @@ MODELS: Mapping[str, ModelInfo] = {
     "beam3d": ModelInfo("workbench.physics.beam3d:run", "GE beam", "#d62728"),
     "ancf3d": ModelInfo("workbench.physics.ancf3d:run", "ANCF 3-D", "#9467bd"),
     "spring_link": ModelInfo("workbench.physics.spring_link:run", "spring-link", "#2ca02c"),
+    # planar ANCF with a rigid circle (without an object: equal to ancf with continuum tendons)
+    "contact": ModelInfo("workbench.physics.contact:run", "ANCF + contact", "#ff7f0e"),
     # rows of the series-parallel study kind (not run(robot, load, options) models)
     "series_parallel": ModelInfo(None, "series-parallel"),
 }
