@@ -296,13 +296,21 @@ class PlanarContactSystem:
         self._check()
 
     def _solve_once(self, strict: bool) -> None:
-        mbs = self.mbs
+        """One static solve on Exudyn's solver object (``mbs.SolveStatic`` without its failure banner,
+        which would announce every strict attempt that the relaxed one then settles), then the
+        solution becomes the initial state (``updateInitialValues``)."""
+        exu, mbs = self.exu, self.mbs
         self.settings.staticSolver.discontinuous.ignoreMaxIterations = not strict
+        solver = exu.MainSolverStatic()
         try:
-            mbs.SolveStatic(self.settings, updateInitialValues=True, storeSolver=True)
+            ok = solver.SolveSystem(mbs, self.settings)
         finally:
             self.solves += 1
-        self.newton += int(mbs.sys["staticSolver"].it.newtonStepsCount)
+            self.newton += int(solver.it.newtonStepsCount)
+        if not ok:
+            raise exu.SolverError("SolveStatic terminated due to errors")
+        sd = mbs.systemData
+        sd.SetSystemState(systemStateList=sd.GetSystemState(), configuration=exu.ConfigurationType.Initial)
 
     def segment_gaps(self) -> np.ndarray:
         """Gap [m] of every contact segment from the current coordinates, exactly as Exudyn defines it:
