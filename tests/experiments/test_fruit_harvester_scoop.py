@@ -1,0 +1,54 @@
+"""Shao's harvester scoop: fluidic vs tendon plans, the fruit in the scoop, the grasp-centre controller."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from workbench.models import SolverOptions
+from workbench.robot.presets import build_preset
+
+from workbench.experiments.fruit_harvester.scoop import grasp_case, harvester_scoop
+from workbench.experiments.whole_arm_grasp.tasks import cc_result, run_task
+
+
+@pytest.fixture(scope="module")
+def shao():
+    return build_preset("shao_harvester")
+
+
+def test_fluidic_plan_lengthens_tendon_plan_does_not(shao):
+    f, _ = grasp_case(shao, {"actuation": "fluidic"})
+    t, _ = grasp_case(shao, {"actuation": "tendon"})
+    assert f.wrap_angle == pytest.approx(1.5 * math.pi) and t.wrap_angle == pytest.approx(1.5 * math.pi)
+    assert f.ell[0] == pytest.approx(0.4 * (1 + 2 * 0.5355e6 * 3e-4 / 2e3), rel=1e-3)  # chambers: + sum F L / EA
+    assert t.ell[0] == 0.4  # CC of a tendon section keeps its length (the physics shortens it)
+    p = f.pressures[0]
+    assert p[0] == pytest.approx(0.0, abs=1e-6) and max(p) <= 0.6e6  # least pressure, within the paper's limit
+    # the fruit sits at the CC centre of arc (Shao Eq 2) of each plan
+    assert f.circle.centre == pytest.approx((1.0 / f.kappa[0], 0.0))
+    assert cc_result(shao, f, SolverOptions()).length_change == pytest.approx(f.ell[0] - 0.4)
+    assert harvester_scoop(shao, actuation="fluidic") == {}  # no tendon load: the chambers drive it
+    assert len(harvester_scoop(shao, actuation="tendon")["tensions"]) == 3
+
+
+def test_bad_scoop_parameters(shao):
+    with pytest.raises(ValueError, match="MPa"):
+        grasp_case(shao, {"chamber_area": 1e-4})
+    with pytest.raises(ValueError, match="tip"):
+        grasp_case(shao, {"payload": "tip", "object_mass": 0.1})
+    with pytest.raises(ValueError, match="onto itself"):
+        grasp_case(shao, {"bend_angle": 1.95 * math.pi, "chamber_area": 1e-3})
+
+
+def test_centre_controller_removes_the_horizontal_error_only(shao):
+    plan, task = grasp_case(shao, {"actuation": "fluidic", "object_mass": 0.1, "control_iterations": 3,
+                                   "contact_stiffness": 1e6, "friction_stiffness": 1e4})
+    res = run_task(shao, plan, task, SolverOptions(n_elements=8))
+    x = res.extras
+    assert x["held"] == 1.0 and x["settle_dz"] > 0.01  # the fruit sinks into the scoop (base +z = down)
+    E = res.series["control_error"]
+    assert abs(E[-1, 0]) < 0.1 * abs(E[0, 0])  # x error corrected (J_v's k column)
+    assert abs(E[-1, 1]) > 0.5 * abs(E[0, 1])  # z error stays: J_v has no z row
