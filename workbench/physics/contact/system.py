@@ -14,12 +14,15 @@ mass per length, gravity and payload in Exudyn's plane, base (z, x) = Exudyn (X,
   and per element one ``ObjectContactFrictionCircleCable2D`` (circle radius = object radius + the
   element's half diameter, penalty per segment = ``ContactLaw`` per length x segment length).
 
-Why that contact element (measured, ``docs/models.md``, "Contact"): the frictionless
-``ObjectContactCircleCable2D`` of Exudyn 1.13.6 applies a wrong force to the circle when two
-adjacent segments of one element touch (its reaction sum counts the shared point twice: 0.207 N
-on the circle for 0.139 N on the beam), and ``GeneralContact``'s ANCF-circle penalty converged only
-to 0.8 % of the hand case at the stiffest setting; the friction element with ``frictionCoefficient
-= 0`` is exact to the beam theory's own error and action equals reaction.
+Why that contact element (measured by ``benchmarks/measure_contact_elements.py``, ``docs/models.md``,
+"Planar contact"): the frictionless ``ObjectContactCircleCable2D`` of Exudyn 1.13.6 applies a wrong
+force to the circle as soon as adjacent segments touch (a cantilever pressed on a circle at a soft
+penalty: +53 % on the circle, -1.5 % on the beam; a wrap always has adjacent touching segments), and
+``GeneralContact`` (point penalty; 0.026 % off at 1e9 N/m, 0.06 % at 1e8) has friction regularised in
+the relative velocity, so a static solve sees almost none (|F_t / F_n| = 0.011 for mu = 0.3 while
+sliding, against 0.287 of the friction element, Coulomb's 0.3 less the beam's 0.0125 rad slope).  The
+friction element with ``frictionCoefficient = 0`` is exact to the beam theory's own error (1.8e-4)
+and action equals reaction.
 
 Object modes: :meth:`hold` (fixture), :meth:`spring` (release springs), :meth:`free`,
 :meth:`guide` (one coordinate prescribed, the other free).  A frictionless object's rotation is
