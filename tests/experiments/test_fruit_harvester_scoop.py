@@ -52,3 +52,24 @@ def test_centre_controller_removes_the_horizontal_error_only(shao):
     E = res.series["control_error"]
     assert abs(E[-1, 0]) < 0.1 * abs(E[0, 0])  # x error corrected (J_v's k column)
     assert abs(E[-1, 1]) > 0.5 * abs(E[0, 1])  # z error stays: J_v has no z row
+
+
+def test_hanging_scoop_stays_on_the_clamped_branch():
+    """The ANCF clamp fixes y' only; a one-step solve of the 100 g tip case once landed on x' = -1 (the scoop
+    point-mirrored through the base).  The contact system refuses that state, the ramp halves the step."""
+    robot = build_preset("shao_harvester", payload_mass=0.1)
+    plan, task = grasp_case(robot, {"actuation": "fluidic", "payload": "tip", "object_mass": 0.0})
+    res = run_task(robot, plan, task, SolverOptions(n_elements=16))
+    assert res.positions[1, 2] > 0.0  # leaves the clamp along base +z, as clamped
+    assert res.positions[:, 0].max() > 0.15  # bends towards base +x, as commanded (CC: 2 / kappa = 0.197 m)
+
+
+def test_centre_controller_saturates_at_the_pressure_limit(shao):
+    """50 g fruit, fluidic: the fruit moves ~8 cm in the scoop after the first step, the second step would
+    need 0.75 MPa (> 0.6 MPa): the loop stops, flagged, and the row is a result, not a failure."""
+    plan, task = grasp_case(shao, {"actuation": "fluidic", "object_mass": 0.05, "control_iterations": 4,
+                                   "contact_stiffness": 1e6, "friction_stiffness": 1e4})
+    res = run_task(shao, plan, task, SolverOptions(n_elements=16))
+    x = res.extras
+    assert x["control_saturated"] == 1.0 and x["control_limited_steps"] == 1.0 and x["control_steps"] == 1.0
+    assert "above the limit of 0.6 MPa" in res.solver.message

@@ -9,7 +9,11 @@ and updates ``q = [s, k, phi]`` by ``J_v^+ e`` (base x, z rows; bending plane ph
 curvature is re-planned (pressures or tensions, :func:`.scoop.scoop_plan`) and ramped in with the
 fruit free.  ``J_v`` has **no z row** (the CC centre always lies in the base plane z = 0) and no s
 column, so the law can correct the horizontal offset only; the vertical sag stays -- reported as
-``x.grasp_centre_error_z``.  Checked by ``tests/experiments/test_fruit_harvester_scoop.py``.
+``x.grasp_centre_error_z``.  Actuator limits: a curvature step is limited to ``max_step`` (a fraction
+of the current curvature; ``x.control_limited_steps`` counts the limited steps), and a step whose
+re-plan the actuator cannot realise (a chamber pressure above its limit, a curvature <= 0) ends the
+loop with ``x.control_saturated = 1`` (the reason in the solver message) -- a controller result, not a failed
+run.  Checked by ``tests/experiments/test_fruit_harvester_scoop.py``.
 """
 
 from __future__ import annotations
@@ -33,12 +37,15 @@ def grasp_centre(run) -> np.ndarray:
     return c
 
 
-def centre_controller(iterations: int, tolerance: float, replan: Callable[[float], object]) -> Callable:
+def centre_controller(iterations: int, tolerance: float, replan: Callable[[float], object],
+                      max_step: float = 0.25) -> Callable:
     """A ``GraspTask.control`` hook running ``iterations`` resolved-rate steps (module docstring).
 
-    ``replan(kappa) -> GraspPlan`` gives the commands of a new curvature.  Extras:
+    ``replan(kappa) -> GraspPlan`` gives the commands of a new curvature (``ValueError`` where the
+    actuator cannot); ``max_step`` limits ``|dk|`` to that fraction of the current curvature.  Extras:
     ``control_steps``, ``grasp_centre_error`` [m] (norm after the last step), its ``_x`` / ``_z``
-    components and ``grasp_centre_error_initial``; series ``control_error`` (k, 2) [m, base (x, z)].
+    components, ``grasp_centre_error_initial``, ``control_limited_steps``, ``control_saturated``;
+    series ``control_error`` (k, 2) [m, base (x, z)].
     """
 
     def control(run) -> None:
@@ -47,12 +54,20 @@ def centre_controller(iterations: int, tolerance: float, replan: Callable[[float
         s, kappa = float(plan.ell[0]), float(plan.kappa[0])
         strains = (run.kap, run.eps)
         errors = [target - grasp_centre(run)]
+        limited, saturated = 0, False
         for _ in range(iterations):
             if abs(errors[-1][0]) < tolerance:
                 break
             J = centre_of_arc_jacobian(s, kappa, 0.0)[[0, 2], :2]  # rows x, z; columns s, k
             ds, dk = np.linalg.pinv(J) @ errors[-1]
-            new = replan(kappa + dk)
+            if abs(dk) > max_step * kappa:
+                dk, limited = float(np.sign(dk)) * max_step * kappa, limited + 1
+            try:
+                new = replan(kappa + dk)
+            except ValueError as err:  # the actuator cannot realise the step: saturated
+                run.log.append(f"grasp-centre control saturated at step {len(errors)}: {err}")
+                saturated = True
+                break
             k1, e1 = run.strains_of(new)
 
             def apply(lam, k0=strains[0], e0=strains[1]):
@@ -64,7 +79,8 @@ def centre_controller(iterations: int, tolerance: float, replan: Callable[[float
         E = np.array(errors)
         run.extras.update({"control_steps": float(len(E) - 1), "grasp_centre_error": float(np.linalg.norm(E[-1])),
                            "grasp_centre_error_x": float(E[-1, 0]), "grasp_centre_error_z": float(E[-1, 1]),
-                           "grasp_centre_error_initial": float(np.linalg.norm(E[0])), "control_kappa": kappa})
+                           "grasp_centre_error_initial": float(np.linalg.norm(E[0])), "control_kappa": kappa,
+                           "control_limited_steps": float(limited), "control_saturated": float(saturated)})
         run.series["control_error"] = E
 
     return control

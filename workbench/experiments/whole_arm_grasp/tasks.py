@@ -167,6 +167,8 @@ class GraspRun:
         self.extras: dict[str, float] = {}
         self.series: dict[str, np.ndarray] = {}
         self.steps = 0
+        #: notes for the row's solver message (e.g. a saturated controller)
+        self.log: list[str] = []
 
     def snapshot(self):
         """``(positions, tangents, length change)`` of the current state (base frame)."""
@@ -272,5 +274,5 @@ def run_task(robot, plan: GraspPlan, task: GraspTask, options: SolverOptions) ->
                          length_change=length_change,
                          tendon_tensions=plan.tensions if plan.tensions is not None else np.zeros(0), tip_twist=0.0,
                          solver=SolverInfo(True, r.sysm.newton, time.perf_counter() - t0,
-                                           f"{r.sysm.solves} static solves"),
+                                           "; ".join([f"{r.sysm.solves} static solves", *r.log])),
                          series=r.series, extras=r.extras)

@@ -349,6 +349,9 @@ class PlanarContactSystem:
         slope = np.linalg.norm(qn[:, 2:], axis=-1)
         if np.any(slope < 0.5) or np.any(slope > 1.5):
             raise ModelFailure(f"contact solve produced implausible axial stretch |r'| in [{slope.min():.3g}, {slope.max():.3g}]")
+        if qn[0, 2] <= 0.0:  # the clamp fixes y' only: x' = -1 is the reversed (point-mirrored) branch
+            raise ModelFailure(f"contact solve reversed the clamped tangent (x-slope {qn[0, 2]:.3g}): Newton jumped "
+                               f"to the mirrored branch")
         if np.max(np.linalg.norm(qn[:, :2], axis=-1)) > 2.0 * self.pb.L:
             raise ModelFailure("contact solve produced a backbone point further than 2 L from the base")
 
