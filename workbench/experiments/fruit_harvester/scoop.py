@@ -55,6 +55,7 @@ def harvester_scoop(
     friction_stiffness: float = 1.0e6,
     contact_segments: int = 8,
     error_estimate: bool = True,
+    penalty_estimate: bool = True,
 ) -> dict[str, Any]:
     """Load fields of one scoop case (module docstring): tendon tensions, or none for chambers.
 
@@ -70,7 +71,7 @@ def harvester_scoop(
         Effective chamber area [m^2] and pressure limit [Pa] (fluidic).
     release, control_iterations, control_tolerance :
         Release the fruit into the scoop; grasp-centre controller steps and tolerance [m].
-    contact_stiffness, friction_stiffness, contact_segments, error_estimate :
+    contact_stiffness, friction_stiffness, contact_segments, error_estimate, penalty_estimate :
         As in ``whole_arm_wrap`` (:mod:`workbench.experiments.whole_arm_grasp.scenario`).
     """
     params = {k: v for k, v in locals().items() if k != "robot"}

@@ -158,7 +158,9 @@ def _contact_figure(pairs) -> ReportFigure:
 
 
 def _holding_error(ph: pd.Series) -> float:
-    return _val(ph, "x.disc_holding_force", 0.0) + _val(ph, "x.holding_force_step_err", 0.0)
+    """Error bar of the holding force [N]: mesh (``x.disc_*``) + contact penalty (``x.pen_*``) + pull step."""
+    return (_val(ph, "x.disc_holding_force", 0.0) + _val(ph, "x.pen_holding_force", 0.0)
+            + _val(ph, "x.holding_force_step_err", 0.0))
 
 
 def _sweep_figure(pairs) -> ReportFigure:
@@ -194,8 +196,9 @@ def _sweep_figure(pairs) -> ReportFigure:
     note = (f" {lower} case(s) ended the pull at a fold or the distance limit while the force still rose: "
             f"their value is a lower bound." if lower else "")
     return ReportFigure("grasp_sweep", "Holding force: object size x squeeze x friction", fig,
-                        "; ".join(texts) + ". Error bars: |F(n) - F(n/2)| (x.disc_holding_force) plus the "
-                        "pull-step resolution." + note)
+                        "; ".join(texts) + ". Error bars: |F(n) - F(n/2)| (mesh, x.disc_holding_force) plus "
+                        "|F(k) - F(k/10)| (contact penalty, x.pen_holding_force) plus the pull-step resolution."
+                        + note)
 
 
 def _pull_figure(pairs) -> ReportFigure:
@@ -238,7 +241,8 @@ def _carry_figure(pairs) -> ReportFigure | None:
         ax.plot(1e3 * P[:, 0], 1e3 * P[:, 1], "o--", color=col, mfc="none", label=f"CC plan, r = {fmt(1e3 * r)} mm")
         ax.plot(1e3 * A[:, 0], 1e3 * A[:, 1], "o-", color=col, label=f"physics, r = {fmt(1e3 * r)} mm")
         texts.append(f"r = {fmt(1e3 * r)} mm: object {fmt(1e3 * _val(ph, 'x.carry_max_error'))} mm off the planned path "
-                     f"at worst, planned move {fmt(1e3 * np.linalg.norm(P[-1] - P[0]))} mm, actual "
+                     f"at worst ({fmt(1e3 * _val(ph, 'x.carry_move_error'))} mm of it tracking error of the move, the "
+                     f"rest the settling offset), planned move {fmt(1e3 * np.linalg.norm(P[-1] - P[0]))} mm, actual "
                      f"{fmt(1e3 * np.linalg.norm(A[-1] - A[0]))} mm")
     ax.set_aspect("equal")
     ax.set_xlabel("object centre x [mm] (base = world)")

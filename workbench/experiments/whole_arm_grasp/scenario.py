@@ -23,7 +23,7 @@ __all__ = ["whole_arm_wrap", "grasp_case", "PLAN_KEYS", "TASK_KEYS"]
 #: Scenario parameters that shape the CC plan / the physics task.
 PLAN_KEYS = ("object_radius", "object_mass", "friction", "wrap_sections", "approach_bend_angles", "squeeze")
 TASK_KEYS = ("release", "pull_direction", "pull_distance", "pull_step", "carry_offset", "carry_samples",
-             "contact_stiffness", "friction_stiffness", "contact_segments", "error_estimate")
+             "contact_stiffness", "friction_stiffness", "contact_segments", "error_estimate", "penalty_estimate")
 
 
 def whole_arm_wrap(
@@ -45,6 +45,7 @@ def whole_arm_wrap(
     friction_stiffness: float = 1.0e6,
     contact_segments: int = 8,
     error_estimate: bool = True,
+    penalty_estimate: bool = True,
 ) -> dict[str, Any]:
     """Tendon tensions of the CC wrap of an object (plan: :mod:`.plan`; physics: :mod:`.tasks`).
 
@@ -69,8 +70,9 @@ def whole_arm_wrap(
         Normal and stick penalty per length [N/m^2] (:class:`~workbench.physics.contact.ContactLaw`).
     contact_segments : int
         Contact segments per element (1 ... 12).
-    error_estimate : bool
-        Re-run the physics at half the elements for the ``x.disc_*`` error bars (:mod:`.worker`).
+    error_estimate, penalty_estimate : bool
+        Re-run the physics at half the elements (``x.disc_*``) and at a tenth of the contact
+        penalty (``x.pen_*``) for the error bars (:mod:`.worker`).
 
     Returns
     -------

@@ -241,7 +241,9 @@ class GraspRun:
                 break
         P, A = np.array(planned), np.array(actual)
         err = np.linalg.norm(A - P, axis=1)
-        self.extras.update({"carry_max_error": float(err.max()), "carry_samples_held": float(len(A) - 1)})
+        move = np.linalg.norm((A - A[0]) - (P - P[0]), axis=1)  # tracking of the move, settling offset removed
+        self.extras.update({"carry_max_error": float(err.max()), "carry_move_error": float(move.max()),
+                            "carry_samples_held": float(len(A) - 1)})
         self.series.update({"carry_planned": P, "carry_actual": A})
 
 
