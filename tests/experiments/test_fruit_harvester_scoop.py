@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -77,3 +78,24 @@ def test_centre_controller_saturates_at_the_pressure_limit(shao):
     assert x["control_saturated"] == 1.0 and x["control_steps"] == 0.0
     assert x["grasp_centre_error_x"] < -1e-3  # uncorrected
     assert "above the limit of" in res.solver.message
+
+
+@pytest.mark.slow  # ~5 s alone; the browser test (regression tier) builds this report too
+def test_small_study_report_has_the_scoop_figures(small_study_run, tmp_path):
+    from workbench.report import build_report
+    from workbench.study import read_table
+
+    from workbench.experiments.fruit_harvester.scoop_notes import ASSUMPTIONS, QUESTION
+
+    out = small_study_run(Path(__file__).resolve().parents[2] / "tests/regression/studies/fruit_harvester_fluidic.toml")
+    df = read_table(out)
+    assert set(df["status"]) == {"ok"}, df[["model", "error"]]
+    ph = df[df["model"] == "contact"].set_index("p.scenario.actuation")
+    assert ph.at["fluidic", "length_change"] > 0.05 > 0 > ph.at["tendon", "length_change"]  # chambers lengthen
+    html = build_report(out, tmp_path / "report", formats=()).read_text()
+    for name in ("scoop_shapes", "scoop_centre", "scoop_length", "scoop_control"):
+        assert f"data-figure='{name}'" in html, name
+    import html as _html
+
+    text = _html.unescape(html)
+    assert QUESTION[:40] in text and all(a in text for a, _, _ in ASSUMPTIONS)
