@@ -171,7 +171,7 @@ def test_capstan_frictionless_loses_nothing():
 @pytest.mark.slow
 @pytest.mark.parametrize("mu, theta", [(0.6, 0.5 * math.pi), (0.3, 0.75 * math.pi), (0.3, math.pi)])
 def test_capstan_friction_other_wraps(mu, theta):
-    assert _capstan(mu, theta, 32) == pytest.approx(math.exp(-mu * theta), rel=2e-3)  # measured <= 7e-4
+    assert _capstan(mu, theta, 32) == pytest.approx(math.exp(-mu * theta), rel=2e-3)  # measured <= 8.5e-4 (mu 0.6)
 
 
 def test_chamber_strains_give_the_fluidic_cc_arc():

@@ -24,6 +24,7 @@ from matplotlib.figure import Figure
 
 from ...compare.table import array_cell, row_positions
 from ...report.figures import ReportFigure, fmt
+from .scoop_findings import findings
 from .scoop_notes import ASSUMPTIONS, QUESTION, SEED_ROWS
 
 __all__ = ["matches", "figures"]
@@ -56,6 +57,15 @@ def _pairs(ok: pd.DataFrame):
         if len(cc) and len(ph):
             out.append((cc.iloc[0], ph.iloc[0]))
     return out
+
+
+def _bar(row, key) -> float:
+    """Error bar [same unit as ``key``]: mesh (``x.disc_*``) + contact penalty (``x.pen_*``); NaN when an
+    estimate run failed (``x.disc_failed`` / ``x.pen_failed``) or none was made."""
+    if _f(row, "x.disc_failed", 0.0) > 0 or _f(row, "x.pen_failed", 0.0) > 0:
+        return np.nan
+    d, p = _f(row, f"x.disc_{key}"), _f(row, f"x.pen_{key}", 0.0)
+    return d + p if np.isfinite(d) else np.nan
 
 
 def _circle(ax, c, r, **kw):
@@ -95,8 +105,9 @@ def _shapes_figure(pairs) -> ReportFigure | None:
                      f"CC arc length {fmt(1e3 * (_f(cc, 'robot_length') + _f(cc, 'length_change')))} mm", fontsize=9)
         ax.legend(frameon=False, fontsize=7)
     fig.suptitle("Shao harvester: the fruit in the scoop (CC arc vs physics, gravity)")
-    summary = (f"Question: {QUESTION} Answers: " + "; ".join(SEED_ROWS) + ". " + "; ".join(texts)
-               + ". Assumptions: " + "; ".join(f"{a}: {v}" for a, v, _ in ASSUMPTIONS) + ".")
+    summary = (f"Question: {QUESTION} Findings: " + "; ".join(findings(pairs)) + ". Answers: " + "; ".join(SEED_ROWS)
+               + ". " + "; ".join(texts) + ". Assumptions: "
+               + "; ".join(f"{a}: {v} ({why})" if why else f"{a}: {v}" for a, v, why in ASSUMPTIONS) + ".")
     return ReportFigure("scoop_shapes", "Harvester scoop: CC arc vs physics with the fruit", fig, summary)
 
 
@@ -114,13 +125,22 @@ def _centre_figure(pairs) -> ReportFigure:
             e0 = 1e3 * np.array([_f(p, "x.grasp_centre_error_initial") for _, p in sub])
             ex = 1e3 * np.abs([_f(p, "x.grasp_centre_error_x") for _, p in sub])
             ez = 1e3 * np.abs([_f(p, "x.grasp_centre_error_z") for _, p in sub])
+            b0, bx, bz = (1e3 * np.array([_bar(p, k) for _, p in sub]) for k in
+                          ("grasp_centre_error_initial", "grasp_centre_error_x", "grasp_centre_error_z"))
             col, ls = _ACT.get(act, "C0"), _PAY[pay]
-            ax0.plot(m, e0, color=col, ls=ls, marker="o", label=f"{act}, {pay}")
-            ax1.plot(m, ex, color=col, ls=ls, marker="s", ms=4, label=f"{act}, {pay}: |x|")
-            ax1.plot(m, ez, color=col, ls=ls, marker="^", ms=4, alpha=0.6, label=f"{act}, {pay}: |z|")
+            ax0.errorbar(m, e0, yerr=np.nan_to_num(b0), color=col, ls=ls, marker="o", capsize=3, label=f"{act}, {pay}")
+            ax1.errorbar(m, ex, yerr=np.nan_to_num(bx), color=col, ls=ls, marker="s", ms=4, capsize=3,
+                         label=f"{act}, {pay}: |x|")
+            ax1.errorbar(m, ez, yerr=np.nan_to_num(bz), color=col, ls=ls, marker="^", ms=4, capsize=3, alpha=0.6,
+                         label=f"{act}, {pay}: |z|")
             if np.all(np.isfinite(e0)):
-                texts.append(f"{act}, {pay}: {fmt(e0.min())}-{fmt(e0.max())} mm off the CC centre; after the controller "
-                             f"|x| <= {fmt(np.nanmax(ex))} mm, |z| up to {fmt(np.nanmax(ez))} mm")
+                texts.append(f"{act}, {pay}: {fmt(e0.min())}-{fmt(e0.max())} mm off the CC centre (error bar up to "
+                             f"{fmt(np.nanmax(b0) if np.isfinite(b0).any() else np.nan)} mm"
+                             + (f", {int(np.isnan(b0).sum())} case(s) without a bar" if np.isnan(b0).any() else "")
+                             + f"); after the controller |x| <= {fmt(np.nanmax(ex))} mm, |z| up to {fmt(np.nanmax(ez))} mm"
+                             + (" (saturated at the pressure limit in "
+                                f"{int(sum(_f(p, 'x.control_saturated', 0.0) > 0 for _, p in sub))} case(s))"
+                                if any(_f(p, "x.control_saturated", 0.0) > 0 for _, p in sub) else ""))
     ax0.set_xlabel("payload [g]")
     ax0.set_ylabel("|grasp centre - CC centre| [mm]")
     ax0.set_title("open loop: the CC grasp centre under payload")
@@ -130,7 +150,9 @@ def _centre_figure(pairs) -> ReportFigure:
     ax1.set_title("after the centre-of-arc controller (J_v has no z row)")
     ax1.legend(frameon=False, fontsize=6, ncol=2)
     fig.suptitle("Shao's grasp centre: CC prediction vs physics, and closing the loop with Eq 4-5")
-    return ReportFigure("scoop_centre", "Grasp centre under payload, open and closed loop", fig, "; ".join(texts) + ".")
+    return ReportFigure("scoop_centre", "Grasp centre under payload, open and closed loop", fig,
+                        "; ".join(texts) + ". Error bars: |v(n) - v(n/2)| (mesh, x.disc_*) + |v(k) - v(k/10)| "
+                        "(contact penalty, x.pen_*); a case whose estimate run failed has none (x.disc_failed).")
 
 
 def _length_figure(pairs) -> ReportFigure:

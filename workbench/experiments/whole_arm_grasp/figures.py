@@ -23,6 +23,7 @@ from matplotlib.figure import Figure
 
 from ...compare.table import array_cell, row_positions
 from ...report.figures import ReportFigure, fmt
+from .findings import findings
 from .notes import ASSUMPTIONS, QUESTION, SEED_ROWS
 
 __all__ = ["matches", "figures", "SCENARIO"]
@@ -115,15 +116,21 @@ def _selected(pairs, key: str):
 
 
 def _wraps_figure(pairs) -> ReportFigure:
+    all_pairs = pairs
     sel = _selected(pairs, "p.scenario.object_radius") or pairs[:1]
     fig = Figure(figsize=(4.6 * len(sel), 4.9), layout="constrained")
     axes = np.atleast_1d(fig.subplots(1, len(sel)))
     texts = [_wrap_panel(ax, cc, ph) for ax, (cc, ph) in zip(axes, sel)]
     fig.legend(*axes[0].get_legend_handles_labels(), frameon=False, fontsize=7, loc="outside lower center", ncol=5)
     fig.suptitle("CC wrap plan vs the physical wrap (thin lines: the arm's surface; gravity along -z)")
-    summary = (f"Question: {QUESTION} Answers: " + "; ".join(SEED_ROWS) + ". " + "; ".join(texts) + ". Assumptions: "
-               + "; ".join(f"{a}: {v}" for a, v, _ in ASSUMPTIONS) + ".")
-    return ReportFigure("grasp_wraps", "Whole-arm wrap: CC plan vs physics", fig, summary)
+    return ReportFigure("grasp_wraps", "Whole-arm wrap: CC plan vs physics", fig, _summary(texts, findings(all_pairs)))
+
+
+def _summary(texts, found) -> str:
+    """Question, findings (computed), the seed-paper rows answered, the panels, and the assumptions."""
+    return (f"Question: {QUESTION} Findings: " + "; ".join(found) + ". Answers: " + "; ".join(SEED_ROWS) + ". "
+            + "; ".join(texts) + ". Assumptions: " + "; ".join(f"{a}: {v} ({why})" if why else f"{a}: {v}"
+                                                         for a, v, why in ASSUMPTIONS) + ".")
 
 
 def _contact_figure(pairs) -> ReportFigure:
@@ -168,7 +175,7 @@ def _sweep_figure(pairs) -> ReportFigure:
     frictions = sorted({_val(c, "p.scenario.friction") for c, _ in pairs})
     fig = Figure(figsize=(12.5, 4.4), layout="constrained")
     axf, axs = fig.subplots(1, 2)
-    texts, lower = [], 0
+    texts, lower, marked = [], 0, False
     for i, r in enumerate(radii):
         for j, mu in enumerate(frictions):
             sub = sorted(((c, p) for c, p in pairs if abs(_val(c, "p.scenario.object_radius") - r) < 1e-12
@@ -182,8 +189,16 @@ def _sweep_figure(pairs) -> ReportFigure:
             lab = f"r = {fmt(1e3 * r)} mm, friction {fmt(mu)}"
             axf.errorbar(sq, F, yerr=[_holding_error(p) for _, p in sub], color=_COLORS[i % len(_COLORS)],
                          ls=_STYLES[j % len(_STYLES)], marker="o", ms=4, capsize=3, label=lab)
-            axs.plot(sq, [1e3 * np.hypot(_val(p, "x.settle_dx"), _val(p, "x.settle_dz")) for _, p in sub],
-                     color=_COLORS[i % len(_COLORS)], ls=_STYLES[j % len(_STYLES)], marker="o", ms=4)
+            lb = [(x, f) for x, f, (_, p) in zip(sq, F, sub) if _val(p, "x.pull_peak_resolved", 1.0) == 0]
+            if lb:
+                axf.plot(*zip(*lb), "^", ms=9, mfc="none", color=_COLORS[i % len(_COLORS)],
+                         label="lower bound (path ended at a fold)" if not marked else None)
+                marked = True
+            bars = [1e3 * sum(_val(p, f"x.{e}_settle_{c}", 0.0) for e in ("disc", "pen") for c in ("dx", "dz"))
+                    for _, p in sub]
+            axs.errorbar(sq, [1e3 * np.hypot(_val(p, "x.settle_dx"), _val(p, "x.settle_dz")) for _, p in sub],
+                         yerr=bars, color=_COLORS[i % len(_COLORS)], ls=_STYLES[j % len(_STYLES)], marker="o", ms=4,
+                         capsize=3)
             texts.append(f"{lab}: holding force {fmt(min(F))}-{fmt(max(F))} N")
     axf.set_xlabel("squeeze (commanded / touching curvature of the wrap)")
     axf.set_ylabel("holding force [N] (largest pull on the static path)")

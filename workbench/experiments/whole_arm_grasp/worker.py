@@ -36,7 +36,8 @@ PLANS = {
 
 #: Outputs that get a discretisation-error bar ``x.disc_<key>``.
 DISC_KEYS = ("holding_force", "settle_dx", "settle_dz", "arc", "normal_force", "closed_normal_force",
-             "carry_max_error", "carry_move_error", "grasp_centre_error")
+             "carry_max_error", "carry_move_error", "grasp_centre_error", "grasp_centre_error_initial",
+             "grasp_centre_error_x", "grasp_centre_error_z")
 
 
 def _reason(e: BaseException) -> str:
