@@ -133,6 +133,16 @@ def _summary(texts, found) -> str:
                                                          for a, v, why in ASSUMPTIONS) + ".")
 
 
+def _surface_gap(row: pd.Series, centre, r: float, hw):
+    """``(stations, gap)``: the arm's surface distance [m] to the object along the backbone (< 0: inside it);
+    ``hw`` the half diameter at the stations (the CC row's ``series.half_width``)."""
+    _, P = row_positions(row.to_dict())
+    st = array_cell(row.get("stations"))
+    if P is None or st is None or hw is None or hw.size != len(P):
+        return None, None
+    return st, np.hypot(P[:, 0] - centre[0], P[:, 2] - centre[1]) - r - hw
+
+
 def _contact_figure(pairs) -> ReportFigure:
     sel = _selected(pairs, "p.scenario.squeeze") or pairs[:1]
     fig = Figure(figsize=(10.5, 4.2), layout="constrained")
@@ -140,28 +150,45 @@ def _contact_figure(pairs) -> ReportFigure:
     texts = []
     for i, (cc, ph) in enumerate(sel):
         col = _COLORS[i % len(_COLORS)]
-        s, fn = array_cell(ph.get("series.contact_s")), array_cell(ph.get("series.contact_fn"))
-        if s is None or fn is None:
-            continue
-        ds = np.gradient(s) if s.size > 1 else np.ones_like(s)
         sq = _val(cc, "p.scenario.squeeze")
-        ax.plot(1e3 * s, fn / ds, color=col, label=f"squeeze {fmt(sq)}")
-        on = fn > 0
-        if on.any():
-            texts.append(f"squeeze {fmt(sq)}: contact at s = {fmt(1e3 * s[on].min())}-{fmt(1e3 * s[on].max())} mm, "
-                         f"peak {fmt((fn / ds).max())} N/m")
-        axg.bar(i, 1e3 * _val(cc, "x.cc_max_penetration"), color=col, label=f"squeeze {fmt(sq)}")
+        s, fn = array_cell(ph.get("series.contact_s")), array_cell(ph.get("series.contact_fn"))
+        if s is not None and fn is not None:
+            ds = np.gradient(s) if s.size > 1 else np.ones_like(s)
+            ax.plot(1e3 * s, fn / ds, color=col, label=f"squeeze {fmt(sq)}")
+            on = fn > 0
+            if on.any():
+                texts.append(f"squeeze {fmt(sq)}: the physical arm touches at s = {fmt(1e3 * s[on].min())}-"
+                             f"{fmt(1e3 * s[on].max())} mm, peak {fmt((fn / ds).max())} N/m")
+        r = _val(cc, "p.scenario.object_radius")
+        c0 = np.array([_val(cc, "x.object_x"), _val(cc, "x.object_z")])
+        hw = array_cell(cc.get("series.half_width"))
+        st, g = _surface_gap(cc, c0, r, hw)
+        if st is not None:
+            axg.plot(1e3 * st, 1e3 * g, color=col, ls="--", label=f"CC plan, squeeze {fmt(sq)}")
+            inside = g < 0
+            texts.append(f"CC's arm surface is inside the object over {fmt(1e3 * np.ptp(st[inside]) if inside.any() else 0)} "
+                         f"mm of arc (deepest {fmt(-1e3 * g.min())} mm)")
+        if _val(ph, "x.held", 0.0) > 0:
+            c1 = c0 + np.array([_val(ph, "x.settle_dx"), _val(ph, "x.settle_dz")])
+            st, g = _surface_gap(ph, c1, r, hw)
+            if st is not None:
+                axg.plot(1e3 * st, 1e3 * g, color=col, label=f"physics, squeeze {fmt(sq)}")
     ax.set_xlabel("arc length s [mm] (reference)")
     ax.set_ylabel("contact line load [N/m] (physics, released object)")
     ax.set_title("where the physical arm touches the object")
     ax.legend(frameon=False)
-    axg.set_xticks(range(len(sel)), [f"{fmt(_val(c, 'p.scenario.squeeze'))}" for c, _ in sel])
-    axg.set_xlabel("squeeze")
-    axg.set_ylabel("deepest CC penetration of the object [mm]")
-    axg.set_title("CC ignores the object: its arcs penetrate it")
+    axg.axhline(0.0, color="k", lw=0.8)
+    axg.set_xlabel("arc length s [mm] (reference)")
+    axg.set_ylabel("surface gap to the object [mm] (< 0: inside it)")
+    axg.set_title("CC ignores the object: where its arcs penetrate or miss it")
+    axg.set_ylim(-80, 120)
+    axg.legend(frameon=False, fontsize=7)
     fig.suptitle(f"Contact along the arm (r = {fmt(1e3 * _val(sel[0][0], 'p.scenario.object_radius'))} mm, "
                  f"friction {fmt(_val(sel[0][0], 'p.scenario.friction'))})")
-    return ReportFigure("grasp_contact", "Contact arc and forces vs CC penetration", fig, "; ".join(texts) + ".")
+    return ReportFigure("grasp_contact", "Contact arc and forces; where CC penetrates or misses the object", fig,
+                        "; ".join(texts) + ". Surface gap: distance of the arm's surface (centreline +- half the "
+                        "diameter) from the object, CC against the object where CC holds it, physics against the "
+                        "object where it settled; the gap of the physics is >= 0 up to the penalty's penetration.")
 
 
 def _holding_error(ph: pd.Series) -> float:

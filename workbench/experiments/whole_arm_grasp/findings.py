@@ -56,6 +56,17 @@ def _squeeze_effect(cc, ph) -> str:
     return f"; squeeze {fmt(lo)} -> {fmt(hi)} raises its median {fmt(a)} -> {fmt(b)} N"
 
 
+def _contact_patches(row) -> int | None:
+    """Number of contiguous runs of touching segments (``series.contact_fn > 0``) of a contact row."""
+    from ...compare.table import array_cell
+
+    fn = array_cell(row.get("series.contact_fn"))
+    if fn is None or fn.size == 0:
+        return None
+    on = np.concatenate([[0], (fn > 0).astype(int), [0]])
+    return int(np.sum(np.diff(on) == 1))
+
+
 def findings(pairs) -> tuple[str, ...]:
     """Sentences (no trailing period) stating the study's results; empty without pairs."""
     if not pairs:
@@ -69,6 +80,13 @@ def findings(pairs) -> tuple[str, ...]:
         h = [p for p, k in zip(ph, held) if k]
         out.append(f"it settles {span(-column(h, 'x.settle_dz'), 1e3)} mm lower and {span(column(h, 'x.settle_dx'), 1e3)} mm "
                    f"further out (+x) than CC holds it (gravity and the arm's compliance)")
+    patches = [_contact_patches(p) for p, k in zip(ph, held) if k]
+    patches = [n for n in patches if n is not None]
+    if patches:
+        out.append(f"it touches the object in {min(patches)}-{max(patches)} separate patches (a stiff arm wraps by "
+                   f"points, not along CC's arc)" if min(patches) != max(patches) else
+                   f"it touches the object in {patches[0]} separate patches (a stiff arm wraps by points, not along "
+                   f"CC's arc)")
     F = column(ph, "x.holding_force")
     if np.isfinite(F).any():
         lower = int(np.sum(column(ph, "x.pull_peak_resolved") == 0))
