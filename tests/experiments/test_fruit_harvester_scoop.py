@@ -99,3 +99,4 @@ def test_small_study_report_has_the_scoop_figures(small_study_run, tmp_path):
 
     text = _html.unescape(html)
     assert QUESTION[:40] in text and all(a in text for a, _, _ in ASSUMPTIONS)
+    assert "Findings: fluidic: the section's length changes by 16.1 % of L in the physics" in text

@@ -112,6 +112,7 @@ def test_small_study_report_has_the_grasp_figures(small_run, tmp_path):
 
     text = _html.unescape(html)
     assert QUESTION[:40] in text and all(a in text for a, _, _ in ASSUMPTIONS)
+    assert "Findings: CC's plan ignores the object" in text and "held the object in 2 of 2 cases" in text
 
 
 @pytest.mark.slow
