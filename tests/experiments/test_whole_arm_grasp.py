@@ -116,13 +116,18 @@ def test_small_study_report_has_the_grasp_figures(small_run, tmp_path):
 
 
 @pytest.mark.slow
-def test_physics_holding_force_converges_with_the_mesh(hw):
-    """The holding force of a frictionless grasp changes by < 6 % from 8 to 16 elements (measured 2.4 %)."""
+def test_held_state_converges_with_the_mesh_the_pull_out_fold_does_not(hw):
+    """Frictionless 6 cm grasp, squeeze 1.2, 8 vs 16 elements (measured, with 32: settle dx 18.11 / 17.93 / 17.89 mm,
+    dz -44.39 / -44.50 / -44.50 mm, closed normal force 182.99 / 182.98 / 182.89 N).  The holding force ends at a
+    fold of the pull path (122 / 141 / 118 N): not mesh-converged, so both runs must mark it a lower bound and the
+    study carries |F(n) - F(n/2)| as its error bar."""
     from workbench.experiments.whole_arm_grasp.scenario import grasp_case
     from workbench.experiments.whole_arm_grasp.tasks import run_task
 
     plan, task = grasp_case(hw, {"object_radius": 0.06, "squeeze": 1.2, "friction": 0.0, "carry_samples": 0,
                                  "pull_distance": 0.45})
-    f = [run_task(hw, plan, task, SolverOptions(n_elements=n)).extras["holding_force"] for n in (8, 16)]
-    assert f[1] == pytest.approx(f[0], rel=0.06)
-
+    a, b = (run_task(hw, plan, task, SolverOptions(n_elements=n)).extras for n in (8, 16))
+    assert abs(a["settle_dx"] - b["settle_dx"]) < 5e-4 and abs(a["settle_dz"] - b["settle_dz"]) < 5e-4
+    assert a["closed_normal_force"] == pytest.approx(b["closed_normal_force"], rel=1e-3)
+    assert a["normal_force"] == pytest.approx(b["normal_force"], rel=1e-2)
+    assert a["pull_peak_resolved"] == 0.0 and b["pull_peak_resolved"] == 0.0
