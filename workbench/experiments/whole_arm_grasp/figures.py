@@ -118,7 +118,7 @@ def _selected(pairs, key: str):
 def _wraps_figure(pairs) -> ReportFigure:
     all_pairs = pairs
     sel = _selected(pairs, "p.scenario.object_radius") or pairs[:1]
-    fig = Figure(figsize=(4.6 * len(sel), 4.9), layout="constrained")
+    fig = Figure(figsize=(max(7.5, 4.6 * len(sel)), 4.9), layout="constrained")
     axes = np.atleast_1d(fig.subplots(1, len(sel)))
     texts = [_wrap_panel(ax, cc, ph) for ax, (cc, ph) in zip(axes, sel)]
     fig.legend(*axes[0].get_legend_handles_labels(), frameon=False, fontsize=7, loc="outside lower center", ncol=5)
