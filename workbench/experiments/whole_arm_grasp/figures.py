@@ -283,7 +283,9 @@ def _carry_figure(pairs) -> ReportFigure | None:
         ax.plot(1e3 * P[:, 0], 1e3 * P[:, 1], "o--", color=col, mfc="none", label=f"CC plan, r = {fmt(1e3 * r)} mm")
         ax.plot(1e3 * A[:, 0], 1e3 * A[:, 1], "o-", color=col, label=f"physics, r = {fmt(1e3 * r)} mm")
         texts.append(f"r = {fmt(1e3 * r)} mm: object {fmt(1e3 * _val(ph, 'x.carry_max_error'))} mm off the planned path "
-                     f"at worst ({fmt(1e3 * _val(ph, 'x.carry_move_error'))} mm of it tracking error of the move, the "
+                     f"at worst ({fmt(1e3 * _val(ph, 'x.carry_move_error'))} +- "
+                     f"{fmt(1e3 * (_val(ph, 'x.disc_carry_move_error', 0.0) + _val(ph, 'x.pen_carry_move_error', 0.0)))}"
+                     f" mm of it tracking error of the move, the "
                      f"rest the settling offset), planned move {fmt(1e3 * np.linalg.norm(P[-1] - P[0]))} mm, actual "
                      f"{fmt(1e3 * np.linalg.norm(A[-1] - A[0]))} mm")
     ax.set_aspect("equal")
