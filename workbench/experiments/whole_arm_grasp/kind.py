@@ -20,10 +20,11 @@ from pathlib import Path
 from typing import Any, Callable, Sequence
 
 from ...study.build import parameters_as_run
-from ...study.expand import Case, expand
+from ...study.expand import Case, count_cases, expand
 from ...study.messages import StudyError, read_toml
+from ...study.outcomes import CaseLimits
 from ...study.spec import Study, parse_study
-from .worker import PLANS, evaluate_grasp_batch
+from .worker import PLANS, evaluate_grasp_rows
 
 __all__ = ["KIND", "GraspKind", "PLANS", "KIND_NAME", "MODELS"]
 
@@ -63,13 +64,19 @@ class GraspKind:
 
     name = KIND_NAME
     flush_rows = 16
-    task = staticmethod(evaluate_grasp_batch)
+    #: the ``cc`` row (the plan) and the ``contact`` row (the physics) are computed independently
+    separable_models = True
+    task = staticmethod(evaluate_grasp_rows)
 
     def load(self, path: str | Path, max_cases: int | None = None) -> Study:
         return load_grasp_study(path, max_cases=max_cases)
 
     def expand(self, spec: Study) -> list[Case]:
         return expand(spec)
+
+    def count(self, spec: Study) -> int:
+        """Number of cases, without expanding them."""
+        return count_cases(spec)
 
     def models(self, spec: Study) -> tuple[str, ...]:
         return tuple(spec.models)
@@ -87,8 +94,13 @@ class GraspKind:
     def batch_size(self, n_cases: int, slots: int) -> int:
         return 1
 
-    def payload(self, spec: Study, cases: Sequence[Case], options: Any) -> tuple:
-        return [(c.case_id, c.params) for c in cases], tuple(spec.models)
+    def payload(self, spec: Study, case: Case, models: Sequence[str], options: Any) -> tuple:
+        """``(case_id, params, models)``: one case, the models still to compute."""
+        return case.case_id, case.params, tuple(models)
+
+    def limits(self, spec: Study) -> CaseLimits:
+        """``[solver] max_case_seconds`` / ``max_case_memory`` of the study (the sweep loader's)."""
+        return spec.limits
 
 
 #: The grasp study kind (``registry.KINDS["grasp"]``).

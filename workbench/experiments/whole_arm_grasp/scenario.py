@@ -22,7 +22,7 @@ __all__ = ["whole_arm_wrap", "grasp_case", "PLAN_KEYS", "TASK_KEYS"]
 
 #: Scenario parameters that shape the CC plan / the physics task.
 PLAN_KEYS = ("object_radius", "object_mass", "friction", "wrap_sections", "approach_bend_angles", "squeeze")
-TASK_KEYS = ("release", "pull_direction", "pull_distance", "pull_step", "carry_offset", "carry_samples",
+TASK_KEYS = ("release", "pull_direction", "pull_distance", "pull_step", "carry_move", "carry_samples",
              "contact_stiffness", "friction_stiffness", "contact_segments", "error_estimate", "penalty_estimate")
 
 
@@ -39,7 +39,7 @@ def whole_arm_wrap(
     pull_direction: str = "-z",
     pull_distance: float = 0.45,
     pull_step: float = 0.005,
-    carry_offset: list | None = None,
+    carry_move: list | None = None,
     carry_samples: int = 4,
     contact_stiffness: float = 1.0e8,
     friction_stiffness: float = 1.0e6,
@@ -63,7 +63,7 @@ def whole_arm_wrap(
         Release the object into the arm after the wrap closed on it (else: the held wrap only).
     pull_direction : {"+x", "-x", "+z", "-z"}
         Base-frame direction of the pull-out; ``pull_distance`` [m] (0: no pull-out), ``pull_step`` [m].
-    carry_offset : list of 2 float, optional
+    carry_move : list of 2 float, optional
         Straight-line move of the grasp centre [m, base (x, z)] in ``carry_samples`` samples
         (default ``[0, 0.05]``; ``carry_samples = 0``: no carry).
     contact_stiffness, friction_stiffness : float
@@ -113,9 +113,9 @@ def grasp_case(robot, params: Mapping[str, Any]):
     plan = wrap_plan(robot, **kw)
     carry = ()
     if int(p["carry_samples"]) > 0:
-        off = [0.0, 0.05] if p["carry_offset"] is None else [float(v) for v in p["carry_offset"]]
+        off = [0.0, 0.05] if p["carry_move"] is None else [float(v) for v in p["carry_move"]]
         if len(off) != 2:
-            raise ValueError(f"carry_offset must be [dx, dz] [m, base frame], got {p['carry_offset']!r}")
+            raise ValueError(f"carry_move must be [dx, dz] [m, base frame], got {p['carry_move']!r}")
         carry = tuple(carry_plans(robot, kw, off, int(p["carry_samples"]))[1:])
     law = ContactLaw(stiffness=float(p["contact_stiffness"]), friction_stiffness=float(p["friction_stiffness"]),
                      segments=int(p["contact_segments"]))

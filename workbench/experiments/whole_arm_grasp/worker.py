@@ -26,7 +26,7 @@ from ...study.build import build_options, resolve_case
 from ...study.params import flatten_params
 from ...study.rows import failed_rows, row_from_result
 
-__all__ = ["evaluate_grasp_case", "evaluate_grasp_batch", "DISC_KEYS", "PLANS"]
+__all__ = ["evaluate_grasp_case", "evaluate_grasp_rows", "DISC_KEYS", "PLANS"]
 
 #: grasp scenario -> "module:function" of its (robot, scenario params) -> (GraspPlan, GraspTask)
 PLANS = {
@@ -115,7 +115,7 @@ def evaluate_grasp_case(case_id: str, params: Mapping[str, Any], models: Sequenc
     return rows
 
 
-def evaluate_grasp_batch(batch: tuple) -> list[list[dict[str, Any]]]:
-    """The task function of the grasp kind: ``batch = (cases, models)`` with ``cases`` ``[(case_id, params)]``."""
-    cases, models = batch
-    return [evaluate_grasp_case(cid, params, models) for cid, params in cases]
+def evaluate_grasp_rows(payload: tuple) -> list[dict[str, Any]]:
+    """The task function of the grasp kind: the rows of one unit ``payload = (case_id, params, models)``."""
+    case_id, params, models = payload
+    return evaluate_grasp_case(case_id, params, models)
