@@ -140,3 +140,58 @@ def test_bad_study_files_are_one_line(tmp_path, capsys):
 
 def test_retry_failed_needs_resume(capsys):
     assert "--retry-failed: needs --resume" in _one_line(capsys, 2, ["run", EXAMPLE, "--retry-failed"])
+
+
+@pytest.mark.parametrize("argv,words", [
+    (["run"], "the following arguments are required: study"),
+    (["run", EXAMPLE, "--worker", "2"], "unrecognized arguments: --worker 2"),  # no prefix matching
+    (["run", EXAMPLE, "--workers", "two"], "invalid int value: 'two'"),
+    (["run", EXAMPLE, "--workers", "0", "--no-report"], "--workers: must be >= 1"),
+    (["run", EXAMPLE, "--force", "--resume"], "--force: not with --resume"),
+    (["run", "nosuchstudy"], "nosuchstudy: no such study file (nor studies/nosuchstudy.toml); studies in studies/"),
+    (["validate", "nosuchstudy"], "no such study file"),
+    (["validate"], "the following arguments are required: study"),
+    (["show"], "the following arguments are required: folder"),
+    (["show", "reports/nothing_here"], "this looks like a report folder: results are in data/<name>"),
+    (["report", "reports/nothing_here"], "this looks like a report folder"),
+    (["report", "data/nothing_here", "--formats", "jpg"], "--formats: unknown figure format 'jpg'; choose from png"),
+    (["list"], "the following arguments are required: topic"),
+    (["list", "modles"], "invalid choice: 'modles'"),
+    (["frobnicate"], "invalid choice: 'frobnicate'"),
+    ([], "the following arguments are required: command"),
+])
+def test_every_subcommand_on_bad_input_is_one_line_and_exit_2(capsys, monkeypatch, argv, words):
+    monkeypatch.chdir(ROOT)  # bare study names are looked up in ./studies
+    line = _one_line(capsys, 2, argv)
+    assert words in line, line
+
+
+def test_version_list_and_bare_study_names(capsys, monkeypatch, tmp_path):
+    from workbench import __version__
+
+    assert main(["--version"]) == 0 and capsys.readouterr().out.startswith(f"workbench {__version__}")
+    assert main(["list", "models"]) == 0
+    out = capsys.readouterr().out
+    assert "beam3d" in out and "tendons: tension/length via eyelets" in out and "ancf3d" in out
+    for topic, name in (("presets", "steel_rod: length=0.8"), ("scenarios", "wire_delay: theta="),
+                        ("kinds", "series_parallel: ")):
+        assert main(["list", topic]) == 0 and name in capsys.readouterr().out
+    monkeypatch.chdir(ROOT)
+    assert main(["validate", "example"]) == 0
+    assert capsys.readouterr().out.startswith("studies/example.toml: ok: study 'example'")
+    help_text = subprocess.run([sys.executable, "-m", "workbench", "run", "--help"], env=env(), cwd=ROOT,
+                               capture_output=True, text=True).stdout
+    assert "Default executor: one case after another in an isolated child process" in help_text
+    assert "exit codes:" in help_text and "143" in help_text
+
+
+def test_force_reruns_into_a_used_folder(tmp_path, capsys, good_folder):
+    study, good = good_folder
+    out = tmp_path / "o"
+    shutil.copytree(good, out)
+    run = ["run", study, "--out", out, "--in-process", "--no-report", "--progress", "off"]
+    assert "use --resume to continue it, --force to discard them" in _one_line(capsys, 2, run)
+    assert main([str(a) for a in run + ["--force"]]) == 0
+    from workbench.study import read_manifest
+
+    assert len(read_manifest(out)["runs"]) == 1  # the old run's record went with its results

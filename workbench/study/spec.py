@@ -35,12 +35,14 @@ Checked by ``tests/study/test_spec.py`` (every file of ``tests/study/bad_configs
 from __future__ import annotations
 
 import hashlib
+import re
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Mapping
 
 from pydantic import BaseModel, ValidationError
 
+from .report_keys import check_report
 from .checks import (
     _NONNEG_LIST_FIELDS,
     case_rules,
@@ -132,6 +134,8 @@ class Study:
         they do not change a result).
     notes : tuple of str
         What validation wants the user to know without refusing the file (one line each).
+    warnings : tuple of str
+        Plausibility warnings (:mod:`workbench.study.plausibility`), one line each.
     """
 
     path: str
@@ -145,6 +149,7 @@ class Study:
     report: dict[str, Any] = field(default_factory=dict)
     limits: CaseLimits = field(default_factory=CaseLimits)
     notes: tuple[str, ...] = ()
+    warnings: tuple[str, ...] = ()
 
     def resolved(self) -> dict[str, Any]:
         """Plain-data resolved spec (what the manifest records; the limits under ``solver``)."""
@@ -227,7 +232,7 @@ def _check_models(sections: Mapping[str, BaseModel]) -> list[str]:
     if len(set(known)) != len(known):
         problems.append("study.models: lists a model twice")
     rep = sections.get("report")
-    if rep is not None and rep.reference is not None and rep.reference not in st.models:
+    if rep is not None and rep.reference is not None and rep.reference not in st.models and len(known) == len(st.models):
         problems.append(f"report.reference: {rep.reference!r} is not one of study.models ({', '.join(st.models)})")
     return problems
 
@@ -338,6 +343,8 @@ def _whole_file_problem(raw: Mapping[str, Any], source: str) -> None:
 
 def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: int | None = None) -> Study:
     """Validate an already parsed study mapping (see :func:`load_study`)."""
+    from ..models import MODEL_NAMES
+
     raw = dict(raw)
     _whole_file_problem(raw, source)
     _drop_kind(raw, source)
@@ -355,15 +362,34 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
         if raw.get("scenario") is not None and scenario_base is None:  # knock-on errors of a bad [scenario]
             sweep_problems = [p for p in sweep_problems if '["scenario.' not in p.partition(": ")[0]]
         problems += sweep_problems
+        sweep_ok = not sweep_problems
+    else:
+        sweep_ok = "sweep" not in raw or "sweep" in sections
     st = sections.get("study")
-    if problems or st is None or base is None:
+    report = sections["report"].model_dump(exclude_defaults=True) if "report" in sections else None
+    if base is not None and report is not None:
+        problems += check_report(report, known_paths(base))
+    # the cases are checked too when the other problems are only in [study] / [report] (no knock-on errors)
+    only_presentation = all(re.split(r"[.:\[ ]", p, maxsplit=1)[0] in ("study", "report") for p in problems)
+    if base is None or "solver" not in sections or not sweep_ok or not only_presentation:
         raise StudyError([f"{source}: {p}" for p in collapse_indexed(problems)] or [f"{source}: invalid study"])
     solver = sections["solver"]
+    models = tuple(st.models) if st is not None else ()
     study = Study(
-        path=source, name=st.name, description=st.description, seed=st.seed,
-        models=tuple(st.models), max_cases=int(max_cases if max_cases is not None else st.max_cases),
-        base=base, sweep=sweep, report=sections["report"].model_dump(exclude_defaults=True),
+        path=source, name=st.name if st else "?", description=st.description if st else "",
+        seed=st.seed if st else 0, models=tuple(m for m in models if m in MODEL_NAMES),
+        max_cases=int(max_cases if max_cases is not None else (st.max_cases if st else DEFAULT_MAX_CASES)),
+        base=base, sweep=sweep, report=report or {},
         limits=CaseLimits(solver.max_case_seconds, solver.max_case_memory),
     )
-    check = check_cases(study, source)  # size limit, duplicates, a dry build of every case (time-bounded)
-    return replace(study, notes=(check.note,)) if check.note else study
+    try:  # size limit, duplicates, a dry build and the models' capabilities of every case (time-bounded)
+        check = check_cases(study, source)
+    except StudyError as e:  # reported with the file's other problems, in one pass
+        if not problems:
+            raise
+        problems += [p[len(source) + 2:] if p.startswith(f"{source}: ") else p for p in e.problems]
+        check = None
+    if problems or st is None:
+        raise StudyError([f"{source}: {p}" for p in collapse_indexed(problems)] or [f"{source}: invalid study"])
+    return replace(study, models=models, notes=(check.note,) if check.note else (),
+                   warnings=tuple(f"{source}: {w}" for w in check.warnings))
