@@ -92,6 +92,9 @@ def _parser() -> argparse.ArgumentParser:
                        description="Run a study.  Default executor: one case after another in an isolated child "
                                    "process (a crash or a timeout fails only that case).")
     r.add_argument("study", help="study file, e.g. studies/example.toml (a bare name finds studies/<name>.toml)")
+    r.add_argument("overrides", nargs="*", metavar="KEY=VALUE",
+                   help="settings that override the file, validated like it (solver.n_elements=32, "
+                        "study.models='[\"cc\"]'); recorded in the manifest")
     r.add_argument("--out", help="output folder (default data/<study.name>); its report goes to reports/<folder name>")
     ex = r.add_mutually_exclusive_group()
     ex.add_argument("--workers", type=int, metavar="N", help="Dask LocalCluster with N worker processes")
@@ -126,6 +129,7 @@ def _parser() -> argparse.ArgumentParser:
 
     v = sub.add_parser("validate", help="check a study file without running it")
     v.add_argument("study", help="study file or bare name (studies/<name>.toml)")
+    v.add_argument("overrides", nargs="*", metavar="KEY=VALUE", help="settings that override the file")
     v.add_argument("--max-cases", type=int, metavar="N", help="override study.max_cases")
     return p
 
@@ -244,6 +248,9 @@ def _load(args):
     path = find_study(args.study)
     args.study = str(path)
     kind = get_kind(kind_of(path))
+    overrides = tuple(getattr(args, "overrides", None) or ())
+    if overrides:
+        return kind, kind.load(path, max_cases=args.max_cases, overrides=overrides)
     return kind, kind.load(path, max_cases=args.max_cases)
 
 
@@ -257,8 +264,10 @@ def _cmd_validate(args) -> int:
         return 2
     n_cases = kind.count(study) if hasattr(kind, "count") else len(kind.expand(study))
     models = kind.models(study)
+    given = getattr(study, "overrides", ())
     print(f"{args.study}: ok: study {study.name!r}, {n_cases} cases x {len(models)} models "
-          f"({', '.join(models)}), config hash {study.config_hash}")
+          f"({', '.join(models)}), config hash {study.config_hash}"
+          + (f" (with {len(given)} override(s): {' '.join(given)})" if given else ""))
     for note in getattr(study, "notes", ()):
         print(f"  note: {note}")
     for w in getattr(study, "warnings", ()):
@@ -342,6 +351,8 @@ def _run(args) -> tuple[int, Path | None]:
     except StudyError as e:
         _err(e.problems)
         return 2, None
+    for w in getattr(study, "warnings", ()):
+        _err([f"warning: {w}"])
     if args.out is not None and not args.out.strip():
         _err(["--out: empty path (give a folder, e.g. --out data/my_run)"])
         return 2, None

@@ -155,6 +155,9 @@ def test_retry_failed_needs_resume(capsys):
     (["show", "reports/nothing_here"], "this looks like a report folder: results are in data/<name>"),
     (["report", "reports/nothing_here"], "this looks like a report folder"),
     (["report", "data/nothing_here", "--formats", "jpg"], "--formats: unknown figure format 'jpg'; choose from png"),
+    (["validate", "example", "solver.n_elements"], "override 'solver.n_elements': expected <section>.<key>=<value>"),
+    (["validate", "example", "solver.n_elementz=3"], "solver.n_elementz: unknown key; did you mean 'n_elements'?"),
+    (["run", "example", "solver.n_elements=0", "--no-report"], "solver.n_elements: must be >= 1"),
     (["list"], "the following arguments are required: topic"),
     (["list", "modles"], "invalid choice: 'modles'"),
     (["frobnicate"], "invalid choice: 'frobnicate'"),
@@ -195,3 +198,21 @@ def test_force_reruns_into_a_used_folder(tmp_path, capsys, good_folder):
     from workbench.study import read_manifest
 
     assert len(read_manifest(out)["runs"]) == 1  # the old run's record went with its results
+
+
+def test_overrides_are_validated_applied_and_recorded(tmp_path, capsys, good_folder):
+    import pandas as pd
+
+    from workbench.study import read_manifest
+
+    study, _ = good_folder
+    out = tmp_path / "o"
+    argv = ["run", study, "solver.n_stations=7", "study.max_cases=100", "--out", out, "--in-process", "--no-report",
+            "--progress", "off"]
+    assert main([str(a) for a in argv]) == 0
+    df = pd.read_parquet(out)
+    assert (df["p.solver.n_stations"] == 7).all() and df["positions"].map(len).eq(7 * 3).all()
+    assert read_manifest(out)["runs"][0]["overrides"] == ["solver.n_stations=7", "study.max_cases=100"]
+    # the override changes the config hash: resuming without it is refused (it would mix two studies)
+    line = _one_line(capsys, 2, ["run", study, "--out", out, "--resume", "--in-process", "--no-report"])
+    assert "--resume refused: the study's config hash" in line

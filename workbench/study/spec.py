@@ -38,7 +38,7 @@ import hashlib
 import re
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, Mapping, Sequence
 
 from pydantic import BaseModel, ValidationError
 
@@ -136,6 +136,8 @@ class Study:
         What validation wants the user to know without refusing the file (one line each).
     warnings : tuple of str
         Plausibility warnings (:mod:`workbench.study.plausibility`), one line each.
+    overrides : tuple of str
+        The command-line ``key=value`` overrides applied to the file (recorded in the manifest).
     """
 
     path: str
@@ -150,6 +152,7 @@ class Study:
     limits: CaseLimits = field(default_factory=CaseLimits)
     notes: tuple[str, ...] = ()
     warnings: tuple[str, ...] = ()
+    overrides: tuple[str, ...] = ()
 
     def resolved(self) -> dict[str, Any]:
         """Plain-data resolved spec (what the manifest records; the limits under ``solver``)."""
@@ -176,7 +179,7 @@ class Study:
 # ---------------------------------------------------------------------------------------
 # loading
 # ---------------------------------------------------------------------------------------
-def load_study(path: str | Path, *, max_cases: int | None = None) -> Study:
+def load_study(path: str | Path, *, max_cases: int | None = None, overrides: Sequence[str] = ()) -> Study:
     """Read and validate a study file; raise :class:`StudyError` listing every problem.
 
     Parameters
@@ -185,9 +188,15 @@ def load_study(path: str | Path, *, max_cases: int | None = None) -> Study:
         The TOML file.
     max_cases : int, optional
         Overrides ``study.max_cases`` (the CLI's ``--max-cases``).
+    overrides : sequence of str
+        ``key=value`` settings from the command line (:mod:`workbench.study.overrides`), applied
+        before validation and recorded in :attr:`Study.overrides`.
     """
-    raw = read_toml(path)
-    return parse_study(raw, source=str(Path(path)), max_cases=max_cases)
+    from .overrides import apply_overrides
+
+    raw = apply_overrides(read_toml(path), overrides)
+    study = parse_study(raw, source=str(Path(path)), max_cases=max_cases)
+    return replace(study, overrides=tuple(overrides)) if overrides else study
 
 
 def _parse_sections(raw: Mapping[str, Any]) -> tuple[dict[str, BaseModel], list[str]]:
