@@ -109,6 +109,9 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--force", action="store_true",
                    help="discard the results stored in --out and run again (not with --resume)")
     r.add_argument("--no-report", action="store_true", help="do not build the HTML report afterwards")
+    r.add_argument("--no-cache", action="store_true",
+                   help="compute every case (default: reuse rows of the same case, model and model code version "
+                        "from <parent of --out>/_cache, and store new ones there)")
     r.add_argument("--max-cases", type=int, metavar="N", help="override study.max_cases")
     r.add_argument("--reports-dir", default="reports", help="where reports go (default reports/<data folder name>)")
     r.add_argument("--progress", choices=("auto", "on", "off"), default="auto",
@@ -162,7 +165,8 @@ def _print_summary(summary, report_note: str | None = None, show_run: bool = Tru
     runs = man.get("runs", [])
     study_file = (runs[-1].get("study_file") if runs else None) or man.get("study_file") or "STUDY.toml"
     print(f"study {name!r}: {summary.folder}")
-    this_run = f" (this run: {summary.n_run} run, {summary.n_skipped} already stored)" if show_run else ""
+    cached = f", {summary.n_cached} model rows from the cache" if getattr(summary, "n_cached", 0) else ""
+    this_run = f" (this run: {summary.n_run} run{cached}, {summary.n_skipped} already stored)" if show_run else ""
     print(f"  cases {summary.n_cases}: ok {summary.n_ok}, failed {summary.n_failed}{this_run}")
     missing = summary.n_cases - summary.n_ok - summary.n_failed
     if missing > 0:
@@ -370,6 +374,7 @@ def _run(args) -> tuple[int, Path | None]:
     progress = {"auto": None, "on": True, "off": False}[args.progress]
     try:
         summary = run_cases(kind, study, folder, executor, resume=args.resume, retry_failed=args.retry_failed, force=args.force,
+                            cache=None if args.no_cache else folder.resolve().parent / "_cache",
                             progress=progress, flush_rows=args.flush_rows, model_lookup=lookup, arc_actuation=arc)
     except StudyError as e:
         _err(e.problems)
