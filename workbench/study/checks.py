@@ -30,7 +30,7 @@ from .expand import count_cases, sweep_blocks
 from .messages import UNITS, StudyError, check_robot_value, join_key, num, pydantic_problems, suggest
 from .params import canonical_json
 from .scenarios import SCENARIOS, load_with_scenario, scenario_parameters
-from .schema import LIMIT_KEYS, SECTION_MODELS, SWEEP_SECTIONS, SweepSection
+from .schema import LIMIT_KEYS, SAMPLED_BLOCKS, SECTION_MODELS, SWEEP_SECTIONS, SweepSection
 
 __all__ = ["CHECK_SECONDS", "CaseCheck", "check_scenario", "load_rules", "case_rules", "check_cases",
            "check_override", "check_sweep", "known_paths"]
@@ -242,7 +242,7 @@ def _block_names(study) -> list[str]:
     sw = study.sweep
     names = [f'sweep.product["{p}"]' for p in sw.get("product", {})]
     names += ["sweep.zip"] * bool(sw.get("zip")) + ["sweep.cases"] * ("cases" in sw)
-    return names + [f"sweep.{b}" for b in ("random", "latin_hypercube") if sw.get(b)]
+    return names + [f"sweep.{b}" for b in SAMPLED_BLOCKS if sw.get(b)]
 
 
 def _projection(blocks, keep) -> list[list[tuple[int, dict[str, Any]]]]:
@@ -535,12 +535,15 @@ def _check_range(path: str, rng: Any, where: str, axes: _Axes) -> dict[str, Any]
 
 
 def _check_samples(spec: dict[str, Any], where: str, axes: _Axes) -> dict[str, Any]:
-    """A ``random`` or ``latin_hypercube`` block: ``n`` and the checked ranges."""
+    """A ``random``, ``latin_hypercube`` or ``sobol`` block: ``n`` and the checked ranges."""
     n = spec.get("n")
     if n is None:
         axes.problems.append(f"{where}.n: missing required key (number of samples)")
     elif isinstance(n, bool) or not isinstance(n, int) or n < 1:
         axes.problems.append(f"{where}.n: must be an integer >= 1, got {n!r}")
+    elif where.endswith("sobol") and n & (n - 1):
+        axes.problems.append(f"{where}.n: a Sobol sequence is balanced only for a power of 2, got {n} "
+                             f"(use {1 << (n - 1).bit_length() >> 1} or {1 << (n - 1).bit_length()})")
     ranges = {k: v for k, v in spec.items() if k != "n"}
     if not ranges:
         axes.problems.append(f"{where}: no axes (add e.g. \"robot.length\" = {{low = 0.5, high = 1.0}})")
@@ -569,7 +572,7 @@ def check_sweep(sw: SweepSection, base: dict[str, dict[str, Any]],
         out["zip"] = _check_grid(sw.zip, "sweep.zip", axes)
     if "cases" in sw.model_fields_set:
         out["cases"] = _check_cases(sw.cases, axes)
-    for block in ("random", "latin_hypercube"):
+    for block in SAMPLED_BLOCKS:
         spec = getattr(sw, block)
         if spec is not None:
             out[block] = _check_samples(spec, f"sweep.{block}", axes)

@@ -10,7 +10,7 @@ The format reference (an annotated example of every section, the sweep semantics
     [solver]    the fields of workbench.models.SolverOptions
     [scenario]  optional: name of a registered scenario + its keyword parameters
     [derived]   optional: gravity_parameter (gamma = q L^3 / EI sets the preset's gravity)
-    [sweep]     product / zip / cases / random / latin_hypercube blocks of dotted-key axes
+    [sweep]     product / zip / cases / random / latin_hypercube / sobol blocks of dotted-key axes
     [report]    optional presentation hints (not in the config hash)
 
 All quantities are SI.  :func:`load_study` collects *all* problems and raises one
