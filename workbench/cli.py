@@ -164,7 +164,8 @@ def _print_summary(summary, report_note: str | None = None, show_run: bool = Tru
     name = study_name(man, "?")
     runs = man.get("runs", [])
     study_file = (runs[-1].get("study_file") if runs else None) or man.get("study_file") or "STUDY.toml"
-    print(f"study {name!r}: {summary.folder}")
+    source = (runs[-1].get("study_file") if runs else None) or man.get("study_file")
+    print(f"study {name!r}" + (f" ({source})" if source else "") + f": {summary.folder}")
     cached = f", {summary.n_cached} model rows from the cache" if getattr(summary, "n_cached", 0) else ""
     this_run = f" (this run: {summary.n_run} run{cached}, {summary.n_skipped} already stored)" if show_run else ""
     print(f"  cases {summary.n_cases}: ok {summary.n_ok}, failed {summary.n_failed}{this_run}")
@@ -489,7 +490,13 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     commands = {"run": _cmd_run, "show": _cmd_show, "validate": _cmd_validate, "report": _cmd_report,
                 "list": list_command}
-    return commands[args.command](args)
+    try:
+        code = commands[args.command](args)
+        sys.stdout.flush()
+    except BrokenPipeError:  # `workbench show data/x | head`: the reader left; no traceback
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        code = 0
+    return code
 
 
 if __name__ == "__main__":  # pragma: no cover

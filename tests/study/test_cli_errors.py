@@ -216,3 +216,22 @@ def test_overrides_are_validated_applied_and_recorded(tmp_path, capsys, good_fol
     # the override changes the config hash: resuming without it is refused (it would mix two studies)
     line = _one_line(capsys, 2, ["run", study, "--out", out, "--resume", "--in-process", "--no-report"])
     assert "--resume refused: the study's config hash" in line
+
+
+def test_show_names_the_study_file_and_the_report_path(capsys, good_folder):
+    study, good = good_folder
+    assert main(["show", str(good)]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out[0] == f"study 'killme' ({study}): {good}"
+    assert out[-1] == f"  report: none yet in reports/{good.name}"
+
+
+def test_a_closed_pipe_is_no_traceback():
+    """`workbench list presets | head -1`: the reader leaves early; no traceback on stderr."""
+    proc = subprocess.Popen([sys.executable, "-c", "from workbench.cli import main; "
+                             "[main(['list', 'presets']) for _ in range(300)]"],  # > the 64 KiB pipe buffer
+                            env=env(), stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc.stdout.readline()
+    proc.stdout.close()
+    err = proc.stderr.read().decode()
+    assert proc.wait(timeout=120) == 0 and "Traceback" not in err, err
