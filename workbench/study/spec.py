@@ -376,7 +376,8 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
         sweep_ok = "sweep" not in raw or "sweep" in sections
     st = sections.get("study")
     report = sections["report"].model_dump(exclude_defaults=True) if "report" in sections else None
-    if base is not None and report is not None:
+    scenario_ok = raw.get("scenario") is None or scenario_base is not None  # else its keys are unknown: knock-ons
+    if base is not None and report is not None and scenario_ok:
         problems += check_report(report, known_paths(base))
     # the cases are checked too when the other problems are only in [study] / [report] (no knock-on errors)
     only_presentation = all(re.split(r"[.:\[ ]", p, maxsplit=1)[0] in ("study", "report") for p in problems)
