@@ -2,8 +2,8 @@
 
 ::
 
-    workbench run STUDY.toml [--out DIR] [--workers N | --scheduler ADDR | --in-process]
-                             [--resume] [--no-report] [--max-cases N]
+    workbench run STUDY.toml [--out DIR] [--workers N | --scheduler ADDR | --in-process | --cluster KIND]
+                             [--resume] [--no-report] [--max-cases N] [--dry-run]
     workbench show DIR
     workbench validate STUDY.toml
 
@@ -11,10 +11,12 @@ Executors of ``run``: by default the cases run one after another in a child proc
 restarted if a case crashes it; ``--workers N`` starts a Dask ``LocalCluster`` with N worker
 processes inside the command; ``--scheduler tcp://host:8786`` uses a running Dask cluster
 (its workers must have the workbench installed); ``--in-process`` runs in this process (for
-debugging: a crashing case takes the command down).
+debugging: a crashing case takes the command down); ``--cluster slurm|pbs|sge|lsf`` submits the
+workers as batch jobs through dask-jobqueue (job options: :mod:`workbench.study.cluster_command`).
 
 Exit codes: 0 every case ok, 1 some cases failed, 2 bad input (invalid study file, folder
-mismatch), 130 interrupted.
+mismatch, bad cluster options or a job the batch system refuses), 3 the batch system failed the run (no worker job started, all
+workers lost), 130 interrupted.
 
 ``run`` and ``validate`` choose the study kind once (:func:`workbench.study.kinds.kind_of` reads
 ``[study] kind``, :func:`~workbench.study.kinds.get_kind` finds it in ``workbench.registry.KINDS``)
@@ -32,6 +34,7 @@ from pathlib import Path
 from typing import Sequence
 
 from .report.command import add_report_arguments, report_command
+from .study.cluster_command import add_cluster_arguments
 
 __all__ = ["main"]
 
@@ -47,6 +50,7 @@ def _parser() -> argparse.ArgumentParser:
     ex.add_argument("--workers", type=int, metavar="N", help="Dask LocalCluster with N worker processes")
     ex.add_argument("--scheduler", metavar="ADDR", help="address of a running Dask scheduler (tcp://host:8786)")
     ex.add_argument("--in-process", action="store_true", help="run cases in this process (debugging)")
+    add_cluster_arguments(r, ex)
     r.add_argument("--resume", action="store_true", help="continue a run: only cases not yet stored")
     r.add_argument("--no-report", action="store_true", help="do not build the HTML report afterwards")
     r.add_argument("--max-cases", type=int, metavar="N", help="override study.max_cases")
@@ -150,6 +154,7 @@ def _cmd_validate(args) -> int:
 
 def _cmd_run(args) -> int:
     from .study import DaskExecutor, IsolatedExecutor, SerialExecutor, StudyError, run_cases
+    from .study.cluster import ClusterError
 
     try:
         kind, study = _load(args)
@@ -160,7 +165,18 @@ def _cmd_run(args) -> int:
         _err([f"--workers: must be >= 1, got {args.workers}"])
         return 2
     folder = Path(args.out) if args.out else Path("data") / study.name
-    if args.scheduler:
+    from .study.cluster_command import cluster_from_args, dry_run_text
+
+    try:
+        cluster = cluster_from_args(args)
+    except StudyError as e:
+        _err(e.problems)
+        return 2
+    if cluster is not None:
+        from .study.cluster import JobQueueExecutor
+
+        executor = JobQueueExecutor(cluster)
+    elif args.scheduler:
         executor = DaskExecutor(scheduler=args.scheduler)
     elif args.workers is not None:
         executor = DaskExecutor(n_workers=args.workers)
@@ -168,6 +184,16 @@ def _cmd_run(args) -> int:
         executor = SerialExecutor()
     else:
         executor = IsolatedExecutor()
+    if args.dry_run:
+        print(dry_run_text(study.name, len(kind.expand(study)), kind.models(study), folder,
+                           getattr(executor, "name", type(executor).__name__), cluster))
+        return 0
+    if cluster is not None:
+        try:
+            executor.preflight()  # a refused job fails here, before the result folder exists
+        except ClusterError as e:
+            _err([str(e)])
+            return 2
     lookup = _resolve(args.model_lookup) if args.model_lookup else None
     arc = _resolve(args.arc_actuation) if args.arc_actuation else None
     progress = {"auto": None, "on": True, "off": False}[args.progress]
@@ -180,6 +206,9 @@ def _cmd_run(args) -> int:
     except KeyboardInterrupt:
         _err([f"interrupted; finished cases are stored in {folder}; continue with --resume"])
         return 130
+    except ClusterError as e:
+        _err([f"{e}; finished cases are stored in {folder}; continue with --resume"])
+        return 3
     reports_dir = Path(args.reports_dir) / study.name
     note = "skipped (--no-report)" if args.no_report else None
     if not args.no_report:

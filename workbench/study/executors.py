@@ -16,7 +16,8 @@ does); executors only report what ``fn`` cannot: a worker process that died (seg
   restarted after a crash (crash-safe serial; the CLI default).
 - :class:`DaskExecutor` -- Dask distributed: a ``LocalCluster`` started inside the command
   (one thread per worker process, ``worker-saturation`` 1.0, ``allowed-failures`` small so a
-  crashing task is not retried for ever) or an existing scheduler address.
+  crashing task is not retried for ever), an existing scheduler address, or a cluster made by a
+  given function (the batch-scheduler clusters of :mod:`workbench.study.cluster`).
 """
 
 from __future__ import annotations
@@ -161,16 +162,21 @@ class DaskExecutor:
         (``distributed.scheduler.allowed-failures``; 1 = one retry on another worker).
     lost_timeout : float
         Give up (``RuntimeError``) when the cluster has had no worker for this long [s].
+    cluster : callable, optional
+        ``cluster() -> distributed cluster``, called on entry inside the Dask settings above
+        (instead of a ``LocalCluster``); the cluster is closed on exit.
     """
 
     def __init__(self, n_workers: int | None = None, scheduler: str | None = None,
-                 allowed_failures: int = 1, lost_timeout: float = 120.0) -> None:
+                 allowed_failures: int = 1, lost_timeout: float = 120.0,
+                 cluster: Callable[[], Any] | None = None) -> None:
         self.lost_timeout = float(lost_timeout)
         if n_workers is not None and n_workers < 1:
             raise ValueError(f"n_workers must be >= 1, got {n_workers}")
         self.n_workers = n_workers
         self.scheduler = scheduler
         self.allowed_failures = int(allowed_failures)
+        self.make_cluster = cluster
         self._cluster = None
         self._client = None
         self._cfg = None
@@ -192,6 +198,9 @@ class DaskExecutor:
         try:
             if self.scheduler:
                 self._client = Client(self.scheduler)
+            elif self.make_cluster is not None:
+                self._cluster = self.make_cluster()
+                self._client = Client(self._cluster)
             else:
                 n = self.n_workers or os.cpu_count() or 1
                 self._cluster = LocalCluster(

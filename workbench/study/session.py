@@ -43,7 +43,7 @@ __all__ = ["RunSession", "finish_run", "git_commit", "open_run_manifest", "packa
            "study_name"]
 
 _PACKAGES = ("trunk-workbench", "exudyn", "numpy", "scipy", "pandas", "pyarrow", "dask",
-             "distributed", "pydantic", "tqdm")
+             "distributed", "dask-jobqueue", "pydantic", "tqdm")
 
 
 def _now() -> str:
