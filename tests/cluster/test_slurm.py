@@ -10,6 +10,7 @@ after the wait with one line and exit code 3.  The cluster: ``conftest.py``.
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -112,6 +113,8 @@ def test_cancelled_worker_job_loses_nothing_and_matches_serial(local_slurm, tmp_
     assert proc.returncode == 0, stderr
     assert f"job {killed} " in stderr and "a replacement is submitted" in stderr, stderr
     assert "cases 16: ok 16, failed 0" in stdout, stdout
+    run = json.loads((out / "_manifest.json").read_text())["runs"][-1]
+    assert run["executor"].startswith("dask-jobqueue slurm: 2 job(s)") and run["cases_done"] == N_CASES
 
     serial = tmp_path / "serial"
     run_study(load_study(study), serial, SerialExecutor(), progress=False)

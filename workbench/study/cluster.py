@@ -33,7 +33,7 @@ from typing import Any
 from .cluster_config import ClusterConfig
 from .executors import DaskExecutor
 
-__all__ = ["ClusterError", "JobQueueExecutor", "PLACEHOLDER_ADDRESS", "job_kwargs", "job_script"]
+__all__ = ["ClusterError", "JobQueueExecutor", "PLACEHOLDER_ADDRESS", "cluster_class", "job_kwargs", "job_script"]
 
 #: The scheduler address in a dry run's job script (the real one exists only once the run starts).
 PLACEHOLDER_ADDRESS = "tcp://SCHEDULER-ADDRESS:PORT"
@@ -49,7 +49,8 @@ class ClusterError(RuntimeError):
     """The batch system failed the run (not a case): one line, e.g. a queue that starts no job."""
 
 
-def _cluster_class(scheduler: str):
+def cluster_class(scheduler: str):
+    """The dask-jobqueue cluster class of ``scheduler`` (``SLURMCluster``, ...)."""
     import dask_jobqueue
 
     return getattr(dask_jobqueue, _CLASSES[scheduler])
@@ -90,7 +91,7 @@ def job_script(cfg: ClusterConfig, scheduler_address: str = PLACEHOLDER_ADDRESS)
     submits for its first job (``<job_name>-0``; later jobs count up), with ``scheduler_address``
     in place of the address the run's scheduler gets.  Nothing is started or submitted.
     """
-    job_cls = _cluster_class(cfg.scheduler).job_cls
+    job_cls = cluster_class(cfg.scheduler).job_cls
     kw = job_kwargs(cfg)
     if cfg.scheduler == "lsf":
         kw.setdefault("lsf_units", None)
@@ -209,8 +210,8 @@ class JobQueueExecutor(DaskExecutor):
         cfg = self.config
         submit = _SUBMIT[cfg.scheduler]
         if shutil.which(submit) is None:
-            raise ClusterError(f"--cluster {cfg.scheduler}: {submit!r} not found on PATH (is this a "
-                               f"{cfg.scheduler.upper()} login node?)")
+            raise ClusterError(f"--cluster {cfg.scheduler}: {submit!r} not found on PATH (run on a login node "
+                               f"of the {cfg.scheduler.upper()} cluster)")
         if cfg.scheduler == "slurm":
             _sbatch_test_only(job_script(cfg))
         self._preflight_done = True
@@ -219,7 +220,7 @@ class JobQueueExecutor(DaskExecutor):
         cfg = self.config
         if not self._preflight_done:
             self.preflight()
-        cls = _cluster_class(cfg.scheduler)
+        cls = cluster_class(cfg.scheduler)
         # no dashboard (its HTTP server on a free local port: no clash with another run's 8787)
         cluster = cls(**job_kwargs(cfg), name=cfg.job_name, silence_logs=logging.CRITICAL,
                       scheduler_options={"dashboard": False, "dashboard_address": "127.0.0.1:0"})
@@ -243,7 +244,19 @@ class JobQueueExecutor(DaskExecutor):
             if self._keeper is not None:
                 self._keeper.stop()
                 self._keeper = None
+            if self._cluster is not None:
+                from distributed.core import Status
+
+                for job in list(self._cluster.workers.values()):
+                    if job.status == Status.created:  # its submission failed (refused): nothing to cancel
+                        job.status = Status.failed
             super().__exit__(*exc)  # closes the cluster: cancels its jobs
+        except Exception as e:  # noqa: BLE001 - do not hide the error that ended the run
+            self._log(f"cluster: closing the cluster failed: {type(e).__name__}: {e}")
+            self._client = self._cluster = None
+            if self._cfg is not None:
+                self._cfg.__exit__(None, None, None)
+                self._cfg = None
         finally:
             for name in _LOGGERS:
                 logging.getLogger(name).removeHandler(self._errors)
