@@ -7,9 +7,11 @@ lasts long enough that a worker job can be cancelled while cases run.
 
 from __future__ import annotations
 
+import os
 import time
 
-DELAY = 0.4  # [s] per model call
+#: [s] per model call (``WORKBENCH_TEST_DELAY`` overrides it; batch jobs inherit the environment)
+DELAY = float(os.environ.get("WORKBENCH_TEST_DELAY", "0.4"))
 
 
 def slow_lookup(name: str):

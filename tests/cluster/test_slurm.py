@@ -149,3 +149,42 @@ def test_queue_that_never_starts_a_job_ends_after_the_wait(local_slurm, tmp_path
     assert "no worker job started within 5 s" in last and "PENDING" in last, r.stderr
     assert time.monotonic() - t0 < 60
     assert not _jobs(env, name), "the pending job was not cancelled"
+
+
+def _walltime_run(local_slurm, tmp_path, margin: int, delay: float):
+    study = tmp_path / "study.toml"
+    study.write_text(STUDY)
+    name = f"wbwall{os.getpid()}"
+    env = dict(_env(local_slurm, tmp_path), WORKBENCH_TEST_DELAY=str(delay))
+    cfg = _config(tmp_path, name).read_text().replace('walltime = "00:10:00"', 'walltime = "00:01:00"')
+    cfg = cfg.replace("lifetime_margin = 60", f"lifetime_margin = {margin}")
+    (tmp_path / "cluster.toml").write_text(cfg)
+    out = tmp_path / "slurm"
+    r = subprocess.run(_run_cmd(study, out, tmp_path / "cluster.toml", "--jobs", "1", "--queue-timeout", "90",
+                                "--model-lookup", "cluster_models:slow_lookup"),
+                       env=env, cwd=tmp_path, capture_output=True, text=True, timeout=400)
+    assert r.returncode == 0, r.stderr
+    assert "cases 16: ok 16, failed 0" in r.stdout, r.stdout
+    serial = tmp_path / "serial"
+    run_study(load_study(study), serial, SerialExecutor(), progress=False)
+    assert diff_tables(serial, out) == []
+    return r.stderr
+
+
+@pytest.mark.slow
+def test_job_killed_at_its_walltime_is_replaced_and_its_case_rerun(local_slurm, tmp_path):
+    """No lifetime margin: SLURM kills the only job at its 1-minute walltime in the middle of a case.
+
+    SLURM enforces time limits on a periodic sweep (up to ~30 s late), so the cases last 96 s.
+    """
+    err = _walltime_run(local_slurm, tmp_path, margin=0, delay=3.0)  # 16 x 2 x 3 s = 96 s of cases
+    assert err.count("a replacement is submitted") >= 1, err
+
+
+@pytest.mark.slow
+def test_workers_retire_before_the_walltime(local_slurm, tmp_path):
+    """A 45 s margin: the worker retires after 15 +- 11 s, a new job takes over; nothing is lost."""
+    err = _walltime_run(local_slurm, tmp_path, margin=45, delay=1.0)  # 32 s of cases
+    assert err.count("a replacement is submitted") >= 1, err
+    logs = "".join(p.read_text(errors="replace") for p in (tmp_path / "logs").glob("*"))
+    assert "worker-lifetime-reached" in logs
