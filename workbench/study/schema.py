@@ -90,6 +90,7 @@ class ReportSection(BaseModel):
     derived: dict[str, str] = Field(default_factory=dict)
     labels: dict[str, str] = Field(default_factory=dict)
     reference: str | None = None
+    frame: Literal["world", "base"] = "world"  # frame of the report's shape figures and 3-D view
 
 
 class StudyFile(BaseModel):
