@@ -1,6 +1,6 @@
 """Throughput (cases/s) of the study runner against the number of Dask workers, and what limits it.
 
-    python benchmarks/bench_scaling.py [--workers 1,2,4] [--repeats 2] [--studies zero,cheap,heavy] [--slurm]
+    python benchmarks/bench_scaling.py [--workers 1,2,4] [--repeats 2] [--studies zero,cheap,heavy] [--slurm | --slurm-only]
 
 Studies (each through ``run_cases`` with a ``DaskExecutor`` on an already running ``LocalCluster``
 of 1, 2, 4 single-threaded worker processes; cluster start-up and the workers' first imports
@@ -22,7 +22,8 @@ ceiling of a run's throughput however many workers it has (for long runs it incl
 scheduler's time-driven work, printed as the idle client CPU per second).  A breakdown follows (expansion and
 recorded parameters before the first submission, store writes, reading many parts).  ``--slurm`` adds the local SLURM cluster of
 ``tests/cluster`` (``SLURM_CONF`` must point at a running one): the cheap study on 1 and 2 worker
-jobs, and the time from submission to the first worker.  The machine is shared: compare the
+jobs, the time from submission to the first worker, and the idle client CPU with 1-8 worker jobs
+(the scheduler's per-worker heartbeat cost; ``--slurm-only`` runs just these).  The machine is shared: compare the
 numbers of one run; the load average is printed.  Results: ``docs/architecture.md``.
 """
 
@@ -31,6 +32,7 @@ from __future__ import annotations
 import argparse
 import logging
 import os
+import pickle
 import statistics
 import sys
 import tempfile
@@ -214,6 +216,26 @@ def bench_breakdown():
         t_rec = _cpu(lambda: [kind.recorded_params(spec, c) for c in cases]) / len(cases)
         print(f"  {name:<6} expansion {t_exp * 1e3:.3f} ms, recorded parameters {t_rec * 1e3:.3f} ms "
               f"(both before the first case is submitted)")
+    print("  rows of the real studies (8 cases each, computed here): unpickling them as the client receives them, "
+          "then storing them in 256-row parts:")
+    for name, (kind, spec, _) in _studies(["cheap", "heavy"]).items():
+        cases = kind.expand(spec)[:8]
+        rows = evaluate_batch(kind.payload(spec, cases, (None, None)))
+        blob = pickle.dumps(rows, protocol=pickle.HIGHEST_PROTOCOL)
+        n_rows = sum(len(r) for r in rows)
+        t_unpickle = _cpu(lambda: pickle.loads(blob)) / n_rows
+        params = [flatten_params(kind.recorded_params(spec, c)) for c in cases]
+        with tempfile.TemporaryDirectory() as d:
+            def store_real(folder=Path(d), rows=rows, params=params):
+                st = ResultStore(folder / f"s{time.perf_counter_ns()}", params, flush_rows=256, flush_seconds=1e9)
+                for _ in range(32):  # 256 rows or more: whole parts
+                    for r in pickle.loads(blob):
+                        st.add(r)
+                st.close()
+
+            t_store = (_cpu(store_real) - 32 * t_unpickle * n_rows) / (32 * n_rows)
+        print(f"  {name:<6} {len(blob) / n_rows / 1e3:.1f} kB per row pickled ({n_rows // len(cases)} rows a case): "
+              f"unpickle {t_unpickle * 1e3:.3f} ms, store {t_store * 1e3:.3f} ms per row")
     kind, _, lookup = _studies(["zero"])["zero"]
     spec = zero_study(1024)
     cases = kind.expand(spec)
@@ -254,7 +276,7 @@ def bench_slurm(repeats):
         firsts = []
 
         def make():
-            ex = JobQueueExecutor(cfg, log=lambda line: firsts.append(line) if "first worker" in line else None)
+            ex = JobQueueExecutor(cfg, log=lambda line: firsts.append(line) if "first worker after" in line else None)
             return ex
 
         m = _measure(kind, spec, make, repeats)
@@ -265,18 +287,58 @@ def bench_slurm(repeats):
               f"(min {min(waits):.1f}, max {max(waits):.1f}, {len(waits)} runs; included in the wall time)")
 
 
+def bench_slurm_idle(job_counts=(1, 2, 4, 8), seconds: float = 10.0):
+    """Client CPU per second of an idle jobqueue cluster against its worker count (the scheduler's fixed cost).
+
+    Unlike a ``LocalCluster`` (whose nannies live in the client process) the client here holds only
+    the Dask scheduler and the executor's job keeper, as on a real batch system; with ``n <= 10``
+    workers Dask's heartbeat interval is 0.5 s, so ``(rate(n) - rate(1)) / (n - 1) / 2`` is the
+    scheduler's CPU per heartbeat.
+    """
+    from workbench.study.cluster import JobQueueExecutor
+    from workbench.study.cluster_config import resolve_cluster
+
+    print(f"\nlocal SLURM, idle client CPU against the number of 1-worker jobs ({seconds:g} s each, best of 2):")
+    rates = {}
+    for jobs in job_counts:
+        cfg = resolve_cluster("slurm", overrides={"jobs": jobs, "memory": "500MB", "walltime": "00:10:00",
+                                                  "queue_timeout": 120.0})
+        with JobQueueExecutor(cfg, log=lambda line: None) as ex:
+            t0 = time.monotonic()
+            while len(ex._client.scheduler_info()["workers"]) < jobs:
+                if time.monotonic() - t0 > 180:
+                    raise RuntimeError(f"only {len(ex._client.scheduler_info()['workers'])} of {jobs} workers joined")
+                time.sleep(0.5)
+            joined = time.monotonic() - t0
+            time.sleep(3.0)  # let the workers' start-up traffic settle
+            rates[jobs] = min(_idle_cpu(seconds) for _ in range(2))
+        print(f"  {jobs} worker job(s): {rates[jobs] * 1e3:6.1f} ms/s (all joined {joined:.1f} s after the first)")
+    n = list(rates)
+    if len(n) > 1:
+        per = (rates[n[-1]] - rates[n[0]]) / (n[-1] - n[0])
+        print(f"  -> {per * 1e3:.2f} ms/s per worker, {per / 2 * 1e3:.2f} ms per heartbeat (0.5 s interval); "
+              f"fixed {(rates[n[0]] - per * n[0]) * 1e3:.1f} ms/s")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--workers", default="1,2,4")
     ap.add_argument("--repeats", type=int, default=2)
     ap.add_argument("--studies", default="zero,cheap,heavy")
     ap.add_argument("--slurm", action="store_true", help="also the local SLURM cluster (SLURM_CONF)")
+    ap.add_argument("--slurm-only", action="store_true", help="only the local SLURM measurements")
+    ap.add_argument("--idle-only", action="store_true", help="with --slurm-only: only the idle client CPU")
     args = ap.parse_args()
     print(f"{os.cpu_count()} CPUs; load average at start {os.getloadavg()[0]:.1f}; repeats {args.repeats}")
-    bench_local(args.studies.split(","), [int(w) for w in args.workers.split(",")], args.repeats)
-    bench_breakdown()
+    if args.slurm_only:
+        args.slurm = True
+    else:
+        bench_local(args.studies.split(","), [int(w) for w in args.workers.split(",")], args.repeats)
+        bench_breakdown()
     if args.slurm:
-        bench_slurm(args.repeats)
+        if not args.idle_only:
+            bench_slurm(args.repeats)
+        bench_slurm_idle()
     print(f"load average at end {os.getloadavg()[0]:.1f}")
 
 
