@@ -51,7 +51,17 @@ def test_dry_run_prints_plan_and_job_script_and_writes_nothing(study, tmp_path, 
     assert "executor: dask-jobqueue slurm: 1-8 jobs (adaptive) x 2 core(s), 2 worker(s), 4GB, walltime 04:00:00" in out
     assert "#SBATCH -p short" in out and "#SBATCH -t 04:00:00" in out and "--nworkers 2" in out
     assert "cluster config: (none: command line and defaults)" in out
+    assert "per case: max_case_seconds = 3600 s" in out  # the default; half a 4-h worker's life is more
+    assert "on this cluster:" not in out
     assert not (tmp_path / "o").exists()
+
+
+def test_dry_run_shows_the_case_limit_a_worker_life_allows(study, tmp_path, capsys):
+    rc, out, err = _run(capsys, study, "--cluster", "slurm", "--walltime", "01:00:00", "--dry-run")
+    assert rc == 0, err
+    line = next(ln for ln in out.splitlines() if "on this cluster:" in ln)
+    assert "max_case_seconds = 3600 s is more than half a worker's life (3240 s" in line
+    assert line.endswith("cases are stopped after 1620 s")
 
 
 def test_dry_run_reads_the_user_config(study, tmp_path, capsys):
@@ -104,12 +114,13 @@ def _fake_qsub(folder: Path) -> None:
 
 
 def test_refused_job_ends_the_run_with_one_line(study, tmp_path, capsys, monkeypatch):
-    """A scheduler without a pre-flight check (PBS) refusing the job: one line, exit 3, not a 10-minute wait."""
+    """A scheduler without a pre-flight check (PBS) refusing the first job: one line, exit 2, not a 10-minute wait."""
     _fake_qsub(tmp_path / "bin")
     monkeypatch.setenv("PATH", f"{tmp_path / 'bin'}{os.pathsep}{os.environ['PATH']}")
     rc, out, err = _run(capsys, study, "--out", tmp_path / "o", "--cluster", "pbs", "--queue", "nosuch",
                         "--no-report", "--progress", "off")
-    assert rc == 3, err
+    assert rc == 2, err
     last = err.strip().splitlines()[-1]
     assert last.startswith("--cluster pbs: a worker job was refused: qsub: Unknown queue"), err
-    assert "continue with --resume" in last and "Traceback" not in err
+    assert last.endswith("nothing was run") and "Traceback" not in err
+    assert not (tmp_path / "o").exists()

@@ -188,3 +188,49 @@ def test_workers_retire_before_the_walltime(local_slurm, tmp_path):
     assert err.count("a replacement is submitted") >= 1, err
     logs = "".join(p.read_text(errors="replace") for p in (tmp_path / "logs").glob("*"))
     assert "worker-lifetime-reached" in logs
+
+
+@pytest.mark.slow
+def test_a_case_longer_than_a_worker_life_is_stopped_by_the_case_limit(local_slurm, tmp_path):
+    """A case that would outlive every worker job is stopped by the per-case limit, not rerun for ever.
+
+    Walltime 1 min, lifetime_margin 10 s: a worker retires after 50 +- 2 s, so the default
+    ``max_case_seconds`` (1 h) becomes half of 48 s (``cluster_limits``).  Without that, the hanging
+    case's worker would retire, Dask would rerun the case on the replacement job (a retirement is no
+    failure), and the run would never end.  The hanging case is stored ``failure = "timeout"``;
+    the other cases match the serial run.
+    """
+    study = tmp_path / "study.toml"
+    study.write_text(STUDY.replace('"load.bend_angle" = [0.5, 1.0, 2.0, 3.0], ', ""))  # 4 cases: gravity only
+    name = f"wbhang{os.getpid()}"
+    env = dict(_env(local_slurm, tmp_path), WORKBENCH_TEST_HANG_ABOVE_GRAVITY="500")  # gamma = 10 only
+    cfg = _config(tmp_path, name).read_text().replace('walltime = "00:10:00"', 'walltime = "00:01:00"')
+    (tmp_path / "cluster.toml").write_text(cfg.replace("lifetime_margin = 60", "lifetime_margin = 10"))
+    out = tmp_path / "slurm"
+    t0 = time.monotonic()
+    r = subprocess.run(_run_cmd(study, out, tmp_path / "cluster.toml", "--jobs", "1", "--queue-timeout", "90",
+                                "--model-lookup", "cluster_models:slow_lookup"),
+                       env=env, cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert r.returncode == 1, r.stderr  # one case failed
+    assert "cases are stopped after 24 s" in r.stderr, r.stderr
+    assert time.monotonic() - t0 < 200
+    table = pd.read_parquet(out)
+    g = table["p.robot.gravity"]  # recorded for failed rows too
+    hung = table[g > 500]
+    assert len(hung) == 2 and (hung["status"] == "failed").all() and (hung["failure"] == "timeout").all(), hung
+    assert hung["error"].str.contains("max_case_seconds = 24 s").all(), hung["error"].tolist()
+    assert (table[g <= 500]["status"] == "ok").all() and len(table) == 8
+    serial = tmp_path / "serial"
+    run_study(load_study(study), serial, SerialExecutor(), progress=False)
+    ok_serial = pd.read_parquet(serial).query("`p.robot.gravity` <= 500")
+    ok_slurm = table[g <= 500].copy()
+    for c in ok_serial.columns:  # the failed rows' NaN made int columns float: back, only where exact
+        if ok_slurm[c].dtype != ok_serial[c].dtype and ok_slurm[c].notna().all():
+            cast = ok_slurm[c].astype(ok_serial[c].dtype)
+            assert (cast.astype(ok_slurm[c].dtype) == ok_slurm[c]).all(), c
+            ok_slurm[c] = cast
+    for name_, t in (("a", ok_serial), ("b", ok_slurm)):
+        (tmp_path / name_).mkdir()
+        t.to_parquet(tmp_path / name_ / "part.parquet")
+    assert diff_tables(tmp_path / "a", tmp_path / "b") == []  # the finished cases, bit for bit
+    assert not _jobs(env, name), "the run left jobs in the queue"

@@ -10,10 +10,13 @@ replaced), and waits at most ``queue_timeout`` seconds for workers.
 Failure semantics (``docs/architecture.md``, "Scale-out on a batch scheduler"): rows are stored as
 cases finish, in this process, so a job that ends loses only the cases it was running; Dask
 reruns those on other workers (``allowed_failures`` lost workers per task); workers retire
-``lifetime_margin`` seconds before their walltime; a queue that starts no job, or a cluster left
-without workers for ``queue_timeout``, ends the run with one line (:class:`ClusterError`) and the
-jobs cancelled.  Submission errors (a bad partition, account, ...) end it the same way as soon
-as the scheduler refuses a job, with the scheduler's own message.
+``lifetime_margin`` seconds before their walltime, and a case that would outlive a worker is
+stopped by the per-case limit (``[solver] max_case_seconds``, at most half a worker's life, and
+tasks no longer than that: :func:`cluster_limits`); a queue that starts no job, or a cluster left without
+workers for ``queue_timeout``, ends the run with one line (:class:`ClusterError`, exit 3) and the
+jobs cancelled.  A job SLURM refuses (``sbatch --test-only``: bad partition, account, ...) is
+:class:`ClusterRefused` (exit 2, nothing ran); on other schedulers a refused submission ends the
+run as soon as it happens, with the scheduler's own message.
 
 Checked by ``tests/cluster/test_job_scripts.py`` (scripts of every scheduler) and
 ``tests/cluster/test_slurm.py`` (a real single-node SLURM, a worker job cancelled mid-run).
@@ -32,8 +35,10 @@ from typing import Any
 
 from .cluster_config import ClusterConfig
 from .executors import DaskExecutor
+from .outcomes import CaseLimits, ExecutorStartError, InfrastructureError
 
-__all__ = ["ClusterError", "JobQueueExecutor", "PLACEHOLDER_ADDRESS", "cluster_class", "job_kwargs", "job_script"]
+__all__ = ["ClusterError", "ClusterRefused", "JobQueueExecutor", "PLACEHOLDER_ADDRESS", "cluster_class",
+           "cluster_limits", "job_kwargs", "job_script"]
 
 #: The scheduler address in a dry run's job script (the real one exists only once the run starts).
 PLACEHOLDER_ADDRESS = "tcp://SCHEDULER-ADDRESS:PORT"
@@ -45,8 +50,12 @@ _LOGGERS = ("distributed.deploy.spec", "distributed.deploy.adaptive", "distribut
             "dask_jobqueue", "distributed.utils", "asyncio", "tornado.application")
 
 
-class ClusterError(RuntimeError):
-    """The batch system failed the run (not a case): one line, e.g. a queue that starts no job."""
+class ClusterError(InfrastructureError):
+    """The batch system failed the run (not a case): one line, e.g. a queue that starts no job (exit 3)."""
+
+
+class ClusterRefused(ExecutorStartError):
+    """The batch system refuses the job (bad partition, account, no submit command): nothing ran (exit 2)."""
 
 
 def cluster_class(scheduler: str):
@@ -70,8 +79,7 @@ def job_kwargs(cfg: ClusterConfig) -> dict[str, Any]:
         prologue.append(f"export PYTHONPATH={shlex.quote(os.environ['PYTHONPATH'])}")
     extra_args: list[str] = []
     if cfg.lifetime_margin > 0:
-        stagger = min(60.0, cfg.lifetime_margin / 4)
-        extra_args = ["--lifetime", f"{int(cfg.worker_lifetime)}s", "--lifetime-stagger", f"{int(stagger)}s"]
+        extra_args = ["--lifetime", f"{int(cfg.worker_lifetime)}s", "--lifetime-stagger", f"{int(_stagger(cfg))}s"]
     kw: dict[str, Any] = {
         "cores": cfg.cores, "processes": cfg.processes, "memory": cfg.memory, "walltime": cfg.walltime,
         "queue": cfg.queue, "job_name": cfg.job_name, "job_extra_directives": list(cfg.job_extra),
@@ -96,6 +104,38 @@ def job_script(cfg: ClusterConfig, scheduler_address: str = PLACEHOLDER_ADDRESS)
     if cfg.scheduler == "lsf":
         kw.setdefault("lsf_units", None)
     return job_cls(scheduler=scheduler_address, name=f"{cfg.job_name}-0", **kw).job_script()
+
+
+def _stagger(cfg: ClusterConfig) -> float:
+    """[s] by which a worker's lifetime is staggered (``--lifetime-stagger``; 0 without a margin)."""
+    return float(int(min(60.0, cfg.lifetime_margin / 4))) if cfg.lifetime_margin > 0 else 0.0
+
+
+def cluster_limits(cfg: ClusterConfig, limits: CaseLimits, chunk_size: int) -> tuple[CaseLimits, int, str]:
+    """The per-case limit and cases per task a batch-job worker can finish: ``(limits, chunk, note)``.
+
+    A worker lives at least ``life = walltime - lifetime_margin - stagger`` seconds.  A case still
+    running when its worker retires is rerun elsewhere, and Dask does not count that as a failure,
+    so a case (or a task of several) that cannot end within a worker's life would be rerun for
+    ever.  Hence the case limit is at most ``life / 2`` -- a case started in the first half of a
+    worker's life ends or is stopped by the limit (stored ``failure = "timeout"``) before the worker
+    retires -- and a task holds at most ``(life / 2) // limit`` cases.  ``note`` says what changed
+    ("" when nothing did).  Checked by ``tests/cluster/test_cluster_limits.py`` and
+    ``tests/cluster/test_slurm.py::test_a_case_longer_than_a_worker_life_is_stopped_by_the_case_limit``.
+    """
+    usable = max(1.0, float(int(cfg.worker_lifetime)) - _stagger(cfg)) / 2
+    seconds = limits.seconds if limits.seconds is not None else float("inf")
+    notes = []
+    if seconds > usable:
+        notes.append(f"max_case_seconds = {'none' if limits.seconds is None else f'{seconds:g} s'} is more than half "
+                     f"a worker's life ({2 * usable:g} s: walltime {cfg.walltime} - lifetime_margin "
+                     f"{cfg.lifetime_margin:g} s - stagger {_stagger(cfg):g} s): cases are stopped after {usable:g} s")
+        seconds = usable
+    chunk = max(1, min(int(chunk_size), int(usable // seconds)))
+    if chunk < chunk_size:
+        notes.append(f"{chunk} case(s) per task instead of {chunk_size} (a task must end within half a worker's "
+                     f"life; a smaller max_case_seconds allows more)")
+    return CaseLimits(seconds, limits.memory), chunk, "; ".join(notes)
 
 
 class _Errors(logging.Handler):
@@ -205,12 +245,12 @@ class JobQueueExecutor(DaskExecutor):
 
         Raises
         ------
-        ClusterError
+        ClusterRefused
         """
         cfg = self.config
         submit = _SUBMIT[cfg.scheduler]
         if shutil.which(submit) is None:
-            raise ClusterError(f"--cluster {cfg.scheduler}: {submit!r} not found on PATH (run on a login node "
+            raise ClusterRefused(f"--cluster {cfg.scheduler}: {submit!r} not found on PATH (run on a login node "
                                f"of the {cfg.scheduler.upper()} cluster)")
         if cfg.scheduler == "slurm":
             _sbatch_test_only(job_script(cfg))
@@ -218,8 +258,6 @@ class JobQueueExecutor(DaskExecutor):
 
     def _make_cluster(self):
         cfg = self.config
-        if not self._preflight_done:
-            self.preflight()
         cls = cluster_class(cfg.scheduler)
         # no dashboard (its HTTP server on a free local port: no clash with another run's 8787)
         cluster = cls(**job_kwargs(cfg), name=cfg.job_name, silence_logs=logging.CRITICAL,
@@ -229,6 +267,8 @@ class JobQueueExecutor(DaskExecutor):
         return cluster
 
     def __enter__(self) -> "JobQueueExecutor":
+        if not self._preflight_done:
+            self.preflight()  # before Dask starts: a refusal is ClusterRefused, not a start error
         for name in _LOGGERS:
             logging.getLogger(name).addHandler(self._errors)
         try:
@@ -267,17 +307,17 @@ class JobQueueExecutor(DaskExecutor):
             return []
         return [str(j.job_id) for j in list(self._cluster.workers.values()) if getattr(j, "job_id", None)]
 
-    def _check_refused(self) -> None:
+    def _check_refused(self, error=ClusterError) -> None:
         refused = [ln for ln in self._errors.lines if "exit code" in ln.lower() or "error" in ln.lower()]
         if refused:
-            raise ClusterError(f"--cluster {self.config.scheduler}: a worker job was refused: {_refusal(refused[0])}")
+            raise error(f"--cluster {self.config.scheduler}: a worker job was refused: {_refusal(refused[0])}")
 
     def _wait_for_first_worker(self) -> None:
         cfg = self.config
         self._log(f"cluster: {cfg.describe()}; waiting for the first worker (at most {cfg.queue_timeout:g} s)")
         t0 = time.monotonic()
         while not self._client.scheduler_info().get("workers"):
-            self._check_refused()
+            self._check_refused(ClusterRefused)  # the first job refused: nothing ran (exit 2)
             if time.monotonic() - t0 > cfg.queue_timeout:
                 state = _queue_state(cfg.scheduler, self.job_ids())
                 raise ClusterError(
@@ -286,10 +326,18 @@ class JobQueueExecutor(DaskExecutor):
             time.sleep(0.5)
         self._log(f"cluster: first worker after {time.monotonic() - t0:.1f} s (jobs {', '.join(self.job_ids())})")
 
-    def imap_unordered(self, fn, payloads):
+    def imap_unordered(self, fn, payloads, limits: CaseLimits = CaseLimits(), chunk_size: int = 1):
+        """As :meth:`DaskExecutor.imap_unordered`, with the case limit and task size a worker's life allows.
+
+        (:func:`cluster_limits`; what changed is logged once.)  A cluster left without workers for
+        ``queue_timeout`` raises :class:`ClusterError` naming the jobs' state.
+        """
+        limits, chunk_size, note = cluster_limits(self.config, limits, chunk_size)
+        if note:
+            self._log(f"cluster: {note}")
         try:
-            yield from super().imap_unordered(fn, payloads)
-        except RuntimeError as e:
+            yield from super().imap_unordered(fn, payloads, limits, chunk_size)
+        except InfrastructureError as e:
             if isinstance(e, ClusterError) or "no workers" not in str(e):
                 raise
             state = _queue_state(self.config.scheduler, self.job_ids())
@@ -306,12 +354,12 @@ def _sbatch_test_only(script: str) -> None:
     try:
         r = subprocess.run(["sbatch", "--test-only", f.name], capture_output=True, text=True, timeout=60)
     except (OSError, subprocess.TimeoutExpired) as e:
-        raise ClusterError(f"--cluster slurm: sbatch --test-only did not answer: {e}") from None
+        raise ClusterRefused(f"--cluster slurm: sbatch --test-only did not answer: {e}") from None
     finally:
         os.unlink(f.name)
     if r.returncode != 0:
         msg = " ".join((r.stderr or r.stdout).split())[:300]
-        raise ClusterError(f"--cluster slurm: the job was refused: {msg}")
+        raise ClusterRefused(f"--cluster slurm: the job was refused: {msg}")
 
 
 def _queue_state(scheduler: str, job_ids: list[str]) -> str:

@@ -84,12 +84,24 @@ def cluster_from_args(args: argparse.Namespace) -> ClusterConfig | None:
 
 
 def dry_run_text(study_name: str, n_cases: int, models: Sequence[str], folder: Path, executor_name: str,
-                 cluster: ClusterConfig | None) -> str:
-    """What ``--dry-run`` prints: the plan, and with a cluster its config source and job script."""
+                 cluster: ClusterConfig | None, limits=None, chunk: int = 1) -> str:
+    """What ``--dry-run`` prints: the plan, and with a cluster its config source, case limit and job script.
+
+    ``limits``: the study's :class:`~workbench.study.outcomes.CaseLimits` and ``chunk`` the cases per
+    task the runner would choose (shown, and for a cluster as
+    :func:`~workbench.study.cluster.cluster_limits` adapts them to a worker's life).
+    """
     lines = [f"dry run: study {study_name!r}, {n_cases} cases x {len(models)} models ({', '.join(models)})",
              f"  output folder: {folder}", f"  executor: {executor_name}"]
+    if limits is not None:
+        lines.append(f"  per case: {limits.describe()}")
     if cluster is not None:
-        from .cluster import PLACEHOLDER_ADDRESS, job_script
+        from .cluster import PLACEHOLDER_ADDRESS, cluster_limits, job_script
+
+        if limits is not None:
+            _, _, note = cluster_limits(cluster, limits, chunk)
+            if note:
+                lines.append(f"  on this cluster: {note}")
 
         lines += [f"  cluster config: {cluster.source or '(none: command line and defaults)'}",
                   f"  workers retire {cluster.lifetime_margin:g} s before the walltime; no worker for "
