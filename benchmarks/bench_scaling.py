@@ -220,7 +220,7 @@ def bench_breakdown():
           "then storing them in 256-row parts:")
     for name, (kind, spec, _) in _studies(["cheap", "heavy"]).items():
         cases = kind.expand(spec)[:8]
-        rows = evaluate_batch(kind.payload(spec, cases, (None, None)))
+        rows = evaluate_batch(([(c.case_id, c.params) for c in cases], spec.models, None, None))
         blob = pickle.dumps(rows, protocol=pickle.HIGHEST_PROTOCOL)
         n_rows = sum(len(r) for r in rows)
         t_unpickle = _cpu(lambda: pickle.loads(blob)) / n_rows
@@ -239,7 +239,7 @@ def bench_breakdown():
     kind, _, lookup = _studies(["zero"])["zero"]
     spec = zero_study(1024)
     cases = kind.expand(spec)
-    rows = evaluate_batch(kind.payload(spec, cases, (lookup, None)))
+    rows = evaluate_batch(([(c.case_id, c.params) for c in cases], spec.models, lookup, None))
     params = [flatten_params(kind.recorded_params(spec, c)) for c in cases]
     with tempfile.TemporaryDirectory() as d:
         def store(flush_rows, folder=Path(d)):
