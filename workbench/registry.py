@@ -115,6 +115,10 @@ MODELS: Mapping[str, ModelInfo] = {
     "spring_link": ModelInfo("workbench.physics.spring_link:run", "spring-link", "#2ca02c", Capabilities(
         spatial_length_tendon_models=("eyelets",),
         note="rigid links and joint springs; continuum tendons in length mode only in planar cases")),
+    "cosserat": ModelInfo("workbench.physics.cosserat:run", "Cosserat rod", "#8c564b", Capabilities(
+        tendon_models=("continuum",), spatial_length_tendon_models=("continuum",), analyses=("static",),
+        note="Cosserat rod with continuously routed tendons (Rucker & Webster 2011), shooting with scipy; "
+             "static only; accuracy from newton_tolerance, n_elements unused")),
     # planar ANCF with a rigid circle (without an object: equal to ancf with continuum tendons)
     "contact": ModelInfo("workbench.physics.contact:run", "ANCF + contact", "#ff7f0e", Capabilities(
         dimensions=("planar",), actuation=("tension",), tendon_models=("continuum",),

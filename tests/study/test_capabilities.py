@@ -44,6 +44,10 @@ CORPUS = [
     ("beam3d_dynamic_damping", study('"beam3d"', load='analysis = "dynamic"\nduration = 0.1',
                                      solver='tendon_model = "eyelets"\ndamping = 0.01'), E, "solver.damping",
      "ignores damping in dynamic analysis"),
+    ("cosserat_eyelets", study('"cc", "cosserat"', solver='tendon_model = "eyelets"'), E, "solver.tendon_model",
+     "model 'cosserat' supports"),
+    ("cosserat_dynamic", study('"cosserat"', load='analysis = "dynamic"\nduration = 0.1'), E, "load.analysis",
+     "supports only static analysis"),
     ("ancf3d_tension", study('"ancf3d"'), E, "load.tensions", "model 'ancf3d' cannot carry tendon loads"),
     ("ancf3d_length", study('"ancf3d"', load=LENGTH), E, "load.length_changes", "cannot carry tendon loads"),
     ("ancf3d_arc", study('"ancf3d"', load=ARC), E, "load.bend_angle", "cannot carry tendon loads"),
@@ -147,6 +151,7 @@ PROBES = [  # (model, corpus id): validate refuses it, so must the model
     ("ancf3d", "ancf3d_tension"), ("ancf3d", "ancf3d_pretension"), ("ancf3d", "ancf3d_tip_torque"),
     ("ancf", "ancf_tendon_angle"), ("ancf", "ancf_tip_force_y"), ("ancf", "ancf_tip_torque_z"),
     ("spring_link", "spring_link_spatial_length_continuum"),
+    ("cosserat", "cosserat_eyelets"), ("cosserat", "cosserat_dynamic"),
 ]
 
 

@@ -46,6 +46,11 @@ class SolverOptions:
         Model-specific viscous damping parameter (see each model's docstring).
     spectral_radius : float
         Generalised-alpha numerical damping (spectral radius at infinity), in [0, 1].
+    spring_link_backend : {"auto", "tree", "bodies"}
+        ``spring_link`` only: the Exudyn representation of the chain (``SpringLinkParams.backend``).
+        ``"auto"`` (default): the kinematic tree (minimal coordinates) for every inextensible
+        chain; ``"bodies"``: rigid bodies and joints, whose static Newton converges only linearly
+        under large joint reactions (dead loads, rope forces; ``docs/models.md``, "Spring-link").
     """
 
     n_elements: int = 16
@@ -56,6 +61,7 @@ class SolverOptions:
     time_step: float = 2e-3
     damping: float = 0.0
     spectral_radius: float = 0.8
+    spring_link_backend: Literal["auto", "tree", "bodies"] = "auto"
 
     def __post_init__(self) -> None:
         for name in ("n_elements", "n_stations", "max_load_steps"):
@@ -74,6 +80,9 @@ class SolverOptions:
             raise ValueError(f"SolverOptions.damping must be finite and >= 0, got {self.damping}")
         if not (0.0 <= self.spectral_radius <= 1.0):
             raise ValueError(f"SolverOptions.spectral_radius must be in [0, 1], got {self.spectral_radius}")
+        if self.spring_link_backend not in ("auto", "tree", "bodies"):
+            raise ValueError("SolverOptions.spring_link_backend must be 'auto', 'tree' or 'bodies', "
+                             f"got {self.spring_link_backend!r}")
 
 
 @dataclass(frozen=True)

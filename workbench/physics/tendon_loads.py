@@ -220,10 +220,13 @@ def solve_length_controlled(
         # length mismatch of taut tendons [m]; stiff tendons cannot meet a force tolerance
         # better than EA_t times the path-length accuracy, so either criterion suffices
         gap = np.where(T > 0, l - l0 * (1.0 + T / ea), 0.0)
-        slack_ok = (T > 0) | (stretch <= 0)
-        if np.all(np.abs(r) <= tol * (1.0 + np.abs(T))) or (
-            np.all(np.abs(gap) <= length_tol * l0) and np.all(slack_ok)
-        ):
+        force_ok = np.abs(r) <= tol * (1.0 + np.abs(T))
+        # per tendon: the force residual, or (taut) the length mismatch, or (slack) a tension
+        # at round-off level -- the projection max(0, T + a dT) can leave 1e-28 N on a slack
+        # tendon, which must not count as taut
+        taut_ok = (T > 0) & (stretch > 0) & (np.abs(gap) <= length_tol * l0)
+        slack_ok = (stretch <= 0) & (T <= tol)
+        if np.all(force_ok) or np.all(force_ok | taut_ok | slack_ok):
             return LengthSolveInfo(T, l, it - 1, solves, float(np.max(np.abs(r), initial=0.0)))
         active = (stretch > 0).astype(float)
         J = np.eye(n) - (active * ea / l0)[:, None] * C

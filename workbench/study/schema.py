@@ -90,6 +90,7 @@ class SolverSection(CaseLimitFields):
     time_step: float = Field(default=2e-3, gt=0.0)
     damping: float = Field(default=0.0, ge=0.0)
     spectral_radius: float = Field(default=0.8, ge=0.0, le=1.0)
+    spring_link_backend: Literal["auto", "tree", "bodies"] = "auto"
 
 
 class DerivedSection(BaseModel):

@@ -36,8 +36,9 @@ _SPARSE_FROM = 16
 #: after every success, give up below an increment of 1e-6.
 _STATIC_RAMP = RampPolicy(first_increment=1.0, growth=2.0, grow_after=1, cap="one", min_increment=1e-6)
 
-_ROPES_HINT = ("; eyelet ropes on the rigid-body chain converge only linearly in Newton (numerical, "
-               "not a physical instability): use SpringLinkParams(backend='tree') where possible")
+_BODIES_HINT = ("; the rigid-body chain's static Newton converges only linearly under large joint reactions "
+                "(Exudyn's iteration matrix lacks their geometric stiffness; numerical, not a physical "
+                "instability): use backend='tree' (solver.spring_link_backend = \"tree\" or \"auto\")")
 
 
 def _use_sparse(settings, model) -> None:  # noqa: ANN001
@@ -71,10 +72,12 @@ def _static_ramp(model: _Chain, options: SolverOptions, params: SpringLinkParams
     settings = static_settings(options, 1)
     _use_sparse(settings, model)
     settings.staticSolver.adaptiveStep = False
-    # eyelet ropes loading the joint constraints make Newton converge only linearly (measured
-    # ~100-125 iterations at N = 16 vs 3-6 for continuum tendons, docs/models.md): allow more.
+    # eyelet ropes loading the joint constraints of the rigid bodies make Newton converge only
+    # linearly (~100-125 iterations at N = 16 vs 3-6 for continuum tendons, docs/models.md): allow
+    # more there.  The tree's Newton is quadratic (4-16 iterations per step up to alpha = 10);
+    # a failing step is cut off early, a 3-D tree Jacobian with ropes costs ~0.5-2 s.
     eyelet_ropes = model.model == "eyelets" and model.mode is not None
-    settings.staticSolver.newton.maxIterations = 250 if eyelet_ropes else 40
+    settings.staticSolver.newton.maxIterations = (250 if eyelet_ropes else 40) if model.rigid_bodies else 25
     newton_its = 0
 
     def attempt(lam: float) -> bool:
@@ -103,7 +106,7 @@ def _static_ramp(model: _Chain, options: SolverOptions, params: SpringLinkParams
         info = ramp(attempt, model.save_state, model.restore_state, max_attempts=options.max_load_steps,
                     policy=_STATIC_RAMP)
     except RampExhausted as err:
-        hint = _ROPES_HINT if eyelet_ropes and model.rigid_bodies else ""
+        hint = _BODIES_HINT if model.rigid_bodies and not model.axial else ""
         raise ModelFailure(
             f"spring_link: static load ramp exceeded options.max_load_steps={options.max_load_steps} "
             f"(reached load factor {err.lam:.4g}){hint}"
@@ -125,19 +128,15 @@ def _ramp_to(model: _Chain, params: SpringLinkParams, commands: np.ndarray) -> t
 
 def _build_chain(robot: Robot, load: LoadCase, options: SolverOptions, geo: ChainGeometry,
                  params: SpringLinkParams, use_2d: bool) -> _Chain:
-    """The chain variant for this case: the kinematic tree when asked for, or (``backend="auto"``)
-    for eyelet ropes where the tree applies (inextensible, planar or Cardan); rigid bodies else."""
-    act_mode = None if load.actuation is None else load.actuation.mode
-    tree_ok = not params.axial and (use_2d or params.torsion == "locked")
-    if params.backend == "tree" and not tree_ok:
-        raise ModelFailure("spring_link: backend='tree' supports inextensible chains that are planar or have "
-                           "torsion='locked' (Cardan joints) only")
-    # eyelet ropes (reeving or constant-force segments) on the rigid-body chain stall the static
-    # ramp (docs/models.md); the constraint-free tree solves them in a few Newton iterations
-    ropes = options.tendon_model == "eyelets" and act_mode is not None
-    auto_tree = params.backend == "auto" and ropes
-    if tree_ok and (params.backend == "tree" or auto_tree):
-        return _Tree(robot, load, options, geo, spatial=not use_2d)
+    """The chain variant for this case: the kinematic tree for every inextensible chain
+    (``backend`` ``"auto"`` or ``"tree"``), rigid bodies for ``backend="bodies"`` or ``axial=True``."""
+    if params.backend == "tree" and params.axial:
+        raise ModelFailure("spring_link: backend='tree' supports inextensible chains only (axial=False); "
+                           "axial springs need backend='bodies' or 'auto'")
+    # rigid bodies + joints: Exudyn's static Newton matrix lacks the geometric stiffness of the
+    # joint reactions (docs/models.md), so their ramp stalls under large dead loads and rope forces
+    if params.backend != "bodies" and not params.axial:
+        return _Tree(robot, load, options, geo, spatial=not use_2d, torsion=params.torsion)
     if use_2d:
         return _Planar(robot, load, options, geo, params.axial)
     return _Spatial(robot, load, options, geo, params.torsion, params.axial)
@@ -178,19 +177,25 @@ def _solve_dynamic(model: _Chain, params: SpringLinkParams, t0: float) -> Physic
         rec_tip.append(r.tip_position.copy())
         rec_T.append(r.tendon_tensions.copy())
 
-    def pre_step(mbs, t):  # noqa: ANN001 - Exudyn callback signature
+    def command(t: float) -> None:
         cmd = start if act is None else act.command_at(t, load.ramp_time)
         if model.mode == "length":
             model._L0 = model.rest_lengths(np.asarray(cmd), 1.0)
             model.update_active_set()
         model.set_tendons(np.asarray(cmd), 1.0)
-        record(t, model.result(SolverInfo(True)))
+
+    def pre_step(mbs, t):  # noqa: ANN001 - Exudyn callback signature
+        # Exudyn passes the END time of the coming step; the state is the one at its start
+        t_state = float(t) - float(solver.it.currentStepSize)  # record() drops a retried step's samples
+        command(t_state)  # the state is recorded with the commands it was solved for
+        record(t_state, model.result(SolverInfo(True)))
+        command(float(t))  # the commands of the coming step, at its end time
         return True
 
+    solver = exu.MainSolverImplicitSecondOrder()
     model.mbs.SetPreStepUserFunction(pre_step)
     settings = dynamic_settings(model.options, load.duration)
     _use_sparse(settings, model)
-    solver = exu.MainSolverImplicitSecondOrder()
     try:
         solver.SolveSystem(model.mbs, settings)
     except exu.SolverError as err:
@@ -250,5 +255,6 @@ def solve(robot: Robot, load: LoadCase, options: SolverOptions,
 
 
 def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
-    """Registered model ``"spring_link"``: :func:`solve` with default :class:`SpringLinkParams`."""
-    return solve(robot, load, options, SpringLinkParams())
+    """Registered model ``"spring_link"``: :func:`solve` with default :class:`SpringLinkParams`
+    except ``backend = options.spring_link_backend`` (the study key ``solver.spring_link_backend``)."""
+    return solve(robot, load, options, SpringLinkParams(backend=options.spring_link_backend))

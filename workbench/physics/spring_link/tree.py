@@ -54,28 +54,42 @@ def _tree_link_masses(geo: ChainGeometry, payload: Payload | None) -> tuple[np.n
     return mass, coms, inertias
 
 
+#: Joint axes of the tree per chain joint: planar ``RevoluteY``; Cardan ``RevoluteX`` + ``RevoluteY``
+#: (torsion locked); sprung torsion ``X, Y, Z`` at even and ``Z, Y, X`` at odd joints (see :func:`joint_axes`).
+_AXES = {1: ("Y",), 2: ("X", "Y"), 3: ("X", "Y", "Z")}
+
+
+def joint_axes(per: int, k: int) -> tuple[str, ...]:
+    """Revolute axes (in order, proximal first) of chain joint ``k`` with ``per`` tree joints.
+
+    ``per = 3`` (torsion spring): the relative rotation ``Rx(a) Ry(b) Rz(c)`` has rotation vector
+    ``(a + bc/2, b - ac/2, c + ab/2) + O(3)``, so a torsion spring on ``c`` instead of on the
+    rotation vector's axial component couples bending into twist at second order per joint
+    (``ab/2``, a first-order twist error summed over ``N`` joints); the reversed order
+    ``Rz Ry Rx`` has the opposite sign (``c - ab/2``), so alternating the two cancels the error
+    pairwise (``tests/physics/test_spring_link.py``, ``test_sprung_torsion_tree_*``).
+    """
+    axes = _AXES[per]
+    return axes[::-1] if per == 3 and k % 2 else axes
+
+
 def _tree_links(exu, geo: ChainGeometry, mass: np.ndarray, coms: list, inertias: list, per: int) -> tuple:  # noqa: ANN001
     """Per tree link: joint types, offsets, masses, centres of mass, inertias, spring stiffness.
 
-    ``per = 1``: one ``RevoluteY`` per chain link; ``per = 2``: ``RevoluteX`` + ``RevoluteY`` (a
-    Cardan joint; the first, massless link carries the offset)."""
+    ``per`` tree joints per chain joint (:func:`joint_axes`); the first carries the offset, all but
+    the last are massless; bending axes (X, Y) get ``EI/ds``, the axial one (Z) ``GJ/ds``."""
     types, offs, ms, cs, Is, Ps = [], [], [], [], [], []
     for k in range(geo.n_links):
         off = float(geo.joints[0]) if k == 0 else float(geo.link_lengths[k - 1])
-        if per == 2:
-            types.append(exu.JointType.RevoluteX)
-            offs.append([0.0, 0.0, off])
-            ms.append(0.0)
-            cs.append([0.0, 0.0, 0.0])
-            Is.append(np.zeros((3, 3)))
-            Ps.append(float(geo.stiffness[k]))
-            off = 0.0
-        types.append(exu.JointType.RevoluteY)
-        offs.append([0.0, 0.0, off])
-        ms.append(float(mass[k]))
-        cs.append(coms[k].tolist())
-        Is.append(inertias[k])
-        Ps.append(float(geo.stiffness[k]))
+        axes = joint_axes(per, k)
+        for i, ax in enumerate(axes):
+            last = i == len(axes) - 1
+            types.append(getattr(exu.JointType, "Revolute" + ax))
+            offs.append([0.0, 0.0, off if i == 0 else 0.0])
+            ms.append(float(mass[k]) if last else 0.0)
+            cs.append(coms[k].tolist() if last else [0.0, 0.0, 0.0])
+            Is.append(inertias[k] if last else np.zeros((3, 3)))
+            Ps.append(float(geo.torsion_stiffness[k] if ax == "Z" else geo.stiffness[k]))
     return types, offs, ms, cs, Is, Ps
 
 
@@ -99,16 +113,17 @@ def _add_kinematic_tree(mbs, exu, eii, links: tuple, damping: float) -> tuple[in
 
 
 class _Tree(_Chain):
-    """Chain in minimal coordinates: planar (``RevoluteY``) or 3-D Cardan (``spatial=True``)."""
+    """Chain in minimal coordinates: planar (``RevoluteY``) or 3-D (``spatial=True``): Cardan joints
+    with ``torsion="locked"``, three revolute joints with a torsion spring for ``"spring"``."""
 
     rigid_bodies = False
-    torsion = "locked"
 
     def __init__(self, robot: Robot, load: LoadCase, options: SolverOptions, geo: ChainGeometry,
-                 spatial: bool = False) -> None:
+                 spatial: bool = False, torsion: str = "locked") -> None:
         self.spatial = bool(spatial)
         self.planar = not self.spatial
-        self.per = 2 if self.spatial else 1
+        self.torsion = torsion if self.spatial else "locked"
+        self.per = (3 if torsion == "spring" else 2) if self.spatial else 1
         super().__init__(robot, load, options, geo)
 
     def _check(self) -> None:
@@ -189,11 +204,8 @@ class _Tree(_Chain):
         for k in range(geo.n_links):
             if k > 0:
                 pk = pk + geo.link_lengths[k - 1] * Rk[:, 2]
-            if self.per == 2:
-                c, s = math.cos(q[k, 0]), math.sin(q[k, 0])
-                Rk = Rk @ np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
-            c, s = math.cos(q[k, -1]), math.sin(q[k, -1])
-            Rk = Rk @ np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+            for ax, a in zip(joint_axes(self.per, k), q[k]):
+                Rk = Rk @ _axis_rotation(ax, a)
             P[k], R[k] = pk, Rk
         return P, R
 
@@ -207,6 +219,16 @@ class _Tree(_Chain):
         for k in range(1, geo.n_links):
             P[k] = P[k - 1] + geo.link_lengths[k - 1] * np.array([math.sin(beta[k - 1]), 0.0, math.cos(beta[k - 1])])
         return P, beta
+
+
+def _axis_rotation(axis: str, angle: float) -> np.ndarray:
+    """``(3, 3)`` rotation by ``angle`` about the body axis ``"X"``, ``"Y"`` or ``"Z"``."""
+    c, s = math.cos(angle), math.sin(angle)
+    if axis == "X":
+        return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+    if axis == "Y":
+        return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
 def _tip_joint_forces(robot: Robot, load: LoadCase, geo: ChainGeometry) -> np.ndarray:
@@ -228,13 +250,8 @@ def _tip_by_forward_kinematics(q: np.ndarray, geo: ChainGeometry, per: int) -> n
     p = np.zeros(3)
     for k in range(geo.n_links):
         p = p + R @ np.array([0.0, 0.0, geo.joints[0] if k == 0 else geo.link_lengths[k - 1]])
-        for i in range(per):
-            a = q[k * per + i]
-            c, s = np.cos(a), np.sin(a)
-            if per == 2 and i == 0:
-                R = R @ np.array([[1, 0, 0], [0, c, -s], [0, s, c]])
-            else:
-                R = R @ np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]])
+        for ax, a in zip(joint_axes(per, k), q[k * per:(k + 1) * per]):
+            R = R @ _axis_rotation(ax, a)
     return p + R @ np.array([0.0, 0.0, geo.link_lengths[-1]])
 
 

@@ -1,0 +1,32 @@
+"""Cosserat rod with continuously routed tendons (Rucker & Webster 2011): model ``"cosserat"``.
+
+The standard statics model of tendon-driven continuum robots: a geometrically exact rod
+(bending, torsion, shear and extension, ``K_se = diag(GA, GA, EA)``, ``K_bt = diag(EI, EI, GJ)``)
+with frictionless tendons routed continuously at given offsets (constant or tapered), any number
+of sections (a tendon terminates at the end of its section), self-weight, disk masses (point
+weights at the disks), a tip payload, tip force and torque; solved as a boundary-value problem by
+shooting with scipy (DOP853, Newton on the clamp wrench).  No Exudyn: the model is independent of
+the Exudyn models it is compared with.
+
+* :mod:`.problem` -- :class:`RodProblem` from a robot and a load case (base frame, SI units).
+* :mod:`.rod` -- the strain law with tendons and the integration of the total force and moment.
+* :mod:`.shooting` -- :class:`Shooter`: batched-shot Newton, the load ramp.
+* :mod:`.model` -- :func:`run`: tension or length control, results.
+
+Where it differs from the Exudyn models: the tendon is continuous (no eyelets; ``beam3d``,
+``ancf`` and ``spring_link`` eyelets converge to it as the disk count grows, order 2), the rod is
+a continuum (no elements: ``options.n_elements`` is unused, the accuracy follows
+``options.newton_tolerance``), and it is static only.  Limits: a shooting method needs a
+predictor close enough to the solution; the load ramp provides it (``options.max_load_steps``
+attempts).  Validation: ``tests/physics/test_cosserat_model.py`` and the validation matrix
+(``tests/physics/test_validation_matrix.py``, ``docs/models.md``).
+"""
+
+from __future__ import annotations
+
+from .model import run, straight_compliance
+from .problem import RodProblem, rod_problem
+from .rod import strains
+from .shooting import Shooter, ShootingFailure
+
+__all__ = ["run", "RodProblem", "rod_problem", "strains", "Shooter", "ShootingFailure", "straight_compliance"]

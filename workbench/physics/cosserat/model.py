@@ -1,0 +1,126 @@
+"""The registered model ``"cosserat"``: ``run(robot, load, options) -> PhysicsResult``.
+
+Statics only.  Tension control: the tensions are the commands.  Length control: the tensions
+solve ``T = EA_t max(0, (l(T) - l0) / l0)`` (:func:`workbench.physics.tendon_loads.solve_length_controlled`,
+rest lengths from :func:`~workbench.physics.tendon_loads.tendon_rest_lengths`, compliance of the
+straight rod as the first quasi-Newton matrix), each ``l(T)`` a shooting solve warm-started from
+the previous one.  Outputs (base frame): positions at ``options.n_stations`` stations (dense
+output of the final integration), tip frame ``R(L)``, ``length_change`` = integral of
+``|v| - 1``, ``tip_twist`` = integral of ``u_3``, tensions; ``extras``: ``newton_iterations``,
+``load_steps``, ``shots`` (integrated trajectories) and ``tip_residual``.  Checked by
+``tests/physics/test_cosserat_model.py``.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from ...models.inputs import check_model_inputs
+from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
+from ...robot import LoadCase, Robot
+from ..tendon_loads import solve_length_controlled, tendon_rest_lengths
+from .problem import RodProblem, rod_problem
+from .rod import N_BASE, integrate_segments
+from .shooting import Shooter, ShootingFailure
+
+__all__ = ["run", "straight_compliance"]
+
+
+def straight_compliance(pb: RodProblem) -> np.ndarray:
+    """``(n_t, n_t)`` small-deflection ``dl_i/dT_j = -int_0^{min(e_i, e_j)} (r_i . r_j / EI + 1/EA) ds``
+    of continuum tendons on the straight rod (the length solve's first quasi-Newton matrix)."""
+    n = pb.n_tendons
+    s = np.linspace(0.0, pb.length, 801)
+    sec = np.array([pb.section_of(x) for x in s])
+    f = (s - pb.section_starts[sec]) / pb.section_lengths[sec]
+    K = pb.stiffness0[sec] + (pb.stiffness1[sec] - pb.stiffness0[sec]) * f[:, None]
+    d = pb.tendon_offsets[:, :1] + (pb.tendon_offsets[:, 1:] - pb.tendon_offsets[:, :1]) * s / pb.tendon_ends[:, None]
+    r = d[:, :, None] * pb.tendon_dirs[:, None, :]
+    C = np.zeros((n, n))
+    for i in range(n):
+        for j in range(n):
+            g = np.einsum("kc,kc->k", r[i], r[j]) / K[:, 3] + 1.0 / K[:, 2]
+            G = np.concatenate([[0.0], np.cumsum(0.5 * (g[1:] + g[:-1]) * np.diff(s))])
+            C[i, j] = -np.interp(min(pb.tendon_ends[i], pb.tendon_ends[j]), s, G)
+    return C
+
+
+def _tensions(pb: RodProblem, load: LoadCase, options: SolverOptions, shooter: Shooter) -> tuple[np.ndarray, int]:
+    """Tendon tensions of the equilibrium (the shooter ends at it); returns (tensions, ramp attempts)."""
+    act = load.actuation
+    if act is None or pb.n_tendons == 0:
+        return np.zeros(pb.n_tendons), shooter.go_to(np.zeros(pb.n_tendons), options.max_load_steps)
+    if act.mode == "tension":
+        T = np.asarray(act.values, dtype=float)
+        return T, shooter.go_to(T, options.max_load_steps)
+    l0 = tendon_rest_lengths(pb.reference_tendon_lengths(), act.values, act.pretension, pb.tendon_stiffness)
+    attempts = [0]
+    # a shooting residual eps bends the rod by ~eps F_s L / EI, i.e. moves a tendon path by
+    # ~d eps F_s L^2 / EI: stiff tendons (EA_t / l0 ~ 1e7 N/m) need it 1e3 x tighter than the
+    # shape does, or the tension solve sees noise (measured: 0.2 N on EA_t = 1e7 N at eps = 1e-9)
+    shooter.tol = max(1e-13, 1e-3 * shooter.tol)
+    shooter.rtol = max(1e-13, 0.1 * shooter.tol)
+
+    def equilibrium(T: np.ndarray) -> np.ndarray:
+        attempts[0] += shooter.go_to(T, options.max_load_steps)
+        tip, _ = integrate_segments(pb, shooter.x[None], T, 1.0, shooter.rtol)
+        return tip[0, N_BASE + 2:]
+
+    info = solve_length_controlled(equilibrium, l0, pb.tendon_stiffness, straight_compliance(pb),
+                                   initial_tensions=np.full(pb.n_tendons, act.pretension),
+                                   tol=max(1e-10, options.newton_tolerance), length_tol=10.0 * options.newton_tolerance)
+    equilibrium(info.tensions)
+    return info.tensions, attempts[0]
+
+
+def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
+    """Solve the spatial Cosserat rod with continuously routed tendons (model ``"cosserat"``).
+
+    Parameters
+    ----------
+    robot : Robot
+        Any number of sections, tapered cross-sections and tendon offsets, disk masses, payload.
+    load : LoadCase
+        Static: tendon tensions or length changes, tip force and torque (dead loads, base frame).
+    options : SolverOptions
+        ``newton_tolerance`` (scaled tip residual; integration at a tenth of it),
+        ``max_load_steps``, ``n_stations``; ``n_elements`` is not used (the integration is
+        adaptive, 8th order).  ``tendon_model`` must be ``"continuum"`` for loaded tendons.
+
+    Raises
+    ------
+    ModelFailure
+        Dynamic analysis, eyelet tendons, or no converged equilibrium.
+    """
+    t0 = time.perf_counter()
+    check_model_inputs(robot, load, options)
+    if load.analysis != "static":
+        raise ModelFailure("cosserat: static analysis only (no dynamics in the shooting model)")
+    act = load.actuation
+    if act is not None and options.tendon_model != "continuum" and any(v != 0 for v in act.values):
+        raise ModelFailure("cosserat: tendons are routed continuously; tendon_model='eyelets' is not supported "
+                           "(use beam3d, ancf or spring_link for discrete eyelets)")
+    pb = rod_problem(robot, load)
+    shooter = Shooter(pb, options.newton_tolerance)
+    try:
+        T, attempts = _tensions(pb, load, options, shooter)
+    except (ShootingFailure, RuntimeError) as err:
+        raise ModelFailure(f"cosserat: {err}") from None
+    stations = np.linspace(0.0, robot.length, options.n_stations)
+    tip, Y = integrate_segments(pb, shooter.x[None], T, 1.0, shooter.rtol, stations)
+    res = float(np.max(np.abs(shooter.residual(shooter.x[None], 1.0, T))))
+    frame = np.eye(4)
+    frame[:3, :3] = tip[0, 3:12].reshape(3, 3)
+    frame[:3, 3] = tip[0, 0:3]
+    U, _, Vt = np.linalg.svd(frame[:3, :3])
+    frame[:3, :3] = U @ Vt
+    info = SolverInfo(converged=True, iterations=shooter.newton_iterations, wall_time=time.perf_counter() - t0,
+                      message=f"{attempts} load steps")
+    return PhysicsResult(
+        model="cosserat", stations=stations, positions=Y[:, 0, 0:3], tip_frame=frame,
+        length_change=float(tip[0, N_BASE] - robot.length), tendon_tensions=T, tip_twist=float(tip[0, N_BASE + 1]),
+        solver=info, extras={"newton_iterations": float(shooter.newton_iterations), "load_steps": float(attempts),
+                             "shots": float(shooter.shots), "tip_residual": res},
+    )

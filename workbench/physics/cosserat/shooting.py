@@ -1,0 +1,184 @@
+"""Shooting for the clamped tendon rod: Newton on the base wrench, the load ramp (numpy/scipy).
+
+Unknowns: the total force and moment at the clamp, ``x = (N(0), M(0))``.  Residual: the tip
+conditions ``N(L) = F_tip + W``, ``M(L) = M_tip + (R(L) o) x W_p`` (tip loads, the weight ``W``
+of the payload ``W_p`` at offset ``o`` in the tip frame and of a disk at the tip), scaled by a
+force scale ``F_s`` and by ``F_s L``.  One Newton iteration integrates seven shots as one batch
+(the iterate and six forward-difference perturbations share every integration step, so the
+difference quotients see one discretisation); the step is backtracked until the residual norm
+falls.  Large loads are reached with the common load ramp (:func:`workbench.physics._stepping.ramp`:
+external loads and tendon tensions move together along a straight path from the last converged
+point; the first attempt is the whole way, a failure halves the increment), each Newton started
+from a secant predictor.  Checked by ``tests/physics/test_cosserat_model.py``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._stepping import RampExhausted, RampPolicy, RampStalled, ramp
+from .problem import RodProblem
+from .rod import integrate_segments
+
+__all__ = ["Shooter", "ShootingFailure", "straight_rod_base_wrench"]
+
+_POLICY = RampPolicy(first_increment=1.0, growth=2.0, grow_after=1, cap="one", min_increment=1e-6)
+_MAX_NEWTON = 15
+
+
+class ShootingFailure(RuntimeError):
+    """A shooting solve or the load ramp did not converge."""
+
+
+@dataclass(frozen=True)
+class _Point:
+    """A converged state: external-load factor, applied tensions [N], base wrench (6,)."""
+
+    lam: float
+    tau: np.ndarray
+    x: np.ndarray
+
+
+def straight_rod_base_wrench(pb: RodProblem, lam: float) -> np.ndarray:
+    """``(6,)`` clamp reaction ``(N(0), M(0))`` of the straight rod under ``lam`` x the external
+    loads (tendons are internal: they do not change it).  The Newton predictor at the first step."""
+    e3 = np.array([0.0, 0.0, pb.length])
+    Wp = pb.payload_mass * pb.gravity
+    F = pb.tip_force + Wp + pb.point_forces.sum(0)
+    M = pb.tip_torque + np.cross(e3, pb.tip_force) + np.cross(e3 + pb.payload_offset, Wp)
+    M = M + sum((np.cross([0.0, 0.0, s], f) for s, f in zip(pb.breakpoints, pb.point_forces)), np.zeros(3))
+    for s0, ls, m0, m1 in zip(pb.section_starts, pb.section_lengths, pb.mass_per_length0, pb.mass_per_length1):
+        mass = 0.5 * (m0 + m1) * ls
+        first = ls / 6.0 * (s0 * m0 + 4.0 * (s0 + 0.5 * ls) * 0.5 * (m0 + m1) + (s0 + ls) * m1)  # Simpson
+        F = F + mass * pb.gravity
+        M = M + np.cross([0.0, 0.0, first], pb.gravity)
+    return lam * np.concatenate([F, M])
+
+
+class Shooter:
+    """The shooting state of one solve: the converged points of the current load path.
+
+    Parameters
+    ----------
+    pb : RodProblem
+    tol : float
+        Required max-norm of the scaled tip residual; DOP853 runs at ``rtol = tol / 10``
+        (not below 1e-13).
+    """
+
+    def __init__(self, pb: RodProblem, tol: float) -> None:
+        self.pb = pb
+        self.tol = float(tol)
+        self.rtol = max(1e-13, 0.1 * self.tol)
+        self.point = _Point(0.0, np.zeros(pb.n_tendons), np.zeros(6))
+        self.newton_iterations = 0
+        self.shots = 0
+
+    def _scales(self, lam: float, tau: np.ndarray) -> tuple[float, float]:
+        pb = self.pb
+        g = float(np.abs(pb.gravity).max())
+        weight = g * (float(np.sum(pb.mass_per_length0 * pb.section_lengths)) + pb.payload_mass)
+        fs = max(lam * (weight + float(np.abs(pb.point_forces).sum()) + float(np.abs(pb.tip_force).max())),
+                 float(np.sum(tau)), lam * float(np.abs(pb.tip_torque).max()) / pb.length,
+                 1e-6 * float(pb.stiffness0[:, 3].min()) / pb.length**2)
+        return fs, fs * pb.length
+
+    def residual(self, X: np.ndarray, lam: float, tau: np.ndarray) -> np.ndarray:
+        """Scaled tip residuals ``(B, 6)`` of base wrenches ``X`` ``(B, 6)`` at load ``(lam, tau)``."""
+        pb = self.pb
+        tip, _ = integrate_segments(pb, X, tau, lam, self.rtol)
+        self.shots += X.shape[0]
+        Wp = lam * pb.payload_mass * pb.gravity
+        arm = np.einsum("bij,j->bi", tip[:, 3:12].reshape(-1, 3, 3), pb.payload_offset)
+        F = lam * (pb.tip_force + pb.point_forces[-1]) + Wp
+        M = lam * pb.tip_torque + np.cross(arm, Wp)
+        fs, ms = self._scales(lam, tau)
+        return np.concatenate([(tip[:, 12:15] - F) / fs, (tip[:, 15:18] - M) / ms], axis=1)
+
+    def newton(self, x: np.ndarray, lam: float, tau: np.ndarray) -> np.ndarray:
+        """Base wrench ``(6,)`` meeting the tip conditions at ``(lam, tau)``, from the guess ``x``.
+
+        Raises
+        ------
+        ShootingFailure
+            No convergence in 15 iterations, a failed line search or a failed integration.
+        """
+        fs, ms = self._scales(lam, tau)
+        scale = np.array([fs, fs, fs, ms, ms, ms])
+        try:
+            for _ in range(_MAX_NEWTON):
+                h = 1e-7 * np.maximum(np.abs(x), scale)
+                res = self.residual(np.vstack([x, x + np.diag(h)]), lam, tau)
+                r0 = res[0]
+                if not np.all(np.isfinite(res)):
+                    raise ShootingFailure("non-finite tip residual")
+                if np.max(np.abs(r0)) <= self.tol:
+                    return x
+                self.newton_iterations += 1
+                dx = np.linalg.solve(((res[1:] - r0) / h[:, None]).T, -r0)
+                x = self._line_search(x, dx, r0, lam, tau)
+        except (RuntimeError, np.linalg.LinAlgError) as err:
+            raise ShootingFailure(str(err)) from err
+        raise ShootingFailure(f"no convergence in {_MAX_NEWTON} Newton iterations")
+
+    def _line_search(self, x, dx, r0, lam, tau) -> np.ndarray:  # noqa: ANN001
+        n0 = np.linalg.norm(r0)
+        a = 1.0
+        for _ in range(8):
+            xa = x + a * dx
+            ra = self.residual(xa[None], lam, tau)[0]
+            if np.all(np.isfinite(ra)) and np.linalg.norm(ra) < (1.0 - 1e-4 * a) * n0:
+                return xa
+            a *= 0.5
+        raise ShootingFailure("line search failed to reduce the tip residual")
+
+    def go_to(self, tau: np.ndarray, max_attempts: int) -> int:
+        """Follow the straight load path from the last converged point to the full external
+        load with tensions ``tau`` [N]; returns the number of ramp attempts.
+
+        Raises
+        ------
+        ShootingFailure
+            More than ``max_attempts`` attempts, or the increment fell below 1e-6.
+        """
+        start = self.point
+        tau = np.asarray(tau, dtype=float)
+        path: list[tuple[float, np.ndarray]] = [(0.0, start.x)]
+
+        def predict(t: float, lam: float) -> np.ndarray:
+            if len(path) >= 2:
+                (ta, xa), (tb, xb) = path[-2], path[-1]
+                return xb + (t - tb) / (tb - ta) * (xb - xa)
+            return start.x + straight_rod_base_wrench(self.pb, lam) - straight_rod_base_wrench(self.pb, start.lam)
+
+        def attempt(t: float) -> bool:
+            lam = start.lam + t * (1.0 - start.lam)
+            ta = start.tau + t * (tau - start.tau)
+            try:
+                x = self.newton(predict(t, lam), lam, ta)
+            except ShootingFailure:
+                return False
+            path.append((t, x))
+            self.point = _Point(lam, ta, x)
+            return True
+
+        def restore(saved) -> None:  # noqa: ANN001
+            n, point = saved
+            del path[n:]
+            self.point = point
+
+        try:
+            info = ramp(attempt, lambda: (len(path), self.point), restore, max_attempts=max_attempts, policy=_POLICY)
+        except RampExhausted as err:
+            raise ShootingFailure(f"load ramp exceeded max_load_steps={max_attempts} "
+                                  f"(reached {err.lam:.4g} of the way)") from None
+        except RampStalled as err:
+            raise ShootingFailure(f"load ramp stalled at {err.lam:.4g} of the way (increment below 1e-6)") from None
+        return info.attempts
+
+    @property
+    def x(self) -> np.ndarray:
+        """The last converged base wrench ``(6,)``."""
+        return self.point.x
