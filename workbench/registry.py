@@ -52,6 +52,8 @@ MODELS: Mapping[str, ModelInfo] = {
     "beam3d": ModelInfo("workbench.physics.beam3d:run", "GE beam", "#d62728"),
     "ancf3d": ModelInfo("workbench.physics.ancf3d:run", "ANCF 3-D", "#9467bd"),
     "spring_link": ModelInfo("workbench.physics.spring_link:run", "spring-link", "#2ca02c"),
+    "spring_link_cardan": ModelInfo("workbench.physics.spring_link.cardan:run", "spring-link, 2-DOF joints",
+                                    "#17becf"),
     # rows of the series-parallel study kind (not run(robot, load, options) models)
     "series_parallel": ModelInfo(None, "series-parallel"),
 }
@@ -61,12 +63,14 @@ PRESETS: Mapping[str, str] = {
     "hannan_walker": "workbench.robot.presets.hannan_walker:hannan_walker",
     "cojocaru_tronconic": "workbench.robot.presets.cojocaru:cojocaru_tronconic",
     "shao_harvester": "workbench.robot.presets.shao:shao_harvester",
+    "hannan_walker_3d": "workbench.robot.presets.hannan_walker_3d:hannan_walker_3d",
 }
 
 #: ``[scenario] name`` -> function ``(robot, **parameters) -> load fields``.
 SCENARIOS: Mapping[str, str] = {
     "wire_delay": "workbench.experiments.wire_delay.scenario:wire_delay",
     "hannan_walker_line": "workbench.experiments.hannan_walker.scenario:hannan_walker_line",
+    "hannan_walker_spatial": "workbench.experiments.hannan_walker.scenario:hannan_walker_spatial",
 }
 
 #: ``[study] kind`` -> the :class:`~workbench.study.kinds.StudyKind` object that loads, expands and runs it.
@@ -81,6 +85,8 @@ FIGURES: Mapping[str, FigureSet] = {
                             "workbench.experiments.wire_delay.figures:figures"),
     "hannan_walker": FigureSet("workbench.experiments.hannan_walker.figures:matches",
                                "workbench.experiments.hannan_walker.figures:figures"),
+    "hannan_walker_3d": FigureSet("workbench.experiments.hannan_walker.figures_3d:matches",
+                                  "workbench.experiments.hannan_walker.figures_3d:figures"),
     "fruit_harvester": FigureSet("workbench.experiments.fruit_harvester.figures:matches",
                                  "workbench.experiments.fruit_harvester.figures:figures"),
     "series_parallel": FigureSet("workbench.experiments.series_parallel.figures:matches",
