@@ -56,6 +56,11 @@ MODELS: Mapping[str, ModelInfo] = {
                                     "#17becf"),
     # rows of the series-parallel study kind (not run(robot, load, options) models)
     "series_parallel": ModelInfo(None, "series-parallel"),
+    # rows of the closed-loop study kind: the controller's CC plan, the closed loop on a plant
+    "plan": ModelInfo(None, "CC plan (open loop)", "#7f7f7f"),
+    "spring_link_closed_loop": ModelInfo(None, "spring-link, closed loop", "#98df8a"),
+    "ancf_closed_loop": ModelInfo(None, "ANCF, closed loop", "#aec7e8"),
+    "cc_closed_loop": ModelInfo(None, "CC tendon map, closed loop", "#c7c7c7"),
 }
 
 PRESETS: Mapping[str, str] = {
@@ -71,12 +76,14 @@ SCENARIOS: Mapping[str, str] = {
     "wire_delay": "workbench.experiments.wire_delay.scenario:wire_delay",
     "hannan_walker_line": "workbench.experiments.hannan_walker.scenario:hannan_walker_line",
     "hannan_walker_spatial": "workbench.experiments.hannan_walker.scenario:hannan_walker_spatial",
+    "closed_loop": "workbench.experiments.closed_loop.scenario:closed_loop",
 }
 
 #: ``[study] kind`` -> the :class:`~workbench.study.kinds.StudyKind` object that loads, expands and runs it.
 KINDS: Mapping[str, str] = {
     "sweep": "workbench.study.kinds:SWEEP",
     "series_parallel": "workbench.experiments.series_parallel.kind:KIND",
+    "closed_loop": "workbench.experiments.closed_loop.kind:KIND",
 }
 
 #: Study-specific figures, in report order (before the generic figures).
@@ -87,6 +94,8 @@ FIGURES: Mapping[str, FigureSet] = {
                                "workbench.experiments.hannan_walker.figures:figures"),
     "hannan_walker_3d": FigureSet("workbench.experiments.hannan_walker.figures_3d:matches",
                                   "workbench.experiments.hannan_walker.figures_3d:figures"),
+    "closed_loop": FigureSet("workbench.experiments.closed_loop.figures:matches",
+                             "workbench.experiments.closed_loop.figures:figures"),
     "fruit_harvester": FigureSet("workbench.experiments.fruit_harvester.figures:matches",
                                  "workbench.experiments.fruit_harvester.figures:figures"),
     "series_parallel": FigureSet("workbench.experiments.series_parallel.figures:matches",

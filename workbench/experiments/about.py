@@ -68,7 +68,8 @@ def assumption_values(about: StudyAbout, ok: pd.DataFrame) -> list[str]:
 
 def about_summary(about: StudyAbout, ok: pd.DataFrame, findings: Sequence[str]) -> str:
     """``Question: ... Findings: ... Assumptions: ... Answers: ...`` as one caption text."""
-    parts = [f"Question: {about.question}",
+    q = about.question.rstrip()
+    parts = [f"Question: {q}{'' if q.endswith(('?', '.')) else '.'}",
              "Findings: " + ("; ".join(findings) if findings else "no successful case to report") + ".",
              "Assumptions: " + "; ".join(assumption_values(about, ok)) + "."]
     if about.paper_rows:
