@@ -98,6 +98,8 @@ FIGURES: Mapping[str, FigureSet] = {
                              "workbench.experiments.closed_loop.figures:figures"),
     "fruit_harvester": FigureSet("workbench.experiments.fruit_harvester.figures:matches",
                                  "workbench.experiments.fruit_harvester.figures:figures"),
+    "series_parallel_s_shape": FigureSet("workbench.experiments.series_parallel.figures_s_shape:matches",
+                                         "workbench.experiments.series_parallel.figures_s_shape:figures"),
     "series_parallel": FigureSet("workbench.experiments.series_parallel.figures:matches",
                                  "workbench.experiments.series_parallel.figures:figures"),
 }
