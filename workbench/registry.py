@@ -77,6 +77,7 @@ SCENARIOS: Mapping[str, str] = {
     "hannan_walker_line": "workbench.experiments.hannan_walker.scenario:hannan_walker_line",
     "hannan_walker_spatial": "workbench.experiments.hannan_walker.scenario:hannan_walker_spatial",
     "closed_loop": "workbench.experiments.closed_loop.scenario:closed_loop",
+    "wire_delay_arm": "workbench.experiments.wire_delay.scenario:wire_delay_arm",
 }
 
 #: ``[study] kind`` -> the :class:`~workbench.study.kinds.StudyKind` object that loads, expands and runs it.
@@ -88,6 +89,8 @@ KINDS: Mapping[str, str] = {
 
 #: Study-specific figures, in report order (before the generic figures).
 FIGURES: Mapping[str, FigureSet] = {
+    "wire_delay_arm": FigureSet("workbench.experiments.wire_delay.figures_arm:matches",
+                                "workbench.experiments.wire_delay.figures_arm:figures"),
     "wire_delay": FigureSet("workbench.experiments.wire_delay.figures:matches",
                             "workbench.experiments.wire_delay.figures:figures"),
     "hannan_walker": FigureSet("workbench.experiments.hannan_walker.figures:matches",
