@@ -51,6 +51,7 @@ import numpy as np
 from ..models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ..robot import LoadCase, Robot
 from . import _ancf_geometry as geo
+from ..models.backbone_frames import backbone_series, frame_stride
 from ._ancf_problem import PlanarModelError, _Problem, _problem, _Tendon, _tendon_sign  # noqa: F401 (re-exported)
 from .tendon_loads import (
     ramp_load,
@@ -484,8 +485,9 @@ def _dynamic_start(sysm: _System, drv: _StaticDriver, cmd: _Commands, initial_st
     return 0
 
 
-def _dynamic_series(sysm: _System, cmd: _Commands, Q: np.ndarray, times: np.ndarray, h: float):
-    """Checked states ``Q`` (k, n_ode2) -> (final tensions, series)."""
+def _dynamic_series(sysm: _System, cmd: _Commands, Q: np.ndarray, times: np.ndarray, h: float,
+                    stations: np.ndarray):
+    """Checked states ``Q`` (k, n_ode2) -> (final tensions, series; backbone frames at ``stations``)."""
     for q in (Q[0], Q[len(Q) // 2], Q[-1]):
         _check_state(sysm, q)
     pb = sysm.pb
@@ -506,6 +508,8 @@ def _dynamic_series(sysm: _System, cmd: _Commands, Q: np.ndarray, times: np.ndar
         "tendon_tensions": Ts,
         "length_change": geo.arc_length(qn, pb.s_nodes, quad=sysm.quad) - pb.L,
     }
+    keep = np.unique(np.r_[np.arange(0, times.size - 1, frame_stride(times.size - 1)), times.size - 1])
+    series.update(backbone_series(times[keep], _frame_and_positions(sysm, qn[keep], stations)[0]))
     return T_final, series
 
 
@@ -550,5 +554,6 @@ def _dynamic(sysm: _System, drv: _StaticDriver, load: LoadCase, options: SolverO
     rec_t.append(float(load.duration))
     rec_q.append(q_end.copy())
     times = np.array(rec_t)
-    T_final, series = _dynamic_series(sysm, cmd, np.array(rec_q), times, h)
+    T_final, series = _dynamic_series(sysm, cmd, np.array(rec_q), times, h,
+                                      np.linspace(0.0, sysm.pb.L, options.n_stations))
     return T_final, tendon_it, q_end, times, series

@@ -2,7 +2,8 @@
 
 Every study kind writes the row schema of ``docs/architecture.md`` ("Result table"): the keys
 ``case_id``, ``model``, the case's ``p.*`` parameters, ``status`` (``ok`` | ``failed``),
-``error`` (the reason), ``wall_time`` and the results.  The same rule marks a row failed for
+``error`` (the reason), ``failure`` (why: :data:`~workbench.study.outcomes.FAILURE_KINDS`, empty
+when ok), ``wall_time`` and the results.  The same rule marks a row failed for
 both kinds (:func:`fail_non_finite`): a non-finite number in ``positions``, ``tip_frame``,
 ``length_change``, ``tip_twist``, a ``series.*`` or an ``x.*`` cell, or tendon tensions that are
 partly NaN (all-NaN means "this model predicts no forces", e.g. CC kinematics in length mode).
@@ -30,7 +31,7 @@ def _base_row(case_id: str, model: str, params: Mapping[str, Any], flat: Mapping
 
 def failed_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str], reason: str,
                 wall_time: float = float("nan"), flat: Mapping[str, Any] | None = None,
-                extra: Mapping[str, Any] | None = None) -> list[dict[str, Any]]:
+                extra: Mapping[str, Any] | None = None, failure: str = "model") -> list[dict[str, Any]]:
     """One failed row per model (a case that could not be built, a crashed worker, a failed target).
 
     Parameters
@@ -47,10 +48,12 @@ def failed_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str], 
         ``flatten_params(params)``, when the caller has it already.
     extra : dict, optional
         Further cells of every row (e.g. ``robot_length``).
+    failure : str
+        The ``failure`` cell: one of :data:`~workbench.study.outcomes.FAILURE_KINDS`.
     """
     flat = flatten_params(params) if flat is None else flat
     return [{**_base_row(case_id, m, params, flat), **(extra or {}), "status": "failed", "error": reason,
-             "wall_time": wall_time} for m in models]
+             "failure": failure, "wall_time": wall_time} for m in models]
 
 
 def _not_finite(cell: Any) -> bool:
@@ -85,6 +88,7 @@ def fail_non_finite(row: dict[str, Any]) -> dict[str, Any]:
         if bad:
             row["status"] = "failed"
             row["error"] = f"non-finite result in {', '.join(bad)}"
+            row["failure"] = "model"
     return row
 
 
@@ -92,6 +96,14 @@ def _arr(x) -> list[float] | None:
     if x is None:
         return None
     return np.asarray(x, dtype=float).reshape(-1).tolist()
+
+
+def _tip_world(T: np.ndarray, robot) -> dict[str, float]:
+    """``tip_world_x/y/z``: the tip position in the world frame (``robot.base_rotation``/``base_position``)."""
+    from ..robot.frames import base_points_to_world
+
+    w = base_points_to_world(T[:3, 3], robot.base_rotation, robot.base_position)
+    return {"tip_world_x": float(w[0]), "tip_world_y": float(w[1]), "tip_world_z": float(w[2])}
 
 
 def row_from_result(res, case_id: str, model: str, params: Mapping[str, Any], robot,
@@ -107,10 +119,12 @@ def row_from_result(res, case_id: str, model: str, params: Mapping[str, Any], ro
         **_base_row(case_id, model, params, flat),
         "status": "ok",
         "error": "",
+        "failure": "",
         "wall_time": float(wall_time),
         "robot_length": float(robot.length),
         "robot_gravity": float(np.linalg.norm(robot.gravity)),
-        "tip_x": float(T[0, 3]), "tip_y": float(T[1, 3]), "tip_z": float(T[2, 3]),
+        "tip_x": float(T[0, 3]), "tip_y": float(T[1, 3]), "tip_z": float(T[2, 3]),  # base frame
+        **_tip_world(T, robot),
         "tip_frame": _arr(T),
         "length_change": float(res.length_change),
         "tip_twist": float(res.tip_twist),
@@ -137,4 +151,5 @@ def row_from_result(res, case_id: str, model: str, params: Mapping[str, Any], ro
     if row["status"] == "ok" and not res.solver.converged:
         row["status"] = "failed"
         row["error"] = f"not converged: {res.solver.message}".rstrip(": ")
+        row["failure"] = "model"
     return row

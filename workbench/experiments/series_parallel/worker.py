@@ -21,7 +21,8 @@ Models (one row each, the row schema of ``docs/architecture.md``):
 ``positions`` are the base origin followed by the platform origins (base frame, [m]); ``stations``
 the nominal arc lengths ``k h``; ``robot_length = n h``; ``length_change`` the change of the
 polyline (arc, for ``cc_fit``) length through those points; ``tip_twist`` the twist of the top
-platform about the base z axis (swing-twist decomposition) [rad].  Non-finite results fail a row
+platform about the base z axis (swing-twist decomposition) [rad]; ``legs`` (series_parallel rows) the
+FK leg centrelines (n, 6, N+1, 3) [m], base frame.  Non-finite results fail a row
 by the rule of every study kind (:func:`workbench.study.rows.fail_non_finite`).  Was
 ``workbench/motion/worker.py``.
 
@@ -41,7 +42,8 @@ from ...study.params import flatten_params
 from ...study.rows import fail_non_finite, failed_rows
 from .backbone import CURVE_SHAPES, backbone_errors
 
-__all__ = ["stack_targets", "module_target", "evaluate_motion_case", "evaluate_motion_batch", "MODELS"]
+__all__ = ["stack_targets", "module_target", "evaluate_motion_case", "evaluate_motion_batch", "evaluate_motion_rows",
+           "MODELS"]
 
 MODELS = ("target", "series_parallel", "cc_fit")
 
@@ -251,8 +253,10 @@ def _physics_row(row: dict[str, Any], state: dict[str, Any], geo, targets: np.nd
         m = state["motion"]
         extras.update(backbone_errors(stack_targets, m["shape"], m["value"], n, h, m["plane"], fk.leg_positions,
                                       fk.poses[:, :3, 3]))
+    legs = np.asarray(fk.leg_positions, dtype=float)  # (n, 6, N+1, 3): the report draws Huang's Figs 6 and 10
     row.update(status="ok", error="", wall_time=time.perf_counter() - t0, converged=True,
-               iterations=ik_its + int(fk.iterations), **extras, **_shape_row(fk.poses, h))
+               iterations=ik_its + int(fk.iterations), **extras, **_shape_row(fk.poses, h),
+               legs=legs.reshape(-1).tolist(), _shapes={"legs": [-1, 6, legs.shape[2], 3]})
 
 
 def _series_parallel_row(base: Mapping[str, Any], geo, targets: np.ndarray, sol: Mapping[str, Any], n: int,
@@ -330,5 +334,10 @@ def evaluate_motion_case(case_id: str, params: Mapping[str, Any]) -> list[dict[s
 
 
 def evaluate_motion_batch(batch: list[tuple[str, Mapping[str, Any]]]) -> list[list[dict[str, Any]]]:
-    """Executor entry point: a list of ``(case_id, params)`` -> one row list per case."""
+    """A list of ``(case_id, params)`` -> one row list per case."""
     return [evaluate_motion_case(cid, p) for cid, p in batch]
+
+
+def evaluate_motion_rows(payload: tuple[str, Mapping[str, Any]]) -> list[dict[str, Any]]:
+    """The kind's task: the three rows of one case ``payload = (case_id, params)``."""
+    return evaluate_motion_case(*payload)
