@@ -24,9 +24,10 @@ from typing import Any, Callable, Sequence
 from ...study.expand import Case, expand
 from ...study.build import parameters_as_run
 from ...study.messages import StudyError, read_toml
+from ...study.outcomes import CaseLimits
 from ...study.params import canonical_json
 from ...study.spec import Study, parse_study
-from .worker import CLOSED_SUFFIX, PLAN, evaluate_closed_loop_batch, row_models
+from .worker import CLOSED_SUFFIX, PLAN, evaluate_closed_loop_rows, row_models
 
 __all__ = ["KIND", "KIND_NAME", "ClosedLoopKind", "ClosedLoopStudy", "load_closed_loop_study"]
 
@@ -105,7 +106,8 @@ class ClosedLoopKind:
 
     name = KIND_NAME
     flush_rows = 64
-    task = staticmethod(evaluate_closed_loop_batch)
+    separable_models = False  # the plan row and the loops of a case come from one controller run
+    task = staticmethod(evaluate_closed_loop_rows)
 
     def load(self, path: str | Path, max_cases: int | None = None) -> ClosedLoopStudy:
         return load_closed_loop_study(path, max_cases=max_cases)
@@ -131,8 +133,12 @@ class ClosedLoopKind:
     def batch_size(self, n_cases: int, slots: int) -> int:
         return 1
 
-    def payload(self, spec: ClosedLoopStudy, cases: Sequence[Case], options: Callable | None) -> tuple:
-        return [(c.case_id, c.params) for c in cases], spec.plants, options
+    def payload(self, spec: ClosedLoopStudy, case: Case, models: Sequence[str], options: Callable | None) -> tuple:
+        """``(case_id, params, plants, model_lookup)``: a case is computed whole, whatever ``models`` says."""
+        return case.case_id, case.params, spec.plants, options
+
+    def limits(self, spec: ClosedLoopStudy) -> CaseLimits:
+        return spec.study.limits
 
 
 #: The closed-loop study kind (``registry.KINDS["closed_loop"]``).

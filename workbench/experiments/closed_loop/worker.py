@@ -39,7 +39,7 @@ from .controller import ControllerSettings, LoopTrace, cc_plan, run_closed_loop,
 from .plants import cc_result, hw_cable_map, model_plant
 from .scenario import CONTROLLER_KEYS, joint_count, loop_path, null_space_target
 
-__all__ = ["PLAN", "CLOSED_SUFFIX", "row_models", "evaluate_closed_loop_case", "evaluate_closed_loop_batch"]
+__all__ = ["PLAN", "CLOSED_SUFFIX", "row_models", "evaluate_closed_loop_case", "evaluate_closed_loop_rows"]
 
 PLAN = "plan"
 CLOSED_SUFFIX = "_closed_loop"
@@ -156,7 +156,7 @@ def evaluate_closed_loop_case(case_id: str, params: Mapping[str, Any], plants: S
     return rows
 
 
-def evaluate_closed_loop_batch(batch: tuple) -> list[list[dict[str, Any]]]:
-    """Executor entry point: ``(cases, plants, model_lookup)`` -> one row list per case."""
-    cases, plants, model_lookup = batch
-    return [evaluate_closed_loop_case(cid, p, plants, model_lookup) for cid, p in cases]
+def evaluate_closed_loop_rows(payload: tuple) -> list[dict[str, Any]]:
+    """The kind's task: ``(case_id, params, plants, model_lookup)`` -> the rows of that case."""
+    case_id, params, plants, model_lookup = payload
+    return evaluate_closed_loop_case(case_id, params, plants, model_lookup)
