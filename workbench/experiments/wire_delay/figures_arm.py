@@ -121,6 +121,8 @@ def _findings(ok: pd.DataFrame, series: dict) -> list[str]:
                         f"({fmt(1e3 * s['tip_error'][-1])} mm at the end)")
             if "upper_tension" in s:
                 txt += f", upper wires up to {fmt(s['upper_tension'].max())} N"
+            if passive == "slack" and r["model"] == "cc":
+                txt += " (CC has no slack wire: it reads the paid-out length as a bend, not a prediction)"
             out.append(txt)
     return out
 
