@@ -173,3 +173,17 @@ def test_matches_only_spatial_scenario_studies():
     ok = pd.DataFrame({"model": ["cc"], "p.scenario.name": ["hannan_walker_spatial"]})
     assert matches(SimpleNamespace(ok=ok))
     assert not matches(SimpleNamespace(ok=ok.assign(**{"p.scenario.name": ["hannan_walker_line"]})))
+
+
+def test_study_file_loads_with_signed_gravity_directions(tmp_path):
+    """A direction vector's components have either sign; gravity's magnitude must still be >= 0."""
+    from pathlib import Path
+
+    from workbench.study import StudyError, load_study
+
+    study = Path(__file__).resolve().parents[2] / "studies" / "hannan_walker_3d.toml"
+    assert load_study(study).name == "hannan_walker_3d"
+    bad = tmp_path / "bad.toml"
+    bad.write_text(study.read_text().replace('"robot.gravity" = 9.81', '"robot.gravity" = -9.81', 1))
+    with pytest.raises(StudyError, match=r"robot.gravity.*must be >= 0"):
+        load_study(bad)
