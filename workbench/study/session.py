@@ -301,6 +301,8 @@ class RunSession:
                    "study_file": spec.path}
         if plan.retried:
             run_rec["retried"] = plan.retried
+        if getattr(spec, "overrides", ()):
+            run_rec["overrides"] = list(spec.overrides)
         if changes:
             run_rec["changed"] = changes
             manifest["study"] = {**manifest["study"], "study": {**manifest["study"].get("study", {}),
