@@ -2,8 +2,8 @@
 
 ::
 
-    workbench run STUDY.toml [--out DIR] [--workers N | --scheduler ADDR | --in-process]
-                             [--resume [--retry-failed]] [--no-report] [--max-cases N]
+    workbench run STUDY.toml [--out DIR] [--workers N | --scheduler ADDR | --in-process | --cluster KIND]
+                             [--resume [--retry-failed]] [--no-report] [--max-cases N] [--dry-run]
     workbench show DIR
     workbench validate STUDY.toml
     workbench report DIR [--out DIR] [--formats png,svg]
@@ -15,7 +15,9 @@ restarted if a case crashes it or runs past ``[solver] max_case_seconds``; ``--w
 starts a Dask ``LocalCluster`` with N worker processes inside the command; ``--scheduler
 tcp://host:8786`` uses a running Dask cluster (its workers must have the same workbench
 installed; the address is checked before anything is written); ``--in-process`` runs in this
-process: the debugging executor, without isolation.
+process: the debugging executor, without isolation; ``--cluster slurm|pbs|sge|lsf`` submits the
+workers as batch jobs through dask-jobqueue (job options: :mod:`workbench.study.cluster_command`;
+a job the batch system refuses is bad input, exit 2; a queue that starts no job, exit 3).
 
 The report of a run goes to ``reports/<name of the data folder>/`` (``--out data/x2`` ->
 ``reports/x2/``), so two runs never overwrite each other's report.
@@ -43,6 +45,7 @@ from pathlib import Path
 from typing import Sequence
 
 from .report.command import add_report_arguments, report_command
+from .study.cluster_command import add_cluster_arguments
 
 __all__ = ["EXIT_CODES", "main"]
 
@@ -102,6 +105,7 @@ def _parser() -> argparse.ArgumentParser:
     ex.add_argument("--in-process", action="store_true",
                     help="run cases in this process: the debugging executor, without isolation (a crashing "
                          "case ends the command)")
+    add_cluster_arguments(r, ex)
     r.add_argument("--resume", action="store_true",
                    help="continue a run: compute what is not stored; retries cases that failed for "
                         "infrastructure reasons (timeout, memory, killed, lost)")
@@ -300,11 +304,15 @@ def _check_out(folder: Path) -> str | None:
     return None
 
 
-def _executor(args):
+def _executor(args, cluster=None):
     """The executor the options ask for, or the one-line problem with them."""
     from .study import DaskExecutor, IsolatedExecutor, SerialExecutor
     from .study.executors import check_scheduler_address
 
+    if cluster is not None:
+        from .study.cluster import JobQueueExecutor
+
+        return JobQueueExecutor(cluster), None
     if args.workers is not None and args.workers < 1:
         return None, f"--workers: must be >= 1, got {args.workers}"
     if args.scheduler:
@@ -363,10 +371,30 @@ def _run(args) -> tuple[int, Path | None]:
         return 2, None
     folder = Path(args.out) if args.out is not None else Path("data") / study.name
     problem = _check_out(folder)
-    executor, exec_problem = _executor(args)
+    from .study.cluster_command import cluster_from_args, dry_run_text
+
+    try:
+        cluster = cluster_from_args(args)
+    except StudyError as e:
+        _err(e.problems)
+        return 2, None
+    executor, exec_problem = _executor(args, cluster)
     if problem or exec_problem:
         _err([problem or exec_problem])
         return 2, None
+    if args.dry_run:
+        n = len(kind.expand(study))
+        name = getattr(executor, "name", type(executor).__name__)
+        print(dry_run_text(study.name, n, kind.models(study), folder, name, cluster,
+                           kind.limits(study) if hasattr(kind, "limits") else None,
+                           kind.batch_size(n, getattr(executor, "slots", 1))))
+        return 0, None
+    if cluster is not None:
+        try:
+            executor.preflight()  # a refused job fails here, before the result folder exists
+        except ExecutorStartError as e:
+            _err([str(e)])
+            return 2, None
     if args.in_process and sys.stderr.isatty():  # (the manifest and `show` name the executor too)
         _err(["--in-process: cases run in this process without isolation (the debugging executor): a case that "
               "crashes ends the command (the cases before it are stored), the time limit interrupts Python code only"])

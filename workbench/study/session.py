@@ -53,7 +53,7 @@ __all__ = ["RunSession", "Unit", "finish_run", "git_commit", "open_run_manifest"
            "presentation_changes", "read_manifest", "study_name"]
 
 _PACKAGES = ("trunk-workbench", "exudyn", "numpy", "scipy", "pandas", "pyarrow", "dask",
-             "distributed", "pydantic", "tqdm")
+             "distributed", "dask-jobqueue", "pydantic", "tqdm")
 
 
 def _now() -> str:
