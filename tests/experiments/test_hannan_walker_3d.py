@@ -181,9 +181,10 @@ def test_study_file_loads_with_signed_gravity_directions(tmp_path):
 
     from workbench.study import StudyError, load_study
 
-    study = Path(__file__).resolve().parents[2] / "studies" / "hannan_walker_3d.toml"
-    assert load_study(study).name == "hannan_walker_3d"
+    study = Path(__file__).resolve().parents[2] / "tests" / "regression" / "studies" / "hannan_walker_3d.toml"
+    assert load_study(study).name == "hannan_walker_3d"  # 2 cases: the full study is checked in tests/study
     bad = tmp_path / "bad.toml"
-    bad.write_text(study.read_text().replace('"robot.gravity" = 9.81', '"robot.gravity" = -9.81', 1))
+    bad.write_text(study.read_text().replace('"robot.base_orientation" = "vertical",',
+                                             '"robot.gravity" = -9.81, "robot.base_orientation" = "vertical",', 1))
     with pytest.raises(StudyError, match=r"robot.gravity.*must be >= 0"):
         load_study(bad)
