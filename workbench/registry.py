@@ -119,6 +119,11 @@ MODELS: Mapping[str, ModelInfo] = {
         tendon_models=("continuum",), spatial_length_tendon_models=("continuum",), analyses=("static",),
         note="Cosserat rod with continuously routed tendons (Rucker & Webster 2011), shooting with scipy; "
              "static only; accuracy from newton_tolerance, n_elements unused")),
+    "spring_link_cardan": ModelInfo("workbench.physics.spring_link.cardan:run", "spring-link, 2-DOF joints",
+                                    "#17becf", Capabilities(
+        spatial_length_tendon_models=("eyelets",),
+        note="3-D chain of Cardan (two-DOF, torsion-locked) joints, Hannan & Walker's robot; refuses states "
+             "with cable strain > 2 % (folded branches)")),
     # planar ANCF with a rigid circle (without an object: equal to ancf with continuum tendons)
     "contact": ModelInfo("workbench.physics.contact:run", "ANCF + contact", "#ff7f0e", Capabilities(
         dimensions=("planar",), actuation=("tension",), tendon_models=("continuum",),
@@ -128,6 +133,11 @@ MODELS: Mapping[str, ModelInfo] = {
              "tension mode, static only, no tip force or torque")),
     # rows of the series-parallel study kind (not run(robot, load, options) models)
     "series_parallel": ModelInfo(None, "series-parallel"),
+    # rows of the closed-loop study kind: the controller's CC plan, the closed loop on a plant
+    "plan": ModelInfo(None, "CC plan (open loop)", "#7f7f7f"),
+    "spring_link_closed_loop": ModelInfo(None, "spring-link, closed loop", "#98df8a"),
+    "ancf_closed_loop": ModelInfo(None, "ANCF, closed loop", "#aec7e8"),
+    "cc_closed_loop": ModelInfo(None, "CC tendon map, closed loop", "#c7c7c7"),
 }
 
 PRESETS: Mapping[str, str] = {
@@ -135,6 +145,7 @@ PRESETS: Mapping[str, str] = {
     "hannan_walker": "workbench.robot.presets.hannan_walker:hannan_walker",
     "cojocaru_tronconic": "workbench.robot.presets.cojocaru:cojocaru_tronconic",
     "shao_harvester": "workbench.robot.presets.shao:shao_harvester",
+    "hannan_walker_3d": "workbench.robot.presets.hannan_walker_3d:hannan_walker_3d",
 }
 
 #: ``[scenario] name`` -> function ``(robot, **parameters) -> load fields``.
@@ -143,6 +154,9 @@ SCENARIOS: Mapping[str, str] = {
     "hannan_walker_line": "workbench.experiments.hannan_walker.scenario:hannan_walker_line",
     "whole_arm_wrap": "workbench.experiments.whole_arm_grasp.scenario:whole_arm_wrap",
     "harvester_scoop": "workbench.experiments.fruit_harvester.scoop:harvester_scoop",
+    "hannan_walker_spatial": "workbench.experiments.hannan_walker.scenario:hannan_walker_spatial",
+    "closed_loop": "workbench.experiments.closed_loop.scenario:closed_loop",
+    "wire_delay_arm": "workbench.experiments.wire_delay.scenario:wire_delay_arm",
 }
 
 #: ``[study] kind`` -> the :class:`~workbench.study.kinds.StudyKind` object that loads, expands and runs it.
@@ -150,16 +164,25 @@ KINDS: Mapping[str, str] = {
     "sweep": "workbench.study.kinds:SWEEP",
     "series_parallel": "workbench.experiments.series_parallel.kind:KIND",
     "grasp": "workbench.experiments.whole_arm_grasp.kind:KIND",
+    "closed_loop": "workbench.experiments.closed_loop.kind:KIND",
 }
 
 #: Study-specific figures, in report order (before the generic figures).
 FIGURES: Mapping[str, FigureSet] = {
+    "wire_delay_arm": FigureSet("workbench.experiments.wire_delay.figures_arm:matches",
+                                "workbench.experiments.wire_delay.figures_arm:figures"),
     "wire_delay": FigureSet("workbench.experiments.wire_delay.figures:matches",
                             "workbench.experiments.wire_delay.figures:figures"),
     "hannan_walker": FigureSet("workbench.experiments.hannan_walker.figures:matches",
                                "workbench.experiments.hannan_walker.figures:figures"),
+    "hannan_walker_3d": FigureSet("workbench.experiments.hannan_walker.figures_3d:matches",
+                                  "workbench.experiments.hannan_walker.figures_3d:figures"),
+    "closed_loop": FigureSet("workbench.experiments.closed_loop.figures:matches",
+                             "workbench.experiments.closed_loop.figures:figures"),
     "fruit_harvester": FigureSet("workbench.experiments.fruit_harvester.figures:matches",
                                  "workbench.experiments.fruit_harvester.figures:figures"),
+    "series_parallel_s_shape": FigureSet("workbench.experiments.series_parallel.figures_s_shape:matches",
+                                         "workbench.experiments.series_parallel.figures_s_shape:figures"),
     "series_parallel": FigureSet("workbench.experiments.series_parallel.figures:matches",
                                  "workbench.experiments.series_parallel.figures:figures"),
     "whole_arm_grasp": FigureSet("workbench.experiments.whole_arm_grasp.figures:matches",

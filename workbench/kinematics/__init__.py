@@ -60,6 +60,7 @@ from .redundancy import (
     follow_path,
     line_path,
     planar_inverse_kinematics,
+    resolved_rate_step,
     spatial_inverse_kinematics,
 )
 from .tendons import (
@@ -91,6 +92,7 @@ __all__ = [
     "spatial_inverse_kinematics",
     "follow_path",
     "line_path",
+    "resolved_rate_step",
     "tendon_lengths_from_arc",
     "arc_from_tendon_lengths",
     "tendon_lengths_from_arcs",

@@ -37,6 +37,7 @@ __all__ = [
     "spatial_inverse_kinematics",
     "follow_path",
     "line_path",
+    "resolved_rate_step",
 ]
 
 
@@ -110,6 +111,37 @@ def _dls_step(J, e, tol_rel, null_vec):
     Vr = Vt[:rank]
     dq_null = null_vec - Vr.T @ (Vr @ null_vec)
     return dq_task, dq_null
+
+
+def resolved_rate_step(J, error, null_vector=None, singular_threshold: float = 1e-2) -> tuple[np.ndarray, np.ndarray]:
+    """One step of Eq. 11: the damped primary step ``J^# error`` and the null-space projection.
+
+    Parameters
+    ----------
+    J : array_like, shape (t, v)
+        Task Jacobian at the current configuration.
+    error : array_like, shape (t,)
+        Task-space correction to aim at (Eq. 11: ``xdot_d - H1 (x - x_d)``) [m].
+    null_vector : array_like, shape (v,), optional
+        Secondary-task direction (Eq. 11: ``-H2 k (q - q_d)``); default none.
+    singular_threshold : float
+        The damping switches on below ``singular_threshold * s_max`` (module docstring).
+
+    Returns
+    -------
+    dq_task, dq_null : ndarray, shape (v,)
+        ``J^# error`` and ``(I - J^+ J) null_vector``; their sum is the step.  The loops of
+        :func:`planar_inverse_kinematics` take exactly these steps (``tests/kinematics``).
+    """
+    J = as_float("J", J)
+    e = as_float("error", error)
+    if J.ndim != 2 or e.shape != (J.shape[0],):
+        raise ValueError(f"J must have shape (t, v) and error shape (t,); got {J.shape} and {e.shape}")
+    nv = np.zeros(J.shape[1]) if null_vector is None else as_float("null_vector", null_vector)
+    if nv.shape != (J.shape[1],):
+        raise ValueError(f"null_vector must have shape ({J.shape[1]},), got {nv.shape}")
+    require_positive("singular_threshold", as_float("singular_threshold", singular_threshold))
+    return _dls_step(J, e, float(singular_threshold), nv)
 
 
 def _resolved_rate(

@@ -142,6 +142,8 @@ _ROBOT_UNITS = {"length": "m", "diameter": "m", "offset": "m", "modulus": "Pa", 
 
 
 def _robot_unit(key: str) -> str:
+    if key.endswith("_direction"):  # a direction vector (e.g. gravity_direction): signed, no unit
+        return ""
     for k, u in _ROBOT_UNITS.items():
         if k in key:
             return f" [{u}]"
@@ -170,9 +172,10 @@ def _check_list(key: str, value: Any, default: tuple | list) -> tuple[Any, str |
         v = float(v)
         if not math.isfinite(v):
             return value, f"[{i}] must be finite{u}, got {v}"
-        if _POSITIVE_PAT.search(key) and v <= 0:
+        signed = key.endswith("_direction")  # a direction vector's components have either sign
+        if not signed and _POSITIVE_PAT.search(key) and v <= 0:
             return value, f"[{i}] must be > 0{u}, got {num(v)}"
-        if _NONNEG_PAT.search(key) and v < 0:
+        if not signed and _NONNEG_PAT.search(key) and v < 0:
             return value, f"[{i}] must be >= 0{u}, got {num(v)}"
         out.append(v)
     return out, None

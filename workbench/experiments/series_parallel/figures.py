@@ -82,7 +82,8 @@ def motion_overview_figure(df: pd.DataFrame) -> Figure:
     ax.set_xlabel("motion / Fig 6 amplitude")
     ax.set_ylabel("|FK(IK(T)) - T| [m]")
     ax.set_title("(c) one module: IK->FK round trip\n(x at 1e-17: IK failed)", fontsize=10)
-    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0), frameon=False)
+    if ax.get_legend_handles_labels()[0]:  # a stack-only study has no module motions
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0), frameon=False)
     ax.grid(alpha=0.3)
     return fig
 
@@ -132,7 +133,8 @@ def motion_legs_figure(df: pd.DataFrame) -> tuple[Figure, str]:
     for ax in axs:
         ax.set_xlabel("motion / Fig 6 amplitude")
         ax.grid(alpha=0.3)
-    axs[1].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0), frameon=False)
+    if axs[1].get_legend_handles_labels()[0]:
+        axs[1].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0), frameon=False)
     text = ""
     if np.isfinite(worst_ratio[0]):
         text = (f" Largest leg compression: {worst_ratio[0]:.2f} x the clamped-clamped Euler load of a straight rod of "

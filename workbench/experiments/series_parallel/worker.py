@@ -11,7 +11,9 @@ Models (one row each, the row schema of ``docs/architecture.md``):
     FK platform poses, ``x.L<k>_<i>`` the insertion lengths [m] of leg i of module k, the IK
     residual, the FK-vs-target errors, the largest leg compression (``x.max_leg_compression`` [N],
     ``x.buckling_ratio``) and ``x.min_leg_gap``, the smallest surface gap between two legs of a
-    module in the FK state [m] (negative: the rods would intersect; contact is not modelled).  A failed IK or FK is a failed row with the reason.
+    module in the FK state [m] (negative: the rods would intersect; contact is not modelled); for
+    ``bending`` / ``s_shape`` stacks ``x.backbone_max_error``, ``x.backbone_rms_error`` and
+    ``x.polygon_max_error`` (:mod:`.backbone`).  A failed IK or FK is a failed row with the reason.
 ``cc_fit``
     The constant-curvature arc from the base, fitted through the FK platform origins
     (:func:`fit_constant_curvature`); ``x.cc_*`` its curvature, plane and fit errors.
@@ -38,6 +40,7 @@ import numpy as np
 
 from ...study.params import flatten_params
 from ...study.rows import fail_non_finite, failed_rows
+from .backbone import CURVE_SHAPES, backbone_errors
 
 __all__ = ["stack_targets", "module_target", "evaluate_motion_case", "evaluate_motion_batch", "evaluate_motion_rows",
            "MODELS"]
@@ -246,6 +249,10 @@ def _physics_row(row: dict[str, Any], state: dict[str, Any], geo, targets: np.nd
         return
     state["fk_poses"] = fk.poses  # kept for the CC fit even if what follows raises
     extras.update(_fk_errors(geo, fk, targets, n))
+    if state.get("motion", {}).get("shape") in CURVE_SHAPES:  # stacks: distance from the commanded curve
+        m = state["motion"]
+        extras.update(backbone_errors(stack_targets, m["shape"], m["value"], n, h, m["plane"], fk.leg_positions,
+                                      fk.poses[:, :3, 3]))
     legs = np.asarray(fk.leg_positions, dtype=float)  # (n, 6, N+1, 3): the report draws Huang's Figs 6 and 10
     row.update(status="ok", error="", wall_time=time.perf_counter() - t0, converged=True,
                iterations=ik_its + int(fk.iterations), **extras, **_shape_row(fk.poses, h),
@@ -253,11 +260,11 @@ def _physics_row(row: dict[str, Any], state: dict[str, Any], geo, targets: np.nd
 
 
 def _series_parallel_row(base: Mapping[str, Any], geo, targets: np.ndarray, sol: Mapping[str, Any], n: int,
-                         h: float) -> tuple[dict[str, Any], np.ndarray | None]:
+                         h: float, motion: Mapping[str, Any] | None = None) -> tuple[dict[str, Any], np.ndarray | None]:
     """The ``series_parallel`` row (any exception: a failed row with its reason) and the FK poses."""
     t0 = time.perf_counter()
     row = {**base, "model": "series_parallel"}
-    state: dict[str, Any] = {}
+    state: dict[str, Any] = {"motion": dict(motion) if motion is not None and motion.get("kind") == "stack" else {}}
     try:
         _physics_row(row, state, geo, targets, sol, n, h, t0)
     except Exception as e:  # noqa: BLE001
@@ -320,7 +327,7 @@ def evaluate_motion_case(case_id: str, params: Mapping[str, Any]) -> list[dict[s
                            extra=cells)
     rows = [{**base, "model": "target", "status": "ok", "error": "", "wall_time": time.perf_counter() - t0,
              "converged": True, "iterations": 0, **_shape_row(targets, h)}]
-    sp, fk_poses = _series_parallel_row(base, geo, targets, sol, n, h)
+    sp, fk_poses = _series_parallel_row(base, geo, targets, sol, n, h, m)
     rows.append(fail_non_finite(sp))
     rows.append(fail_non_finite(_cc_fit_row(base, fk_poses, n, h)))
     return rows

@@ -14,7 +14,7 @@ from typing import Any
 
 from .analysis import wire_delay_commands
 
-__all__ = ["wire_delay"]
+__all__ = ["wire_delay", "wire_delay_arm"]
 
 
 def wire_delay(
@@ -67,6 +67,56 @@ def wire_delay(
         raise ValueError(f"scenario wire_delay: delayed_wire must be 0, 1 or 2, got {delayed_wire!r}")
     cmd = wire_delay_commands(robot, theta=theta, alpha=alpha, move_time=move_time, delay=delay,
                               delayed_wire=delayed_wire)
+    return {
+        "mode": "length",
+        "length_changes": [float(v) for v in cmd.length_changes],
+        "start_delays": list(cmd.start_delays),
+        "ramp_durations": list(cmd.ramp_durations),
+        "analysis": "dynamic",
+        "duration": float(delay + move_time + settle_time),
+        "ramp_time": float(move_time),
+    }
+
+
+def wire_delay_arm(
+    robot,
+    *,
+    theta: float = math.pi / 4,
+    alpha: float = math.pi / 4,
+    move_time: float = 4.0,
+    delay: float = 0.0,
+    delayed_wire: int = 0,
+    settle_time: float = 1.0,
+    passive: str = "held",
+    slack_margin: float = 2e-3,
+) -> dict[str, Any]:
+    """Cojocaru's wire-delay move of the first section of the whole arm, the upper sections passive.
+
+    Section 1's three wires make the move of :func:`wire_delay` (constant speed to ``(theta,
+    alpha)`` in ``move_time``, wire ``delayed_wire`` ``delay`` s late); the upper sections' wires
+    follow ``passive`` (:mod:`.arm`: ``"held"`` at their length, the decoupled command;
+    ``"compensated"`` by their path change through section 1; ``"slack"`` paid out by
+    ``slack_margin`` [m] beyond it).  Simulated time ``delay + move_time + settle_time``.
+
+    Returns
+    -------
+    dict
+        ``mode = "length"``, ``length_changes``, ``start_delays``, ``ramp_durations`` (n_tendons,),
+        ``analysis = "dynamic"``, ``duration`` [s], ``ramp_time`` [s].
+    """
+    from .arm import arm_commands
+
+    if not (move_time > 0 and delay >= 0 and settle_time >= 0 and 0 <= theta < math.pi and slack_margin > 0):
+        raise ValueError(f"scenario wire_delay_arm needs move_time > 0, delay >= 0, settle_time >= 0, "
+                         f"0 <= theta < pi, slack_margin > 0; got {move_time}, {delay}, {settle_time}, {theta}, "
+                         f"{slack_margin}")
+    if delayed_wire not in (0, 1, 2):
+        raise ValueError(f"scenario wire_delay_arm: delayed_wire must be 0, 1 or 2, got {delayed_wire!r}")
+    try:
+        cmd = arm_commands(robot, theta=theta, alpha=alpha, move_time=move_time, delay=delay,
+                           delayed_wire=delayed_wire, passive=passive, slack_margin=slack_margin)
+    except ValueError as e:
+        raise ValueError(f"scenario wire_delay_arm: {e}") from None
     return {
         "mode": "length",
         "length_changes": [float(v) for v in cmd.length_changes],

@@ -1,0 +1,77 @@
+"""Hannan & Walker's trunk as built: 16 two-DOF joints (32 DOF), 16 cables, gravity in any direction.
+
+The paper's robot (papers/000_, Sec. 3) has 16 two-DOF joints in 4 sections and, per section, two
+antagonistic cable pairs 90 degrees apart terminating on the section's last segment: 16 cables.
+This preset is the spatial counterpart of :func:`.hannan_walker.hannan_walker` (the planar
+experiments' 8-cable reading): the same sections, springs, masses and cable offsets (every assumed
+value documented there), all four cables per section (sigma = 0, pi/2, pi, 3pi/2), and gravity
+along any direction ``gravity_direction`` of the world frame.
+
+The joints' two degrees of freedom are a property of the model, not of the description: the
+Exudyn chain of two-DOF (Cardan, torsion-locked) joints is the registered model
+``spring_link_cardan`` (:mod:`workbench.physics.spring_link.cardan`).  Checked by
+``tests/experiments/test_hannan_walker_3d.py``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from typing import Sequence
+
+from ..description import Robot
+from .hannan_walker import HW_DIAMETERS, HW_TOTAL_LENGTH, hannan_walker
+
+__all__ = ["hannan_walker_3d"]
+
+
+def _direction(values: Sequence[float]) -> tuple[float, float, float]:
+    v = tuple(float(x) for x in values)
+    n = math.sqrt(sum(x * x for x in v)) if len(v) == 3 and all(math.isfinite(x) for x in v) else 0.0
+    if len(v) != 3 or not n > 0:
+        raise ValueError(f"gravity_direction must be 3 finite numbers, not all zero (world frame), got {list(values)}")
+    return (v[0] / n, v[1] / n, v[2] / n)
+
+
+def hannan_walker_3d(
+    *,
+    total_length: float = HW_TOTAL_LENGTH,
+    diameters: Sequence[float] = HW_DIAMETERS,
+    joint_stiffness: Sequence[float] = (120.0, 80.0, 50.0, 25.0),
+    section_masses: Sequence[float] = (0.8, 0.6, 0.45, 0.3),
+    tendon_stiffness: float = 1.6e5,
+    gravity: float = 9.81,
+    gravity_direction: Sequence[float] = (0.0, 0.0, -1.0),
+    base_orientation: str = "vertical",
+    payload_mass: float = 0.0,
+    axial_stiffness: float = 1.0e7,
+) -> Robot:
+    """The 32-DOF, 16-cable Hannan & Walker trunk.
+
+    Parameters
+    ----------
+    total_length, diameters, joint_stiffness, section_masses, tendon_stiffness, payload_mass, axial_stiffness
+        As in :func:`.hannan_walker.hannan_walker` (the paper's length and diameters; assumed
+        springs, masses and cable stiffness).
+    gravity : float
+        Magnitude of gravity [m/s^2].
+    gravity_direction : sequence of 3 float
+        Direction of gravity in the **world** frame (normalised here; default world -z).  With
+        ``base_orientation`` it sets gravity in the base frame, e.g. ``"horizontal"`` and
+        ``(0, 1, -1)`` is a horizontal trunk with gravity at 45 degrees to both cable planes.
+    base_orientation : {"vertical", "horizontal", "upside_down"}
+        Mounting (see :func:`~workbench.robot.orientation.base_rotation_for`).
+
+    Returns
+    -------
+    Robot
+        Four sections of four joints, four cables per section at the segment radius (tendon
+        table order per section: sigma = 0, pi/2, pi, 3pi/2), name ``"hannan_walker_3d"``.
+    """
+    d = _direction(gravity_direction)
+    robot = hannan_walker(total_length=total_length, diameters=diameters, joint_stiffness=joint_stiffness,
+                          section_masses=section_masses, tendon_stiffness=tendon_stiffness, planar=False,
+                          gravity=gravity, base_orientation=base_orientation, payload_mass=payload_mass,
+                          axial_stiffness=axial_stiffness)
+    g = float(gravity)
+    return replace(robot, gravity=(g * d[0], g * d[1], g * d[2]), name="hannan_walker_3d")
