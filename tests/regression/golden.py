@@ -39,6 +39,13 @@ RESULT_COLUMNS = ("tip_x", "tip_y", "tip_z", "length_change", "tip_twist", "max_
 _FLOAT_FORMAT = "%.12e"
 
 
+#: Small studies too slow for the default run (stem -> why): their regression and browser tests are
+#: marked ``slow`` (``pytest -m slow`` or ``-m regression`` runs them).
+SLOW_SMALL_STUDIES = {
+    "wire_delay_arm": "beam3d dynamics of the three-section arm: 60-170 s even at regression size",
+}
+
+
 def small_study_paths() -> list[Path]:
     """The small studies, sorted by stem."""
     return sorted(STUDIES_DIR.glob("*.toml"))

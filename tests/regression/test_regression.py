@@ -5,14 +5,19 @@ from __future__ import annotations
 import pytest
 
 from tests.regression.golden import (
-    GOLDEN_DIR, compare_to_golden, golden_frame, load_tolerances, read_golden, small_study_paths, tolerances_for,
+    GOLDEN_DIR, SLOW_SMALL_STUDIES, compare_to_golden, golden_frame, load_tolerances, read_golden, small_study_paths,
+    tolerances_for,
 )
 from workbench.study import read_table
 
 pytestmark = pytest.mark.regression
 
 
-@pytest.mark.parametrize("path", small_study_paths(), ids=lambda p: p.stem)
+PATHS = [pytest.param(p, id=p.stem, marks=[pytest.mark.slow] if p.stem in SLOW_SMALL_STUDIES else [])
+         for p in small_study_paths()]
+
+
+@pytest.mark.parametrize("path", PATHS)
 def test_small_study_matches_golden(path, small_study_run):
     golden_path = GOLDEN_DIR / f"{path.stem}.csv"
     assert golden_path.exists(), f"no golden for {path.stem}: run python -m tests.regression.bless {path.stem}"

@@ -17,18 +17,19 @@ import pandas as pd
 import pytest
 
 from browser import CHROMIUM, open_report
-from tests.regression.golden import small_study_paths
+from tests.regression.golden import SLOW_SMALL_STUDIES, small_study_paths
 from workbench.report import build_report
 
 ROOT = Path(__file__).resolve().parents[2]
 ARTIFACTS = Path(os.environ.get("WORKBENCH_ARTIFACTS", ROOT / "build" / "artifacts")) / "browser"
-STUDIES = small_study_paths() + [ROOT / "studies" / "example.toml"]
+STUDIES = [pytest.param(p, id=p.stem, marks=[pytest.mark.slow] if p.stem in SLOW_SMALL_STUDIES else [])
+           for p in small_study_paths() + [ROOT / "studies" / "example.toml"]]
 
 
 @pytest.mark.browser
 @pytest.mark.regression
 @pytest.mark.skipif(CHROMIUM is None, reason="headless Chromium not installed (apt-get install chromium)")
-@pytest.mark.parametrize("study", STUDIES, ids=lambda p: p.stem)
+@pytest.mark.parametrize("study", STUDIES)
 def test_committed_study_report_works_in_chromium(study, tmp_path, small_study_run):
     data = small_study_run(study)  # the regression tier's run of the same study
     page = build_report(data, tmp_path / "reports" / study.stem, formats=())
