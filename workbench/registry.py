@@ -31,11 +31,17 @@ class ModelInfo:
         Name in figures and tables.
     color : str or None
         Line colour in figures (``None``: a fallback colour is picked per report).
+    order : float or None
+        Convergence order of the model's discretisation error in the element / link count
+        (measured by its validation tests, ``docs/models.md``); the discretisation-error estimate
+        of the study pipeline uses it (:mod:`workbench.models.discretization`).  ``None``: no
+        discretisation (CC) or not declared.
     """
 
     target: str | None
     label: str
     color: str | None = None
+    order: float | None = None
 
 
 @dataclass(frozen=True)
@@ -48,12 +54,15 @@ class FigureSet:
 
 MODELS: Mapping[str, ModelInfo] = {
     "cc": ModelInfo("workbench.models.cc:run", "CC", "#222222"),
-    "ancf": ModelInfo("workbench.physics.ancf:run", "ANCF", "#1f77b4"),
-    "beam3d": ModelInfo("workbench.physics.beam3d:run", "GE beam", "#d62728"),
-    "ancf3d": ModelInfo("workbench.physics.ancf3d:run", "ANCF 3-D", "#9467bd"),
-    "spring_link": ModelInfo("workbench.physics.spring_link:run", "spring-link", "#2ca02c"),
-    # rows of the series-parallel study kind (not run(robot, load, options) models)
-    "series_parallel": ModelInfo(None, "series-parallel"),
+    # orders: measured on the tip-load elastica and the pure-moment arc (tests/models/test_discretization.py):
+    # ancf and ancf3d (cubic Hermite cables) ~4, beam3d 2, spring_link 2
+    "ancf": ModelInfo("workbench.physics.ancf:run", "ANCF", "#1f77b4", order=4.0),
+    "beam3d": ModelInfo("workbench.physics.beam3d:run", "GE beam", "#d62728", order=2.0),
+    "ancf3d": ModelInfo("workbench.physics.ancf3d:run", "ANCF 3-D", "#9467bd", order=4.0),
+    "spring_link": ModelInfo("workbench.physics.spring_link:run", "spring-link", "#2ca02c", order=2.0),
+    # rows of the series-parallel study kind (not run(robot, load, options) models); its GE-beam
+    # legs converge at order 2 (test_series_parallel.py, against the Cosserat shooting solver)
+    "series_parallel": ModelInfo(None, "series-parallel", order=2.0),
 }
 
 PRESETS: Mapping[str, str] = {

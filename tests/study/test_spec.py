@@ -86,7 +86,7 @@ def test_solver_section_mirrors_solver_options():
     fields = {f.name: f.default for f in dataclasses.fields(SolverOptions)}
     section = SolverSection()
     assert set(SolverSection.model_fields) == set(fields)
-    assert section.model_dump() == fields
+    assert section.model_dump() == {k: list(v) if isinstance(v, tuple) else v for k, v in fields.items()}
 
 
 def test_good_study_and_defaults(write_study):

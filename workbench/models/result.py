@@ -46,6 +46,14 @@ class SolverOptions:
         Model-specific viscous damping parameter (see each model's docstring).
     spectral_radius : float
         Generalised-alpha numerical damping (spectral radius at infinity), in [0, 1].
+    error_estimate : {"richardson", "none"}
+        Study pipeline only (models ignore it): ``"richardson"`` re-solves every physics case at
+        1/2 and 1/4 of the resolution and records its discretisation-error estimate
+        (:mod:`workbench.models.discretization`); ``"none"`` turns that off.
+    error_estimate_exempt : tuple of str
+        Study pipeline only: models whose discretisation *is* the hardware (e.g. a spring-link
+        chain with one link per physical joint), so that coarsening them would change the robot,
+        not the mesh; they get no estimate.
     """
 
     n_elements: int = 16
@@ -56,6 +64,8 @@ class SolverOptions:
     time_step: float = 2e-3
     damping: float = 0.0
     spectral_radius: float = 0.8
+    error_estimate: Literal["richardson", "none"] = "richardson"
+    error_estimate_exempt: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         for name in ("n_elements", "n_stations", "max_load_steps"):
@@ -74,6 +84,9 @@ class SolverOptions:
             raise ValueError(f"SolverOptions.damping must be finite and >= 0, got {self.damping}")
         if not (0.0 <= self.spectral_radius <= 1.0):
             raise ValueError(f"SolverOptions.spectral_radius must be in [0, 1], got {self.spectral_radius}")
+        if self.error_estimate not in ("richardson", "none"):
+            raise ValueError(f"SolverOptions.error_estimate must be 'richardson' or 'none', got {self.error_estimate!r}")
+        object.__setattr__(self, "error_estimate_exempt", tuple(str(m) for m in self.error_estimate_exempt))
 
 
 @dataclass(frozen=True)

@@ -66,6 +66,8 @@ class SolverSection(BaseModel):
     time_step: float = Field(default=2e-3, gt=0.0)
     damping: float = Field(default=0.0, ge=0.0)
     spectral_radius: float = Field(default=0.8, ge=0.0, le=1.0)
+    error_estimate: Literal["richardson", "none"] = "richardson"
+    error_estimate_exempt: list[str] = Field(default_factory=list)
 
 
 class DerivedSection(BaseModel):

@@ -214,6 +214,10 @@ def _check_models(sections: Mapping[str, BaseModel]) -> list[str]:
     rep = sections.get("report")
     if rep is not None and rep.reference is not None and rep.reference not in st.models:
         problems.append(f"report.reference: {rep.reference!r} is not one of study.models ({', '.join(st.models)})")
+    sol = sections.get("solver")
+    for i, m in enumerate(getattr(sol, "error_estimate_exempt", None) or []):
+        if m not in st.models:
+            problems.append(f"solver.error_estimate_exempt[{i}]: {m!r} is not one of study.models ({', '.join(st.models)})")
     return problems
 
 
