@@ -138,13 +138,18 @@ class _Recorder:
     def __init__(self, system, n_tendons: int):
         self.system = system
         self.n_t = n_tendons
-        self.rec: dict[str, list] = {"t": [], "tip": [], "T": [], "dl": [], "tw": [], "st": []}
+        self.rec: dict[str, list] = {"t": [], "tip": [], "T": [], "dl": [], "tw": [], "st": [], "sb": []}
+        self.strength = None  # backbone strength per element (stress_extras)
 
     def record(self, t: float) -> None:
         T, st = self.system.tendon_state()
         if T.size != self.n_t:  # no tendon objects built (unloaded tendons)
             T, st = np.zeros(self.n_t), np.zeros(self.n_t)
-        dl, tw = self.system.shape_scalars()
+        strains = self.system.element_strains()
+        dl, tw = self.system.shape_scalars(strains)
+        bs = self.system.backbone_stress(strains)
+        if bs is not None:
+            self.strength = bs[1]
         tip = self.system.tip_position()
         rec = self.rec
         # a step retried with a smaller step size calls pre_step again at the same t
@@ -157,6 +162,16 @@ class _Recorder:
         rec["st"].append(st)
         rec["dl"].append(dl)
         rec["tw"].append(tw)
+        rec["sb"].append(None if bs is None else bs[0])
+
+    def stress(self, robot: Robot) -> dict[str, float]:
+        """Stress extras (:func:`workbench.models.stress.stress_extras`) over every recorded state."""
+        from ..models.stress import stress_extras
+
+        sb = self.rec["sb"]
+        sigma = None if not sb or any(x is None for x in sb) else np.concatenate(sb)
+        T = np.asarray(self.rec["T"]).reshape(len(self.rec["t"]), self.n_t)
+        return stress_extras(sigma, None if sigma is None else np.tile(self.strength, len(sb)), robot, T)
 
     def series(self) -> tuple[np.ndarray, dict[str, np.ndarray]]:
         rec, n_t = self.rec, self.n_t
@@ -171,7 +186,8 @@ class _Recorder:
 
 
 def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bool):
-    """Static equilibrium at t = 0, then generalised-alpha; returns (accepted, attempts, n_steps, times, series)."""
+    """Static equilibrium at t = 0, then generalised-alpha; returns (accepted, attempts, n_steps, times, series,
+    stress extras over the recorded states)."""
     import exudyn as exu
 
     from ._exudyn import dynamic_settings
@@ -212,7 +228,7 @@ def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bo
         system.set_tendons(act.command_at(load.duration, load.ramp_time), 1.0)
     rec.record(float(load.duration))
     times, series = rec.series()
-    return acc, att, n_steps, times, series
+    return acc, att, n_steps, times, series, rec.stress(system.robot)
 
 
 def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
@@ -263,12 +279,21 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
             extras["load_steps"] = float(acc)
             times, series = None, {}
         else:
-            acc, att, n_steps, times, series = _dynamic(system, load, options, n_t, act is not None and mode != "none")
+            acc, att, n_steps, times, series, stress = _dynamic(system, load, options, n_t,
+                                                                act is not None and mode != "none")
             extras.update(load_steps=float(acc), n_steps=float(n_steps))
         positions = system.positions(stations)
         tip = system.tip_frame()
         T, _ = system.tendon_state()
-        dl, tw = system.shape_scalars()
+        strains = system.element_strains()
+        dl, tw = system.shape_scalars(strains)
+        if load.analysis == "static":
+            from ..models.stress import stress_extras
+
+            bs = system.backbone_stress(strains)
+            Tn = T if T.size == n_t else np.zeros(n_t)
+            stress = stress_extras(None if bs is None else bs[0], None if bs is None else bs[1], robot, Tn)
+        extras.update(stress)
     if not (np.all(np.isfinite(positions)) and np.all(np.isfinite(tip))):
         raise ModelFailure("beam3d: non-finite state after the solve")
     if n_t and T.size != n_t:

@@ -11,6 +11,7 @@ for dynamics integrates with implicit generalised-alpha, updating the tendon com
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 from typing import Callable
 
 import numpy as np
@@ -159,11 +160,15 @@ def _solve_dynamic(model: _Chain, params: SpringLinkParams, t0: float) -> Physic
     start = np.zeros(len(model.tendons)) if act is None else act.command_at(0.0, load.ramp_time)
     _ramp_to(model, params, start)
     rec_t, rec_tip, rec_T = [], [], []
+    peak: dict[str, float] = {}  # largest stress extras over the recorded states
 
     def record(t: float, r: PhysicsResult) -> None:
         rec_t.append(t)
         rec_tip.append(r.tip_position.copy())
         rec_T.append(r.tendon_tensions.copy())
+        for k in ("max_stress_backbone", "max_stress_tendon", "stress_ratio"):
+            if k in r.extras:
+                peak[k] = max(peak.get(k, 0.0), float(r.extras[k]))
 
     def pre_step(mbs, t):  # noqa: ANN001 - Exudyn callback signature
         cmd = start if act is None else act.command_at(t, load.ramp_time)
@@ -185,10 +190,11 @@ def _solve_dynamic(model: _Chain, params: SpringLinkParams, t0: float) -> Physic
     record(load.duration, model.result(SolverInfo(True)))
     info = SolverInfo(converged=True, iterations=int(solver.it.newtonStepsCount),
                       wall_time=time.perf_counter() - t0, message=f"{len(rec_t) - 1} time steps")
-    return model.result(
+    res = model.result(
         info, time_=np.asarray(rec_t),
         series={"tip_position": np.asarray(rec_tip), "tendon_tensions": np.asarray(rec_T)},
     )
+    return replace(res, extras={**res.extras, **peak})
 
 
 def solve(robot: Robot, load: LoadCase, options: SolverOptions,
