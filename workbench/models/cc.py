@@ -41,7 +41,7 @@ from ..kinematics import (
 )
 from ..robot import LoadCase, Robot, TendonActuation
 from .inputs import check_model_inputs
-from .result import PhysicsResult, SolverInfo, SolverOptions
+from .result import PhysicsResult, SolverInfo, SolverOptions, series_times
 
 __all__ = ["actuation_from_arc", "arc_from_actuation", "run"]
 
@@ -213,7 +213,7 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
 
     Gravity, payload and tip loads are ignored by construction.  For a dynamic load case
     the final commands are used and, in addition, the CC tip and virtual length are
-    reported as time series at ``options.time_step`` resolution.
+    reported as time series on the grid every dynamic model stores (:func:`series_times`).
 
     Returns
     -------
@@ -240,7 +240,7 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     series: dict[str, np.ndarray] = {}
     time_axis = None
     if load.analysis == "dynamic" and act is not None:
-        time_axis = np.arange(0.0, load.duration + 0.5 * options.time_step, options.time_step)
+        time_axis = series_times(load.duration, options.time_step)  # the physics models' output grid
         cmds = act.command_at(time_axis, load.ramp_time)
         tips = np.empty((time_axis.size, 3))
         dl = np.empty(time_axis.size)

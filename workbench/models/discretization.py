@@ -9,7 +9,8 @@ refinement ratio ``r = N / N'``).  The three resolutions also give the observed 
 asymptotic range) the estimate uses it instead (never below 1), so the estimate is never less
 conservative than the known order alone.  The headline quantity ``q`` is the tip position
 (statics) or the peak over time of the tip's distance to the constant-curvature tip of the same
-commands (dynamics: the number a dynamic report headlines).
+commands (dynamics: the number a dynamic report headlines); the same solves also estimate the
+largest tendon tension and the backbone length change (:func:`secondary_quantities`).
 
 Pure numpy; the models are passed in as functions.  Used by the study pipeline
 (:func:`workbench.study.evaluate.evaluate_case`) and the series-parallel worker.  Checked by
@@ -30,7 +31,8 @@ from .result import PhysicsResult, SolverOptions
 
 __all__ = [
     "DYNAMIC_ORDER", "DiscretizationEstimate", "coarsened_options", "richardson_error", "observed_order",
-    "effective_order", "peak_distance", "estimate_from_values", "estimate_discretization", "estimate_columns",
+    "effective_order", "peak_distance", "estimate_from_values", "secondary_quantities", "estimate_discretization",
+    "estimate_columns",
 ]
 
 #: Convergence order of the time integrator (implicit generalised-alpha) used by every dynamic model.
@@ -181,8 +183,22 @@ def _quantity(res: PhysicsResult, dynamic: bool, reference: PhysicsResult | None
     return peak_distance(res.time, tip, reference.time, ref)
 
 
+def secondary_quantities(res: PhysicsResult, dynamic: bool) -> dict[str, float]:
+    """The other quantities a report quotes: the largest tendon tension [N] and the backbone length
+    change [m] (dynamics: the largest tension and the most negative length change over time)."""
+    out = {}
+    T = res.series.get("tendon_tensions") if dynamic and res.series else res.tendon_tensions
+    T = np.asarray(T if T is not None else [], dtype=float)
+    if T.size and np.all(np.isfinite(T)):
+        out["tension"] = float(T.max())
+    dl = res.series.get("length_change") if dynamic and res.series else None
+    out["length_change"] = float(np.min(dl)) if dl is not None and np.size(dl) else float(res.length_change)
+    return out
+
+
 def estimate_discretization(run: Callable, robot, load, options: SolverOptions, fine: PhysicsResult,
-                            order_known: float, reference: PhysicsResult | None = None) -> DiscretizationEstimate:
+                            order_known: float, reference: PhysicsResult | None = None,
+                            secondary: dict | None = None) -> DiscretizationEstimate:
     """Re-solve ``run(robot, load, options')`` at 1/2 and 1/4 of the resolution and estimate (module docstring).
 
     Parameters
@@ -196,6 +212,10 @@ def estimate_discretization(run: Callable, robot, load, options: SolverOptions, 
         The model's declared order (NaN: none); dynamics use ``min(order_known, DYNAMIC_ORDER)``.
     reference : PhysicsResult, optional
         Dynamics: the CC result of the same case (its tip series defines the peak quantity).
+
+    secondary : dict, optional
+        If given, filled with the :class:`DiscretizationEstimate` of every
+        :func:`secondary_quantities` entry (same solves).
 
     Returns
     -------
@@ -213,6 +233,7 @@ def estimate_discretization(run: Callable, robot, load, options: SolverOptions, 
     except ValueError as e:
         return DiscretizationEstimate(float("nan"), p, float("nan"), float("nan"), (), (options.n_elements,), str(e))
     resolutions = [options.n_elements]
+    others = [secondary_quantities(fine, dynamic)]
     status = "ok"
     for k, factor in enumerate((2, 4)):
         opt = coarsened_options(options, robot.n_sections, factor, dynamic)
@@ -221,7 +242,9 @@ def estimate_discretization(run: Callable, robot, load, options: SolverOptions, 
                       f"({robot.n_sections} section(s))") if k == 0 else "ok (no quarter-resolution mesh)"
             break
         try:
-            values.append(_quantity(run(robot, load, opt), dynamic, reference))
+            res = run(robot, load, opt)
+            values.append(_quantity(res, dynamic, reference))
+            others.append(secondary_quantities(res, dynamic))
             resolutions.append(opt.n_elements)
         except Exception as e:  # noqa: BLE001 - a failed coarse solve limits the estimate, it is not a failure
             msg = str(e).strip().replace("\n", " ")[:200]
@@ -229,12 +252,23 @@ def estimate_discretization(run: Callable, robot, load, options: SolverOptions, 
                       f"ok (quarter-resolution solve failed: {type(e).__name__}: {msg})")
             break
     noise = 10.0 * options.newton_tolerance * max(robot.length, 1e-3)
+    if secondary is not None:
+        for key in others[0]:
+            vals = [o.get(key, float("nan")) for o in others]
+            scale = max(abs(vals[0]), 1.0) if key == "tension" else max(robot.length, 1e-3)
+            secondary[key] = estimate_from_values(vals, resolutions, p, 10.0 * options.newton_tolerance * scale, status)
     return estimate_from_values(values, resolutions, p, noise, status, time.perf_counter() - t0)
 
 
-def estimate_columns(est: DiscretizationEstimate) -> dict:
+def estimate_columns(est: DiscretizationEstimate, secondary: dict | None = None) -> dict:
     """The result-table cells of an estimate: ``x.disc_tip_error`` [m], ``x.disc_order_observed``,
     ``x.disc_order`` (order used) and the text cell ``disc_status`` (``wall_time`` is not stored:
-    result tables hold no timing noise beyond the model's own ``wall_time``)."""
-    return {"x.disc_tip_error": float(est.error), "x.disc_order_observed": float(est.order_observed),
-            "x.disc_order": float(est.order_used), "disc_status": est.status}
+    result tables hold no timing noise beyond the model's own ``wall_time``); with ``secondary``
+    (:func:`estimate_discretization`) also ``x.disc_tension_error`` [N] and
+    ``x.disc_length_change_error`` [m]."""
+    out = {"x.disc_tip_error": float(est.error), "x.disc_order_observed": float(est.order_observed),
+           "x.disc_order": float(est.order_used), "disc_status": est.status}
+    for key, name in (("tension", "x.disc_tension_error"), ("length_change", "x.disc_length_change_error")):
+        if secondary and key in secondary:
+            out[name] = float(secondary[key].error)
+    return out

@@ -11,7 +11,20 @@ from typing import Literal, Mapping
 
 import numpy as np
 
-__all__ = ["SolverInfo", "PhysicsResult", "SolverOptions", "ModelFailure"]
+__all__ = ["SolverInfo", "PhysicsResult", "SolverOptions", "ModelFailure", "series_times"]
+
+
+def series_times(duration: float, time_step: float) -> np.ndarray:
+    """Output times [s] of a dynamic analysis: every model's stored series use this grid.
+
+    ``n = max(1, round(duration / time_step))`` steps of ``h = duration / n``, recorded every
+    ``max(h, duration / 1000)`` rounded to a whole number of steps, from 0 to ``duration``
+    (at most ~1000 samples, so one study's series share one time resolution).
+    """
+    n = max(1, int(round(float(duration) / float(time_step))))
+    h = float(duration) / n
+    k = max(1, int(round(max(h, float(duration) / 1000.0) / h)))
+    return np.append(np.arange(0, n, k) * h, float(duration)) if n % k else np.arange(0, n + 1, k) * h
 
 
 class ModelFailure(RuntimeError):

@@ -585,4 +585,9 @@ def _dynamic(sysm: _System, drv: _StaticDriver, load: LoadCase, options: SolverO
     Q = np.array(rec_q)
     T_final, series = _dynamic_series(sysm, cmd, Q, times, h)
     stress = _stress(sysm.pb, robot, sysm.node_coords(Q), series["tendon_tensions"]) if robot is not None else {}
-    return T_final, tendon_it, q_end, times, series, stress
+    # stored on the shared output grid (workbench.models.result.series_times), every step checked above
+    from ..models.result import series_times
+
+    keep = np.searchsorted(times, series_times(load.duration, h) - 1e-9 * h)
+    keep = np.unique(np.clip(keep, 0, times.size - 1))
+    return T_final, tendon_it, q_end, times[keep], {k: v[keep] for k, v in series.items()}, stress

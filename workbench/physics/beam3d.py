@@ -25,8 +25,8 @@ Model ``"beam3d"``: ``run(robot, load, options) -> PhysicsResult``.
 * Dynamic analysis: generalised-alpha from the static equilibrium at t = 0; commands
   ``TendonActuation.command_at(t, load.ramp_time)`` set in a ``preStepUserFunction`` (called with
   the *end* time of the coming step); no material damping (``options.damping > 0`` is rejected:
-  Exudyn ignores the section damping matrix); undamped tendons; series every
-  ``max(time_step, duration / 1000)``.
+  Exudyn ignores the section damping matrix); undamped tendons; series on the grid of
+  :func:`workbench.models.result.series_times` (every ``max(time_step, duration / 1000)``).
 * Outputs: ``positions`` by the element's own interpolation at ``options.n_stations`` stations;
   ``tip_frame`` = tip cross-section axes (z along the backbone); ``length_change`` = sum of
   ``L_e (|Gamma_e| - 1)``; ``tip_twist`` = sum of ``L_e kappa_1`` (relative to the base frame

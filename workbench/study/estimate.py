@@ -71,4 +71,6 @@ def discretization_columns(name: str, run: Callable, robot, load, options, resul
         except ValueError as e:
             return {**estimate_columns(estimate_discretization(run, robot, load, options, result, float("nan"))),
                     "disc_status": str(e)}
-    return estimate_columns(estimate_discretization(run, robot, load, options, result, _order(name), ref))
+    secondary: dict = {}
+    est = estimate_discretization(run, robot, load, options, result, _order(name), ref, secondary)
+    return estimate_columns(est, secondary)
