@@ -46,10 +46,15 @@ class ModelInfo:
 
 @dataclass(frozen=True)
 class FigureSet:
-    """A study-specific set of report figures: ``matches(results) -> bool`` and ``figures(...)``."""
+    """A study-specific set of report figures: ``matches(results) -> bool`` and ``figures(...)``.
+
+    ``findings`` (optional): ``"module:function"`` of ``findings(results, cmp) -> [str]``, the
+    study-specific sentences of the report's Findings section (numbers from the data).
+    """
 
     matches: str
     figures: str
+    findings: str | None = None
 
 
 MODELS: Mapping[str, ModelInfo] = {
@@ -87,13 +92,15 @@ KINDS: Mapping[str, str] = {
 #: Study-specific figures, in report order (before the generic figures).
 FIGURES: Mapping[str, FigureSet] = {
     "wire_delay": FigureSet("workbench.experiments.wire_delay.figures:matches",
-                            "workbench.experiments.wire_delay.figures:figures"),
+                            "workbench.experiments.wire_delay.figures:figures",
+                            "workbench.experiments.wire_delay.findings:findings"),
     "hannan_walker": FigureSet("workbench.experiments.hannan_walker.figures:matches",
                                "workbench.experiments.hannan_walker.figures:figures"),
     "fruit_harvester": FigureSet("workbench.experiments.fruit_harvester.figures:matches",
                                  "workbench.experiments.fruit_harvester.figures:figures"),
     "series_parallel": FigureSet("workbench.experiments.series_parallel.figures:matches",
-                                 "workbench.experiments.series_parallel.figures:figures"),
+                                 "workbench.experiments.series_parallel.figures:figures",
+                                 "workbench.experiments.series_parallel.findings:findings"),
 }
 
 

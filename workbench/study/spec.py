@@ -283,6 +283,28 @@ def _resolve_base(sections: Mapping[str, BaseModel], robot_base: dict[str, Any] 
     return base
 
 
+def _sensitivity_rules(rep: Any, base: dict[str, Any] | None, sweep: Mapping[str, Any]) -> list[str]:
+    """``report.sensitivity`` keys are swept and set in their base section (the baseline value)."""
+    if rep is None or base is None or not getattr(rep, "sensitivity", None):
+        return []
+    swept: set[str] = set()
+    for block in sweep.values():
+        if isinstance(block, Mapping):
+            swept.update(k for k in block if "." in str(k))
+        elif isinstance(block, list):
+            for item in block:
+                if isinstance(item, Mapping):
+                    swept.update(item)
+    problems = []
+    for i, key in enumerate(rep.sensitivity):
+        section, _, name = str(key).partition(".")
+        if key not in swept:
+            problems.append(f"report.sensitivity[{i}]: {key!r} is not a [sweep] key")
+        elif name not in (base.get(section) or {}):
+            problems.append(f"report.sensitivity[{i}]: {key!r} needs its baseline value in [{section}]")
+    return problems
+
+
 def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: int | None = None) -> Study:
     """Validate an already parsed study mapping (see :func:`load_study`)."""
     raw = dict(raw)
@@ -298,6 +320,7 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
     if "sweep" in sections and base is not None:
         sweep, sweep_problems = check_sweep(sections["sweep"], base, preset_defaults)
         problems += sweep_problems
+    problems += _sensitivity_rules(sections.get("report"), base, sweep)
     st = sections.get("study")
     if problems or st is None or base is None:
         raise StudyError([f"{source}: {p}" for p in problems] or [f"{source}: invalid study"])
