@@ -90,7 +90,9 @@ def test_html_self_contained_with_expected_figures(reports, kind):
         raw = base64.b64decode(src.split(",", 1)[1], validate=True)
         assert raw[:8] == b"\x89PNG\r\n\x1a\n"
     assert not re.search(r"https?://", text, flags=re.I)
-    assert not parsed.links  # no scripts, stylesheets or frames
+    # no external scripts, stylesheets or frames: scripts are inline (no src), nothing is linked
+    assert all(tag == "script" and "src" not in a for tag, a in parsed.links), parsed.links
+    assert not re.search(r"<(link|iframe)\b", text)
     # each figure carries a generated text summary
     assert len(parsed.captions) == len(parsed.figures)
     assert all(len(c) > 40 for c in parsed.captions)
@@ -139,15 +141,17 @@ def test_one_d_summary_statement_matches_metrics(reports):
     # statement: "stays below 1 % of L for κL ≤ <largest bend angle before first exceedance>"
     first_bad = sub[sub.tip_error_pct >= 1.0]["p.load.bend_angle"].min()
     expected = below[below < first_bad].max()
-    assert f"CC vs ANCF: tip error stays below 1 % of L for κL ≤ {expected:.3g}" in cap
+    assert f"CC vs ANCF: tip error stays below 1 % of L for κL ≤ {expected:.3g} rad" in cap  # value with its unit
 
 
-def test_default_out_dir_uses_manifest_name(tmp_path, monkeypatch):
+def test_default_out_dir_is_the_run_folder_name(tmp_path, monkeypatch):
+    """The report of a run lives with its run: data/x2 -> reports/x2, never over reports/<study name>."""
     data = write_study(tmp_path / "data" / "folder_name_differs", "none")
     monkeypatch.chdir(tmp_path)
     path = build_report(data, formats=())
-    assert path == Path("reports/synthetic_none/report.html")
+    assert path == Path("reports/folder_name_differs/report.html")
     assert (tmp_path / path).exists()
+    assert not (tmp_path / "reports" / "synthetic_none").exists()
 
 
 def test_load_study_axes_from_manifest_and_fallback(tmp_path):

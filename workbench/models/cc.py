@@ -208,6 +208,21 @@ def arc_from_actuation(robot: Robot, actuation: TendonActuation | None) -> tuple
     return kappa, phi, ell
 
 
+def _cc_backbone_frames(robot: Robot, act: TendonActuation, times: np.ndarray, cmds: np.ndarray,
+                        stations: np.ndarray) -> dict[str, np.ndarray]:
+    """Decimated CC backbones over time (``series.backbone``, :mod:`workbench.models.backbone_frames`)."""
+    from .backbone_frames import backbone_series, frame_stride
+
+    keep = np.unique(np.r_[np.arange(0, times.size - 1, frame_stride(times.size - 1)), times.size - 1])
+    ends0 = np.concatenate([[0.0], robot.section_ends])
+    frames = []
+    for q in keep:
+        kq, pq, lq = arc_from_actuation(robot, TendonActuation(act.mode, tuple(cmds[q]), pretension=act.pretension))
+        s_q = np.interp(stations, ends0, np.concatenate([[0.0], np.cumsum(lq)]))
+        frames.append(forward_kinematics(kq, pq, lq, s=s_q)[:, :3, 3])
+    return backbone_series(times[keep], frames)
+
+
 def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     """The CC prediction for a load case (model ``"cc"``).
 
@@ -248,7 +263,8 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
             kq, pq, lq = arc_from_actuation(robot, TendonActuation(act.mode, tuple(c), pretension=act.pretension))
             tips[q] = forward_kinematics(kq, pq, lq)[:3, 3]
             dl[q] = lq.sum() - robot.length
-        series = {"tip_position": tips, "length_change": dl, "commands": cmds}
+        series = {"tip_position": tips, "length_change": dl, "commands": cmds,
+                  **_cc_backbone_frames(robot, act, time_axis, cmds, stations)}
     return PhysicsResult(
         model="cc",
         stations=stations,

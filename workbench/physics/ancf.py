@@ -51,6 +51,7 @@ import numpy as np
 from ..models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ..robot import LoadCase, Robot
 from . import _ancf_geometry as geo
+from ..models.backbone_frames import backbone_series, frame_stride
 from ._ancf_problem import PlanarModelError, _Problem, _problem, _Tendon, _tendon_sign  # noqa: F401 (re-exported)
 from .tendon_loads import (
     ramp_load,
@@ -515,8 +516,9 @@ def _dynamic_start(sysm: _System, drv: _StaticDriver, cmd: _Commands, initial_st
     return 0
 
 
-def _dynamic_series(sysm: _System, cmd: _Commands, Q: np.ndarray, times: np.ndarray, h: float):
-    """Checked states ``Q`` (k, n_ode2) -> (final tensions, series)."""
+def _dynamic_series(sysm: _System, cmd: _Commands, Q: np.ndarray, times: np.ndarray, h: float,
+                    stations: np.ndarray):
+    """Checked states ``Q`` (k, n_ode2) -> (final tensions, series; backbone frames at ``stations``)."""
     for q in (Q[0], Q[len(Q) // 2], Q[-1]):
         _check_state(sysm, q)
     pb = sysm.pb
@@ -537,6 +539,8 @@ def _dynamic_series(sysm: _System, cmd: _Commands, Q: np.ndarray, times: np.ndar
         "tendon_tensions": Ts,
         "length_change": geo.arc_length(qn, pb.s_nodes, quad=sysm.quad) - pb.L,
     }
+    keep = np.unique(np.r_[np.arange(0, times.size - 1, frame_stride(times.size - 1)), times.size - 1])
+    series.update(backbone_series(times[keep], _frame_and_positions(sysm, qn[keep], stations)[0]))
     return T_final, series
 
 
@@ -583,11 +587,13 @@ def _dynamic(sysm: _System, drv: _StaticDriver, load: LoadCase, options: SolverO
     rec_q.append(q_end.copy())
     times = np.array(rec_t)
     Q = np.array(rec_q)
-    T_final, series = _dynamic_series(sysm, cmd, Q, times, h)
+    T_final, series = _dynamic_series(sysm, cmd, Q, times, h, np.linspace(0.0, sysm.pb.L, options.n_stations))
     stress = _stress(sysm.pb, robot, sysm.node_coords(Q), series["tendon_tensions"]) if robot is not None else {}
-    # stored on the shared output grid (workbench.models.result.series_times), every step checked above
+    # stored on the shared output grid (workbench.models.result.series_times), every step checked above;
+    # the backbone frames keep their own (decimated) time axis
     from ..models.result import series_times
 
     keep = np.searchsorted(times, series_times(load.duration, h) - 1e-9 * h)
     keep = np.unique(np.clip(keep, 0, times.size - 1))
-    return T_final, tendon_it, q_end, times[keep], {k: v[keep] for k, v in series.items()}, stress
+    stored = {k: (v if k.startswith("backbone") else v[keep]) for k, v in series.items()}
+    return T_final, tendon_it, q_end, times[keep], stored, stress

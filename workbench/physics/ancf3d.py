@@ -39,6 +39,8 @@ Checked by ``tests/physics/test_ancf3d.py`` and the ``ancf3d`` comparisons in ``
 
 from __future__ import annotations
 
+import math
+
 import time as _time
 
 import numpy as np
@@ -231,16 +233,21 @@ def _ramp_static(system: _System, options: SolverOptions) -> tuple[int, int]:
     return info.accepted, info.attempts
 
 
-def _dynamic(system: _System, load: LoadCase, options: SolverOptions) -> tuple[np.ndarray, dict, int]:
-    """Generalised-alpha from the current state; returns (times, series, n_steps)."""
+def _dynamic(system: _System, load: LoadCase, options: SolverOptions, stations: np.ndarray
+             ) -> tuple[np.ndarray, dict, int]:
+    """Generalised-alpha from the current state; returns (times, series, n_steps).
+
+    ``series`` includes decimated backbone frames at ``stations`` (:mod:`workbench.models.backbone_frames`)."""
+    from ..models.backbone_frames import backbone_series, frame_stride
     from ._exudyn import dynamic_settings
 
     exu = system.exu
     sim = dynamic_settings(options, load.duration)
-    rec_t, rec_p = [], []
+    rec_t, rec_p, bb_t, bb_p = [], [], [], []
     n_steps = sim.timeIntegration.numberOfSteps
     h = load.duration / n_steps
     every = max(1, int(round(max(h, load.duration / 1000.0) / h)))
+    stride = frame_stride(math.ceil(n_steps / every))
     counter = {"k": 0}
 
     def pre_step(mbs_, t):
@@ -248,6 +255,9 @@ def _dynamic(system: _System, load: LoadCase, options: SolverOptions) -> tuple[n
         if counter["k"] % every == 0:
             rec_t.append(float(t) - h)
             rec_p.append(np.asarray(mbs_.GetNodeOutput(system.nodes[-1], exu.OutputVariableType.Position)))
+            if (len(rec_t) - 1) % stride == 0:
+                bb_t.append(rec_t[-1])
+                bb_p.append(system.positions(stations))
         counter["k"] += 1
         return True
 
@@ -258,7 +268,9 @@ def _dynamic(system: _System, load: LoadCase, options: SolverOptions) -> tuple[n
         raise ModelFailure(f"ancf3d: dynamic solve failed: {err}") from None
     rec_t.append(float(load.duration))
     rec_p.append(system.tip_position())
-    return np.asarray(rec_t), {"tip_position": np.asarray(rec_p)}, n_steps
+    bb_t.append(rec_t[-1])
+    bb_p.append(system.positions(stations))
+    return np.asarray(rec_t), {"tip_position": np.asarray(rec_p), **backbone_series(bb_t, bb_p)}, n_steps
 
 
 def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
@@ -293,10 +305,10 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
         accepted, attempts = _ramp_static(system, options)
         times, series = None, {}
         extras = {"n_elements": float(len(system.elements)), "load_steps": float(accepted)}
-        if load.analysis == "dynamic":
-            times, series, n_steps = _dynamic(system, load, options)
-            extras["n_steps"] = float(n_steps)
         stations = np.linspace(0.0, robot.length, options.n_stations)
+        if load.analysis == "dynamic":
+            times, series, n_steps = _dynamic(system, load, options, stations)
+            extras["n_steps"] = float(n_steps)
         positions = system.positions(stations)
         dl = system.length_change()
         tip = system.tip_frame()

@@ -135,13 +135,14 @@ def _ramp_static(system, options: SolverOptions, values_at, lam_pre_at, loads_at
 class _Recorder:
     """Time series of a dynamic run; a step retried at a smaller size overwrites its samples."""
 
-    def __init__(self, system, n_tendons: int):
+    def __init__(self, system, n_tendons: int, stations=None, stride: int = 1):
         self.system = system
         self.n_t = n_tendons
-        self.rec: dict[str, list] = {"t": [], "tip": [], "T": [], "dl": [], "tw": [], "st": [], "sb": []}
+        self.stations, self.stride = stations, stride  # backbone frames: every stride-th sample
+        self.rec: dict[str, list] = {"t": [], "tip": [], "T": [], "dl": [], "tw": [], "st": [], "sb": [], "bb": []}
         self.strength = None  # backbone strength per element (stress_extras)
 
-    def record(self, t: float) -> None:
+    def record(self, t: float, final: bool = False) -> None:
         T, st = self.system.tendon_state()
         if T.size != self.n_t:  # no tendon objects built (unloaded tendons)
             T, st = np.zeros(self.n_t), np.zeros(self.n_t)
@@ -163,6 +164,8 @@ class _Recorder:
         rec["dl"].append(dl)
         rec["tw"].append(tw)
         rec["sb"].append(None if bs is None else bs[0])
+        keep = self.stations is not None and (final or (len(rec["t"]) - 1) % self.stride == 0)
+        rec["bb"].append(self.system.positions(self.stations) if keep else None)
 
     def stress(self, robot: Robot) -> dict[str, float]:
         """Stress extras (:func:`workbench.models.stress.stress_extras`) over every recorded state."""
@@ -182,14 +185,26 @@ class _Recorder:
             "tendon_stretch": np.asarray(rec["st"]).reshape(len(times), n_t),
             "length_change": np.asarray(rec["dl"]),
             "tip_twist": np.asarray(rec["tw"]),
+            **_kept_frames(times, rec["bb"]),
         }
 
 
-def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bool):
+def _kept_frames(times: np.ndarray, frames: list) -> dict[str, np.ndarray]:
+    """``series.backbone`` / ``backbone_time`` of the recorded samples that kept a backbone."""
+    from ..models.backbone_frames import backbone_series
+
+    keep = [i for i, f in enumerate(frames) if f is not None]
+    return backbone_series(times[keep], [frames[i] for i in keep]) if keep else {}
+
+
+def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bool, stations: np.ndarray):
     """Static equilibrium at t = 0, then generalised-alpha; returns (accepted, attempts, n_steps, times, series,
-    stress extras over the recorded states)."""
+    stress extras over the recorded states).
+
+    ``series`` includes decimated backbone frames at ``stations`` (:mod:`workbench.models.backbone_frames`)."""
     import exudyn as exu
 
+    from ..models.backbone_frames import frame_stride
     from ._exudyn import dynamic_settings
 
     act = load.actuation
@@ -202,7 +217,8 @@ def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bo
     n_steps = ti.numberOfSteps
     h = load.duration / n_steps
     out_dt = max(1, int(round(max(h, load.duration / 1000.0) / h))) * h
-    rec = _Recorder(system, n_t)
+    n_out = int(round(load.duration / out_dt)) + 1
+    rec = _Recorder(system, n_t, stations, frame_stride(n_out))
 
     def pre_step(mbs, t):
         # Exudyn calls this with t = the END time of the step about to be solved;
@@ -226,7 +242,7 @@ def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bo
         raise ModelFailure(f"beam3d: dynamic solve failed: {err}") from None
     if drive:
         system.set_tendons(act.command_at(load.duration, load.ramp_time), 1.0)
-    rec.record(float(load.duration))
+    rec.record(float(load.duration), final=True)
     times, series = rec.series()
     return acc, att, n_steps, times, series, rec.stress(system.robot)
 
@@ -280,7 +296,7 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
             times, series = None, {}
         else:
             acc, att, n_steps, times, series, stress = _dynamic(system, load, options, n_t,
-                                                                act is not None and mode != "none")
+                                                                act is not None and mode != "none", stations)
             extras.update(load_steps=float(acc), n_steps=float(n_steps))
         positions = system.positions(stations)
         tip = system.tip_frame()

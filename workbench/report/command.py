@@ -16,7 +16,7 @@ __all__ = ["add_report_arguments", "main", "report_command"]
 def add_report_arguments(parser) -> None:
     """The arguments of the report command (``folder``, ``--out``, ``--formats``) on an argparse parser."""
     parser.add_argument("folder", help="e.g. data/quickstart")
-    parser.add_argument("--out", help="output folder (default reports/<study name>)")
+    parser.add_argument("--out", help="output folder (default reports/<name of the data folder>)")
     parser.add_argument("--formats", default="png,svg", help="figure file formats, comma separated (png,svg,pdf)")
 
 

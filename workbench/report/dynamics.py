@@ -19,7 +19,8 @@ from matplotlib.figure import Figure
 
 from ..compare.table import array_cell
 from .load import ResultSet, numeric
-from .style import ReportFigure, _case_title, axis_label, fmt, model_color, model_label, pair_label
+from .units import label_of
+from .style import ReportFigure, _case_title, _val, axis_label, fmt, model_color, model_label, pair_label
 
 __all__ = ["time_series_figures", "compression_split_figures"]
 
@@ -32,8 +33,11 @@ _SERIES_LABELS = {
     "tendon_lengths": "tendon length change [mm]",
     "tendon_tensions": "tendon tension [N]",
     "length_change": "backbone length change [mm]",
+    "tendon_stretch": "tendon stretch [mm]",
 }
-_MM_SERIES = {"tendon_lengths", "length_change"}
+_MM_SERIES = {"tendon_lengths", "length_change", "tendon_stretch"}
+#: series that are no time history of a scalar (the 3-D viewer's backbone frames)
+_NOT_PLOTTED = {"backbone", "backbone_time"}
 
 
 _SERIES_TITLES = {"length_change": "backbone length change (compression < 0)"}
@@ -50,7 +54,8 @@ def _row_series(row: Mapping[str, Any], name: str) -> tuple[np.ndarray, np.ndarr
 def _series_names(dyn: pd.DataFrame) -> tuple[list[str], bool]:
     """The ``series.*`` names with values, in panel order, and whether ``tip_position`` is one."""
     names = [c[len("series."):] for c in dyn.columns
-             if str(c).startswith("series.") and dyn[c].map(lambda v: array_cell(v) is not None).any()]
+             if str(c).startswith("series.") and c[len("series."):] not in _NOT_PLOTTED
+             and dyn[c].map(lambda v: array_cell(v) is not None).any()]
     order = ["tendon_lengths", "tendon_tensions", "length_change"]
     has_tip = "tip_position" in names
     names = [n for n in order if n in names] + [n for n in names if n not in order and n != "tip_position"]
@@ -92,7 +97,7 @@ def _series_panel(ax, rows: Mapping[str, Mapping[str, Any]], name: str, study: R
         if name == "length_change":
             L = float(r.get("robot_length", np.nan))
             texts.append(f"{model_label(m)}: final backbone length change {fmt(v[-1, 0])} mm ({fmt(0.1 * v[-1, 0] / L)} % of L).")
-    ax.set_ylabel(_SERIES_LABELS.get(name, name))
+    ax.set_ylabel(_SERIES_LABELS.get(name) or label_of(name))
     ax.set_title(_SERIES_TITLES.get(name, name.replace("_", " ")))
 
 
@@ -120,7 +125,8 @@ def _case_figure(study: ResultSet, cid, rows, names: list[str], has_tip: bool) -
     title = _case_title(row0, study.axes, study.labels)
     fig.suptitle(title)
     return ReportFigure(f"timeseries_{str(cid)[:12]}", f"Time series, {title}", fig,
-                        f"Time histories for {title}; line style distinguishes tendons, colour the model. " + " ".join(texts))
+                        f"Time histories for {title}; line style distinguishes tendons, colour the model. " + " ".join(texts),
+                        cases=(str(cid),))
 
 
 def time_series_figures(study: ResultSet, cmp: pd.DataFrame, max_cases: int = 2) -> list[ReportFigure]:
@@ -130,7 +136,7 @@ def time_series_figures(study: ResultSet, cmp: pd.DataFrame, max_cases: int = 2)
     ok = study.ok
     dyn = ok[ok["time"].map(lambda v: array_cell(v) is not None)]
     names, has_tip = _series_names(dyn)
-    case_ids = list(dict.fromkeys(dyn.sort_values(list(study.axes)) ["case_id"])) if study.axes else list(dict.fromkeys(dyn["case_id"]))
+    case_ids = list(dict.fromkeys(dyn["case_id"]))  # rows are in canonical (parameter) order
     if len(case_ids) > max_cases:
         case_ids = [case_ids[0], case_ids[-1]]
     out = []
@@ -155,17 +161,23 @@ def compression_split_figures(study: ResultSet, cmp: pd.DataFrame) -> list[Repor
         return []
     pairs = list(dict.fromkeys(zip(sub["reference"], sub["model"])))
     n = len(pairs)
-    fig = Figure(figsize=(4.2 * n + 0.4, 3.4), layout="constrained")
+    n_bars = max(len(sub[(sub["reference"] == r) & (sub["model"] == m)]) for r, m in pairs)
+    n_lines = max(1, len([a for a in study.axes if a in sub]))
+    fig = Figure(figsize=(max(4.2, 0.55 * n_bars + 1.0) * n + 0.4, 3.2 + 0.25 * n_lines), layout="constrained")
     axs = np.atleast_1d(fig.subplots(1, n, squeeze=False)[0])
     colors = ["#4c72b0", "#dd8452", "#55a868"]
     names = ["backbone compression", "tendon stretch", "shape distortion"]
     texts = []
     for ax, (ref, m) in zip(axs, pairs):
         s = sub[(sub["reference"] == ref) & (sub["model"] == m)]
-        if study.axes and study.axes[0] in s:
-            s = s.sort_values(study.axes[0])
-            ticks = [fmt(float(v)) for v in numeric(s[study.axes[0]])]
-            ax.set_xlabel(axis_label(study.axes[0], study.labels))
+        axes = [a for a in study.axes if a in s]
+        if axes:
+            # every case its own bar: ticks name each swept value (categories by name), one line per axis
+            s = s.sort_values(axes, kind="mergesort")
+            ticks = ["\n".join(_val(study, a, float(v)) for a, v in zip(axes, vals))
+                     for vals in zip(*(numeric(s[a]) for a in axes))]
+            ax.set_xlabel(" / ".join(axis_label(a, study.labels) for a in axes) if len(axes) > 1
+                          else axis_label(axes[0], study.labels))
         else:
             ticks = [str(c)[:6] for c in s["case_id"]]
             ax.set_xlabel("case")
@@ -187,6 +199,6 @@ def compression_split_figures(study: ResultSet, cmp: pd.DataFrame) -> list[Repor
         texts.append(f"{pair_label(ref, m)}: of the CC virtual compression, " +
                      ", ".join(f"{fmt(v)} % is {k}" for k, v in share.items()) + " (summed over the cases).")
     axs[0].set_ylabel("length change [mm]")
-    axs[0].legend(frameon=False, fontsize=7.5)
+    fig.legend(*axs[0].get_legend_handles_labels(), loc="outside lower center", ncol=4, frameon=False, fontsize=8)
     return [ReportFigure("compression_split", "Where the CC virtual compression goes", fig,
                          "Split of the CC virtual compression into backbone compression, tendon stretch and shape distortion (residual). " + " ".join(texts))]

@@ -1,7 +1,7 @@
 """The report's opening sections: Question, Findings, Assumptions, Sensitivity.
 
-:func:`opening_sections` returns their HTML (headings exactly ``Question``, ``Findings``,
-``Assumptions``, ``Sensitivity``), built from data only:
+:func:`opening_sections` returns their HTML, built from data only; the page shows them first
+(:data:`.page.SECTIONS`, headings exactly ``Question``, ``Findings``, ``Assumptions``, ``Sensitivity``):
 
 * Question: ``[report] question`` (else the study description);
 * Findings: every comparison's headline with its discretisation error bar
@@ -13,7 +13,7 @@
 * Sensitivity: per ``[report] sensitivity`` key the headline against the assumed value with
   error bars (:mod:`.errorbars`), and whether it moves by more than its error bar.
 
-The page builder passes ``render(ReportFigure) -> html``.  Checked by ``tests/report/test_findings.py``.
+The page builder passes ``render(ReportFigure) -> html`` (the sensitivity figures).  Checked by ``tests/report/test_findings.py``.
 """
 
 from __future__ import annotations
@@ -26,12 +26,14 @@ import pandas as pd
 
 from .. import registry
 from .assumptions import assumption_rows
+from .context import PageContext, Section
 from .errorbars import sensitivity_figures
 from .headline import Headline, baseline_cases, headlines, sensitivity_keys
 from .load import ResultSet, numeric
 from .style import ReportFigure, _case_title, fmt, model_label, pair_label
 
-__all__ = ["opening_sections", "findings_list", "stress_findings"]
+__all__ = ["opening_sections", "findings_list", "stress_findings", "question_section", "findings_section",
+           "assumptions_section", "sensitivity_section"]
 
 
 def _esc(text) -> str:
@@ -130,15 +132,42 @@ def _sensitivity_html(study: ResultSet, cmp: pd.DataFrame, render: Callable[[Rep
     return "".join(parts) + "".join(render(f) for f in figs)
 
 
-def opening_sections(study: ResultSet, cmp: pd.DataFrame, render: Callable[[ReportFigure], str]) -> str:
-    """HTML of the four opening sections (call inside ``matplotlib.rc_context(STYLE)``)."""
+def opening_sections(study: ResultSet, cmp: pd.DataFrame, render: Callable[[ReportFigure], str]) -> dict[str, str]:
+    """Inner HTML of the four opening sections by id (``question``, ``findings``, ``assumptions``,
+    ``sensitivity``); call inside ``matplotlib.rc_context(STYLE)``.  The page builder passes the
+    result as ``PageContext.extra["opening"]``; the section builders below read it."""
     rep = study.spec.get("report") if isinstance(study.spec.get("report"), Mapping) else {}
     inner = study.spec.get("study") if isinstance(study.spec.get("study"), Mapping) else {}
     question = rep.get("question") or inner.get("description") or "(the study file states no question)"
     findings = "".join(f"<li>{_esc(t)}</li>" for t in findings_list(study, cmp))
-    return (
-        f"<section id='question'><h2>Question</h2><p>{_esc(question)}</p></section>"
-        f"<section id='findings'><h2>Findings</h2><ul class='findings'>{findings}</ul></section>"
-        f"<section id='assumptions'><h2>Assumptions</h2>{_assumptions_html(study)}</section>"
-        f"<section id='sensitivity'><h2>Sensitivity</h2>{_sensitivity_html(study, cmp, render)}</section>"
-    )
+    return {
+        "question": f"<p>{_esc(question)}</p>",
+        "findings": f"<ul class='findings'>{findings}</ul>",
+        "assumptions": _assumptions_html(study),
+        "sensitivity": _sensitivity_html(study, cmp, render),
+    }
+
+
+def _section(ctx: PageContext, key: str, title: str) -> Section | None:
+    body = (ctx.extra.get("opening") or {}).get(key)
+    return None if body is None else Section(key, title, body)
+
+
+def question_section(ctx: PageContext) -> Section | None:
+    """The study's question (``[report] question``)."""
+    return _section(ctx, "question", "Question")
+
+
+def findings_section(ctx: PageContext) -> Section | None:
+    """Findings generated from the data, with error bars."""
+    return _section(ctx, "findings", "Findings")
+
+
+def assumptions_section(ctx: PageContext) -> Section | None:
+    """Every parameter the source does not give, its value and where it comes from."""
+    return _section(ctx, "assumptions", "Assumptions")
+
+
+def sensitivity_section(ctx: PageContext) -> Section | None:
+    """The sensitivity sweeps of the assumptions, with their figures."""
+    return _section(ctx, "sensitivity", "Sensitivity")

@@ -18,7 +18,8 @@ A folder the study runner wrote (``_manifest.json``) is read with
   derived columns such as ``gamma``, ``kappaL``, ``d_over_L``);
   ``derived``: ``{name: pandas eval expression}`` extra derived columns;
   ``labels``: ``{column: axis label}``;
-  ``reference``: reference model (default ``"cc"``).
+  ``reference``: reference model (default ``"cc"``);
+  ``frame``: ``"world"`` (default) or ``"base"``, the frame of the shape figures and 3-D view.
 - provenance: ``config_hash``, ``versions`` (mapping), ``git`` (``{"commit", "dirty"}``) or
   ``git_commit``, ``runs`` (list of ``{"host", "start", "end", "wall_time"}``) or ``host``,
   ``start_time``, ``end_time`` (ISO 8601).
@@ -40,8 +41,8 @@ import pyarrow as pa
 from ..compare.table import REQUIRED_COLUMNS, add_derived_columns
 from ..study.store import MANIFEST, read_table
 
-__all__ = ["DIMENSIONLESS_AXES", "MANIFEST_NAMES", "ResultSet", "Study", "load_results", "load_study", "numeric",
-           "sweep_keys"]
+__all__ = ["DIMENSIONLESS_AXES", "MANIFEST_NAMES", "ResultSet", "Study", "canonical_order", "load_results",
+           "load_study", "numeric", "sweep_keys"]
 
 MANIFEST_NAMES = (MANIFEST, "manifest.json")
 
@@ -83,6 +84,17 @@ class ResultSet:
     labels: Mapping[str, str] = field(default_factory=dict)
     categories: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
     """Non-numeric swept axes (e.g. ``solver.tendon_model``) -> their values, in plot order."""
+    expected_cases: int | None = None
+    """Cases the study defines (manifest ``n_cases``); ``None`` when the manifest does not say."""
+    frame: str = "world"
+    """Frame of the shape figures and the 3-D view: ``"world"`` (default) or ``"base"`` (``[report] frame``)."""
+
+    @property
+    def missing_cases(self) -> int:
+        """Cases of the study with no row in the table (a partial run); 0 when unknown."""
+        if self.expected_cases is None:
+            return 0
+        return max(0, int(self.expected_cases) - int(self.results["case_id"].nunique()))
 
     @property
     def spec(self) -> Mapping[str, Any]:
@@ -258,8 +270,14 @@ def load_results(data_dir: str | Path) -> ResultSet:
     df = add_derived_columns(df, derived)
     inner = spec.get("study") if isinstance(spec.get("study"), Mapping) else {}
     name = str(inner.get("name") or spec.get("name") or manifest.get("name") or path.name)
+    models = _model_order(df, spec)
     ok = df[df["status"].astype(str) == "ok"]
     axes = _plot_axes(df, ok, spec, rep)
+    df = canonical_order(df, axes, models)
+    ok = df[df["status"].astype(str) == "ok"]
+    frame = str(rep.get("frame") or "world")
+    if frame not in ("world", "base"):
+        raise ValueError(f"{path}: [report] frame must be 'world' or 'base', got {frame!r}")
     categories = {a: tuple(sorted(ok[a].dropna().astype(str).unique())) for a in axes
                   if _varies_categorical(df, ok, a)}
     return ResultSet(
@@ -269,11 +287,45 @@ def load_results(data_dir: str | Path) -> ResultSet:
         manifest=manifest,
         axes=tuple(dict.fromkeys(axes)),
         reference=str(rep.get("reference") or "cc"),
-        models=tuple(dict.fromkeys(df["model"].astype(str))),
+        models=models,
         derived=derived,
         labels={str(k): str(v) for k, v in (rep.get("labels") or {}).items()},
         categories=categories,
+        expected_cases=_expected_cases(manifest),
+        frame=frame,
     )
+
+
+def _model_order(df: pd.DataFrame, spec: Mapping[str, Any]) -> tuple[str, ...]:
+    """The models of the table: in the study's ``models`` order, then any other (sorted)."""
+    inner = spec.get("study") if isinstance(spec.get("study"), Mapping) else spec
+    listed = [str(m) for m in (inner.get("models") or [])] if isinstance(inner, Mapping) else []
+    present = set(df["model"].astype(str))
+    return tuple([m for m in dict.fromkeys(listed) if m in present] + sorted(present - set(listed)))
+
+
+def canonical_order(df: pd.DataFrame, axes, models) -> pd.DataFrame:
+    """The rows sorted by the plotted axes, ``case_id`` and model order (index reset).
+
+    Rows are stored in completion order (a Dask run differs from a serial one); every figure,
+    caption and table of the report reads this order, so none depends on how the rows were stored
+    (checked by ``tests/report/test_report_order.py``).
+    """
+    rank = {m: i for i, m in enumerate(models)}
+    keys = pd.DataFrame(index=df.index)
+    for i, a in enumerate(axes):
+        if a in df.columns:
+            v = pd.to_numeric(df[a], errors="coerce")
+            keys[f"_k{i}"] = v if v.notna().any() else df[a].astype(str)
+    keys["_cid"] = df["case_id"].astype(str)
+    keys["_m"] = df["model"].astype(str).map(rank).fillna(len(rank))
+    order = keys.sort_values(list(keys.columns), kind="mergesort", na_position="last").index
+    return df.loc[order].reset_index(drop=True)
+
+
+def _expected_cases(manifest: Mapping[str, Any]) -> int | None:
+    n = manifest.get("n_cases")
+    return int(n) if isinstance(n, (int, float)) and not isinstance(n, bool) and n >= 0 else None
 
 
 #: Deprecated: use :class:`ResultSet` (the old name collides with :class:`workbench.study.Study`).

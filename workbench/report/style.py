@@ -19,6 +19,7 @@ from matplotlib.figure import Figure
 from ..compare.table import DERIVED_LABELS
 from ..registry import MODELS
 from .load import ResultSet
+from .units import UNIT_DEPENDS_ON, label_of, unit_of
 
 __all__ = [
     "STYLE",
@@ -31,6 +32,8 @@ __all__ = [
     "short_label",
     "fmt",
     "code_categories",
+    "value_text",
+    "point_links",
 ]
 
 #: rcParams used for every report figure (applied with ``matplotlib.rc_context``).
@@ -62,6 +65,20 @@ class ReportFigure:
     title: str
     figure: Figure
     summary: str
+    cases: tuple[str, ...] = ()
+    """``case_id`` of every case the figure draws (the per-case table links to the figure)."""
+    points: tuple[tuple[Any, float, float, str, str, str], ...] = ()
+    """Clickable points ``(axes, x, y, case_id, model, tooltip)`` in data coordinates: the page puts a link to
+    that case's table row over each (:func:`point_links`)."""
+
+
+def point_links(ax, x, y, case_ids, models, tips) -> list[tuple[Any, float, float, str, str, str]]:
+    """``ReportFigure.points`` entries for plotted points (finite ones only)."""
+    out = []
+    for xi, yi, c, m, t in zip(x, y, case_ids, models, tips):
+        if np.isfinite(xi) and np.isfinite(yi):
+            out.append((ax, float(xi), float(yi), str(c), str(m), str(t)))
+    return out
 
 
 def model_label(m: str) -> str:
@@ -107,7 +124,7 @@ def axis_label(col: str, labels: Mapping[str, str] | None = None) -> str:
         return labels[col]
     if col in _PARAM_LABELS:
         return _PARAM_LABELS[col]
-    return col[2:] if col.startswith("p.") else col
+    return label_of(col)
 
 
 def short_label(col: str, labels: Mapping[str, str] | None = None) -> str:
@@ -120,7 +137,7 @@ def short_label(col: str, labels: Mapping[str, str] | None = None) -> str:
         # "gravity parameter γ = qL³/EI" -> "gravity parameter γ"
         short = re.split(r"\s+[(\[]|\s+=\s+", labels[col], maxsplit=1)[0].strip()
         return short or labels[col]
-    return col[2:] if col.startswith("p.") else col
+    return re.split(r"\s+=\s+", label_of(col, unit=""), maxsplit=1)[0]
 
 
 def fmt(x: float) -> str:
@@ -162,8 +179,25 @@ def _ref_pairs(cmp: pd.DataFrame, reference: str) -> list[tuple[str, str]]:
     return first + [p for p in pairs if p[0] != reference]
 
 
+def value_text(col: str, v: Any, labels: Mapping[str, str] | None = None, row: Mapping[str, Any] | None = None) -> str:
+    """``v`` with its unit (``0.1 kg``, ``line``); the unit from the study label or :mod:`.units`."""
+    if not _isnum(v):
+        return str(v)
+    unit = None
+    if labels and col in labels:
+        m = re.search(r"\[([^\]]+)\]", labels[col])
+        unit = m.group(1) if m else ""
+    if unit is None:
+        unit = unit_of(col) or ""
+        dep = UNIT_DEPENDS_ON.get(col[2:] if col.startswith("p.") else col)
+        if dep is not None and row is not None:
+            other = row.get(dep[0], row.get(f"p.{dep[0]}"))
+            unit = dep[1].get(str(other), "")
+    return f"{fmt(float(v))} {unit}".strip()
+
+
 def _case_title(row: Mapping[str, Any], axes: Sequence[str], labels) -> str:
-    parts = [f"{short_label(a, labels)} = {fmt(float(row[a])) if _isnum(row[a]) else row[a]}"
+    parts = [f"{short_label(a, labels)} = {value_text(a, row[a], labels, row)}"
              for a in axes[:3] if a in row and row[a] is not None]
     return ", ".join(parts) if parts else f"case {str(row.get('case_id', ''))[:8]}"
 

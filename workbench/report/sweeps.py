@@ -21,6 +21,7 @@ from matplotlib.colors import LogNorm, Normalize
 from matplotlib.figure import Figure
 
 from .load import ResultSet, numeric
+from .units import UNIT_DEPENDS_ON, label_of, unit_groups
 from .style import (
     THRESHOLDS,
     ReportFigure,
@@ -34,7 +35,9 @@ from .style import (
     fmt,
     model_color,
     pair_label,
+    point_links,
     short_label,
+    value_text,
 )
 
 __all__ = ["error_vs_parameter_figures", "validity_map_figures"]
@@ -49,51 +52,74 @@ _ONE_AXIS_METRICS = [
 # --------------------------------------------------------------------------------------
 # error vs swept parameter
 # --------------------------------------------------------------------------------------
-def _below_statement(x: np.ndarray, err: np.ndarray, xname: str, what: str, cats: Sequence[str] | None = None) -> str:
-    """'stays below 1 % of L for x <= a' style statement (x sorted ascending).
+def _below_statement(x: np.ndarray, err: np.ndarray, xname: str, what: str, cats: Sequence[str] | None = None,
+                     val=fmt) -> str:
+    """'stays below 1 % of L for x <= a' style statement (worst error per x value, x ascending).
 
-    For a categorical axis (``cats``: names of the codes in ``x``) the errors are listed."""
-    order = np.argsort(x)
-    x, err = x[order], err[order]
+    For a categorical axis (``cats``: names of the codes in ``x``) the errors are listed.
+    ``val`` formats an x value (with its unit)."""
+    # worst error per x value (other parameters vary too): independent of the row order
+    xu = np.unique(x)
+    err = np.array([np.max(err[x == v]) for v in xu])
+    x = xu
     if cats:
         return f"{what}: " + ", ".join(f"{cats[int(c)]} {fmt(e)} % of L" for c, e in zip(x, err)) + "."
-    parts = []
+    bounds: list[tuple[list[float], int | None]] = []  # (thresholds, last index below them; None = all)
     for t in THRESHOLDS:
         below = err < t
-        if below.all():
-            parts.append(f"stays below {fmt(t)} % of L over the whole sweep")
-            break
         if not below[0]:
             continue
-        k = int(np.argmin(below))  # first index at/above threshold
-        parts.append(f"stays below {fmt(t)} % of L for {xname} ≤ {fmt(x[k - 1])}")
+        k = None if below.all() else int(np.argmin(below)) - 1
+        if bounds and bounds[-1][1] == k:
+            bounds[-1][0].append(t)
+        else:
+            bounds.append(([t], k))
+        if k is None:
+            break
+    parts = []
+    for ts, k in bounds:
+        tt = " and ".join(fmt(t) for t in ts)
+        if k is None:
+            parts.append(f"stays below {tt} % of L over the whole sweep")
+        elif k == 0:
+            parts.append(f"stays below {tt} % of L only at the smallest {xname} swept ({val(x[0])})")
+        else:
+            parts.append(f"stays below {tt} % of L for {xname} ≤ {val(x[k])}")
     if not parts:
-        parts.append(f"exceeds {fmt(THRESHOLDS[-1])} % of L already at {xname} = {fmt(x[0])}")
+        parts.append(f"exceeds {fmt(THRESHOLDS[-1])} % of L already at {xname} = {val(x[0])}")
     i = int(np.nanargmax(err))
-    return f"{what} " + "; ".join(parts) + f" (max {fmt(err[i])} % at {xname} = {fmt(x[i])})."
+    return f"{what} " + "; ".join(parts) + f" (max {fmt(err[i])} % at {xname} = {val(x[i])})."
 
 
 def _pair_rows(cmp: pd.DataFrame, ref: str, m: str) -> pd.DataFrame:
     return cmp[(cmp["reference"] == ref) & (cmp["model"] == m)]
 
 
-def _metric_panel(ax, study: ResultSet, cmp: pd.DataFrame, a: str, pairs, col: str, texts: list) -> None:
+def _metric_panel(ax, study: ResultSet, cmp: pd.DataFrame, a: str, pairs, col: str, texts: list,
+                  points: list | None = None) -> None:
     """One metric against axis ``a``, a line per model pair (the reference pairs solid)."""
     allv = []
-    for ref, m in pairs:
+    cat = a in study.categories
+    for k, (ref, m) in enumerate(pairs):
         sub = _pair_rows(cmp, ref, m)
         x, y = numeric(sub[a]), numeric(sub[col])
-        o = np.argsort(x)
+        o = np.argsort(x, kind="mergesort")
         x, y = x[o], y[o]
         is_ref = ref == study.reference
-        ax.plot(x, y, marker="o" if is_ref else "s", ms=3.5 if is_ref else 3,
+        if cat:  # categories: grouped markers side by side, never a line between two categories
+            x = x + 0.12 * (k - (len(pairs) - 1) / 2)
+        ax.plot(x, y, marker="o" if is_ref else "s", ms=4.5 if cat else 3.5 if is_ref else 3,
                 color=model_color(m, study.models) if is_ref else "0.45",
-                ls="-" if is_ref else (":", "-.", "--")[len(allv) % 3], label=pair_label(ref, m))
+                ls="none" if cat else "-" if is_ref else (":", "-.", "--")[len(allv) % 3], label=pair_label(ref, m))
+        if points is not None:
+            ids = sub["case_id"].to_numpy()[o]
+            points += point_links(ax, x, y, ids, [m] * len(ids), [f"{pair_label(ref, m)}, case {str(c)[:8]}" for c in ids])
         allv.append(y)
         if col == "tip_error_pct" and is_ref and np.isfinite(y).any():
             good = np.isfinite(y)
-            texts.append(_below_statement(x[good], y[good], short_label(a, study.labels), f"{pair_label(ref, m)}: tip error",
-                                          study.categories.get(a)))
+            xs = numeric(sub[a])[o]
+            texts.append(_below_statement(xs[good], y[good], short_label(a, study.labels), f"{pair_label(ref, m)}: tip error",
+                                          study.categories.get(a), val=lambda v: value_text(a, v, study.labels)))
     v = np.concatenate(allv) if allv else np.array([])
     if _log_worthy(v):
         ax.set_yscale("log")
@@ -105,30 +131,104 @@ def _metric_panel(ax, study: ResultSet, cmp: pd.DataFrame, a: str, pairs, col: s
     _category_ticks(ax, study, a, "x")
 
 
+def _dependent_unit_column(cmp: pd.DataFrame, a: str) -> str | None:
+    """The column that sets the unit of axis ``a`` (:data:`.units.UNIT_DEPENDS_ON`), if the table has it."""
+    dep = UNIT_DEPENDS_ON.get(a[2:] if a.startswith("p.") else a)
+    if dep is None:
+        return None
+    return next((c for c in (dep[0], f"p.{dep[0]}") if c in cmp.columns), None)
+
+
+def _line_keys(g: pd.DataFrame, a: str, dep_col: str) -> pd.Series:
+    """One line per ``dep_col`` value and per value of the other parameters that vary with it (e.g. a pivot)."""
+    others = [c for c in g.columns if str(c).startswith("p.") and c not in (a, dep_col)
+              and g[c].astype(str).nunique() > 1 and g.groupby(g[dep_col].astype(str))[c].nunique(dropna=False).max() > 1]
+    key = g[dep_col].astype(str)
+    for c in others:
+        v = g[c]
+        key = key + np.where(v.isna(), "", ", " + short_label(c, {}) + " " + v.astype(str))
+    return key
+
+
+def _errors_by_unit(study: ResultSet, cmp: pd.DataFrame, a: str, pairs, metrics, dep_col: str) -> ReportFigure:
+    """One row of panels per unit of ``a`` (never two units on one axis), a colour per ``dep_col`` value."""
+    groups = {u: idx for u, idx in unit_groups(cmp, a).items() if len(idx)}
+    main = [p for p in pairs if p[0] == study.reference] or pairs[:1]
+    fig = Figure(figsize=(3.6 * len(metrics) + 1.6, 3.0 * len(groups) + 0.6), layout="constrained")
+    axs = fig.subplots(len(groups), len(metrics), squeeze=False)
+    styles = ["-", "--", ":", "-."]
+    palette = colormaps["tab10"]
+    texts = []
+    for i, (unit, idx) in enumerate(groups.items()):
+        g = cmp.loc[idx]
+        keys = _line_keys(g, a, dep_col)
+        values = list(dict.fromkeys(keys))
+        for j, (col, lab) in enumerate(metrics):
+            ax = axs[i, j]
+            for k, (ref, m) in enumerate(main):
+                for c, v in enumerate(values):
+                    sub = _pair_rows(g[keys == v], ref, m).sort_values(a, kind="mergesort")
+                    ax.plot(numeric(sub[a]), numeric(sub[col]), marker="o", ms=3, ls=styles[k % 4],
+                            color=palette(c % 10), label=v if k == 0 else None)
+                    if col == "tip_error_pct" and k == 0 and len(sub):
+                        texts.append(f"{v}: max {fmt(np.nanmax(numeric(sub[col])))} % of L")
+            ax.set_xlabel(label_of(a, study.labels, unit=unit or "?"))
+            ax.set_ylabel(lab)
+            if _log_worthy(numeric(g[col])):
+                ax.set_yscale("log")
+        handles, labs = axs[i, 0].get_legend_handles_labels()
+        if len(main) > 1:
+            from matplotlib.lines import Line2D
+
+            handles += [Line2D([], [], color="0.3", ls=styles[k % 4]) for k in range(len(main))]
+            labs += [pair_label(r, m) for r, m in main]
+        axs[i, -1].legend(handles, labs, frameon=False, fontsize=7, loc="center left", bbox_to_anchor=(1.02, 0.5))
+    pair_txt = " and ".join(pair_label(r, m) for r, m in main)
+    summary = (f"Errors of {pair_txt} against {short_label(a, study.labels)}, one row per unit "
+               f"({', '.join(u or 'unknown unit' for u in groups)}), one colour per {short_label(dep_col, study.labels)}"
+               + (", line style per comparison" if len(main) > 1 else "") + f". {pair_label(*main[0])} tip error: "
+               + "; ".join(texts) + ".")
+    return ReportFigure(f"error_vs_{_slug(a)}", f"Errors vs {short_label(a, study.labels)}", fig, summary)
+
+
 def _errors_one_axis(study: ResultSet, cmp: pd.DataFrame, a: str, pairs) -> ReportFigure:
     metrics = [m for m in _ONE_AXIS_METRICS if m[0] in cmp and np.isfinite(numeric(cmp[m[0]])).any()]
+    dep_col = _dependent_unit_column(cmp, a)
+    if dep_col is not None:
+        return _errors_by_unit(study, cmp, a, pairs, metrics, dep_col)
     fig = Figure(figsize=(3.6 * len(metrics) + 0.4, 3.5), layout="constrained")
     axs = np.atleast_1d(fig.subplots(1, len(metrics), squeeze=False)[0])
     texts: list[str] = []
+    points: list = []
     for ax, (col, lab) in zip(axs, metrics):
-        _metric_panel(ax, study, cmp, a, pairs, col, texts)
+        _metric_panel(ax, study, cmp, a, pairs, col, texts, points)
         ax.set_ylabel(lab)
     axs[0].legend(frameon=False)
     return ReportFigure(f"error_vs_{_slug(a)}", f"Errors vs {short_label(a, study.labels)}", fig,
-                        " ".join(texts) or "Errors of each model pair along the sweep.")
+                        " ".join(texts) or "Errors of each model pair along the sweep.", points=tuple(points))
 
 
-def _colour_lines(axs, study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str, main, norm, cmap) -> np.ndarray:
+def _colour_lines(axs, study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str, main, norm, cmap,
+                  points: list | None = None) -> np.ndarray:
     """Tip error against ``x_ax``, one line per ``c_ax`` value (worst over the rest); all plotted values."""
     allv = []
+    x_cat, c_cat = x_ax in study.categories, c_ax in study.categories
     for ax, (ref, m) in zip(axs, main):
         sub = _pair_rows(cmp, ref, m)
-        g = sub.assign(_x=numeric(sub[x_ax]), _c=numeric(sub[c_ax]), _e=numeric(sub["tip_error_pct"]))
-        g = g.groupby(["_c", "_x"], as_index=False)["_e"].max()
-        for cv, gg in g.groupby("_c"):
+        g = sub.assign(_x=numeric(sub[x_ax]), _c=numeric(sub[c_ax]), _e=numeric(sub["tip_error_pct"])).dropna(subset=["_e"])
+        g = g.loc[g.groupby(["_c", "_x"])["_e"].idxmax()]  # the worst case over the other axes, with its case id
+        n_c = g["_c"].nunique()
+        for k, (cv, gg) in enumerate(g.groupby("_c")):
             gg = gg.sort_values("_x")
-            ax.plot(gg["_x"], gg["_e"], marker="o", ms=3, color=cmap(norm(cv)))
+            # a categorical x: grouped markers side by side (no line between categories)
+            x = gg["_x"] + (0.6 * (k - (n_c - 1) / 2) / max(n_c, 1) if x_cat else 0.0)
+            color = colormaps["tab10"](int(cv) % 10) if c_cat else cmap(norm(cv))
+            label = study.categories[c_ax][int(cv)] if c_cat else None
+            ax.plot(x, gg["_e"], marker="o", ms=4 if x_cat else 3, ls="none" if x_cat else "-", color=color, label=label)
             allv.append(gg["_e"].to_numpy())
+            if points is not None:
+                points += point_links(ax, x, gg["_e"], gg["case_id"], [m] * len(gg),
+                                      [f"{pair_label(ref, m)}, case {str(c)[:8]}" for c in gg["case_id"]])
         ax.set_title(pair_label(ref, m))
         ax.set_xlabel(axis_label(x_ax, study.labels))
         _category_ticks(ax, study, x_ax, "x")
@@ -146,13 +246,14 @@ def _two_axes_summary(study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str,
         x, y = numeric(s2[x_ax]), numeric(s2["tip_error_pct"])
         good = np.isfinite(x) & np.isfinite(y)
         if good.any():
-            lo_txt = study.categories[c_ax][int(lo_c)] if c_ax in study.categories else fmt(lo_c)
+            lo_txt = study.categories[c_ax][int(lo_c)] if c_ax in study.categories else value_text(c_ax, lo_c, study.labels)
             texts.append(_below_statement(x[good], y[good], short_label(x_ax, study.labels),
                                           f"{pair_label(ref, m)} at {short_label(c_ax, study.labels)} = {lo_txt}: tip error",
-                                          study.categories.get(x_ax)))
+                                          study.categories.get(x_ax), val=lambda v: value_text(x_ax, v, study.labels)))
     rest = [short_label(a, study.labels) for a in axes[2:]]
     worst = f" (worst case over {', '.join(rest)})" if rest else ""
-    return (f"Tip error vs {short_label(x_ax, study.labels)}, one line per value of "
+    what = "one marker group per category of" if x_ax in study.categories else "one line per value of"
+    return (f"Tip error vs {short_label(x_ax, study.labels)}, {what} "
             f"{short_label(c_ax, study.labels)} (colour){worst}; dotted lines at 1, 5, 10 % of L. " + " ".join(texts))
 
 
@@ -163,7 +264,8 @@ def _errors_two_axes(study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str, 
     cvals = np.unique(numeric(cmp[c_ax])[np.isfinite(numeric(cmp[c_ax]))])
     norm = (LogNorm if _is_geometric(cvals) else Normalize)(vmin=cvals.min(), vmax=cvals.max())
     cmap = colormaps["viridis"]
-    v = _colour_lines(axs, study, cmp, x_ax, c_ax, main, norm, cmap)
+    points: list = []
+    v = _colour_lines(axs, study, cmp, x_ax, c_ax, main, norm, cmap, points)
     for ax in axs:
         if _log_worthy(v):
             ax.set_yscale("log")
@@ -172,12 +274,15 @@ def _errors_two_axes(study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str, 
         for t in THRESHOLDS:
             ax.axhline(t, color="0.5", lw=0.7, ls=":")
     axs[0].set_ylabel("tip position error [% L]")
-    cb = fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=list(axs), shrink=0.9)
-    cb.set_label(axis_label(c_ax, study.labels))
-    if c_ax in study.categories:
-        cb.set_ticks(range(len(study.categories[c_ax])), labels=study.categories[c_ax])
+    if c_ax in study.categories:  # categories: a legend, not a colour bar
+        axs[-1].legend(title=axis_label(c_ax, study.labels), frameon=False, fontsize=8, loc="upper left",
+                       bbox_to_anchor=(1.02, 1.0))
+    else:
+        cb = fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=list(axs), shrink=0.9)
+        cb.set_label(axis_label(c_ax, study.labels))
     summary = _two_axes_summary(study, cmp, x_ax, c_ax, main, axes)
-    return ReportFigure(f"error_vs_{_slug(x_ax)}", f"Tip error vs {short_label(x_ax, study.labels)}", fig, summary)
+    return ReportFigure(f"error_vs_{_slug(x_ax)}", f"Tip error vs {short_label(x_ax, study.labels)}", fig, summary,
+                        points=tuple(points))
 
 
 def error_vs_parameter_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFigure]:
@@ -239,7 +344,7 @@ def _validity_text(study: ResultSet, ref: str, m: str, where: str, xs, ys, E, a0
 
 
 def _validity_panel(ax, study: ResultSet, cmp: pd.DataFrame, panel, facet, a0: str, a1: str, norm):
-    """Draw one heat map; return ``(mesh, sentence, missing cells?)`` or ``None`` for an empty panel."""
+    """Draw one heat map; return ``(mesh, sentence, missing cells?, point links)`` or ``None`` for an empty panel."""
     ref, m, fv = panel
     sub = _pair_rows(cmp, ref, m)
     where = ""
@@ -263,7 +368,14 @@ def _validity_panel(ax, study: ResultSet, cmp: pd.DataFrame, panel, facet, a0: s
     _category_ticks(ax, study, a1, "y")
     ax.set_title(pair_label(ref, m) + where)
     missing = _mark_missing(ax, xs, ys, E)
-    return mesh, _validity_text(study, ref, m, where, xs, ys, E, a0, a1), missing
+    # every cell links to its worst case (the maximum over the other axes)
+    c = pd.DataFrame({"x": numeric(sub[a0]), "y": numeric(sub[a1]), "e": numeric(sub["tip_error_pct"]),
+                      "case_id": sub["case_id"].to_numpy()}).dropna(subset=["x", "y", "e"])
+    worst = c.loc[c.groupby(["y", "x"])["e"].idxmax()]
+    points = point_links(ax, worst["x"], worst["y"], worst["case_id"], [m] * len(worst),
+                         [f"{pair_label(ref, m)}{where}: {fmt(e)} % of L, case {str(k)[:8]}"
+                          for e, k in zip(worst["e"], worst["case_id"])])
+    return mesh, _validity_text(study, ref, m, where, xs, ys, E, a0, a1), missing, points
 
 
 def validity_map_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFigure]:
@@ -290,10 +402,12 @@ def validity_map_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFigu
     texts = []
     mesh = None
     missing_note = False
+    points: list = []
     for ax, panel in zip(axs, panels):
         drawn = _validity_panel(ax, study, cmp, panel, facet, a0, a1, norm)
         if drawn is not None:
-            mesh, text, missing = drawn
+            mesh, text, missing, pts = drawn
+            points += pts
             texts.append(text)
             missing_note = missing_note or missing
     if mesh is None:
@@ -307,7 +421,7 @@ def validity_map_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFigu
     extra = f" (maximum over {', '.join(short_label(a, study.labels) for a in rest)})" if rest else ""
     per = f", one panel per {short_label(facet, study.labels)}" if facet else ""
     summary = "Validity map: heat map of the tip error, contour lines at 1 %, 5 % and 10 % of L" + per + extra + ". " + " ".join(texts)
-    return [ReportFigure("validity_map", "Validity map of constant curvature", fig, summary)]
+    return [ReportFigure("validity_map", "Validity map of constant curvature", fig, summary, points=tuple(points))]
 
 
 def _region_statement(xs, ys, E, a0, a1, study: ResultSet) -> str:

@@ -112,9 +112,12 @@ class LoadCase:
     actuation : TendonActuation, optional
         Tendon commands (``None``: tendons absent or untouched).
     tip_force : tuple of 3 float
-        External force at the tip, base frame [N].
+        External force at the tip [N], in the robot's **base frame** (backbone along base +z),
+        not the world frame: on a horizontal robot (``base_orientation = "horizontal"``) a
+        force "down" in the world is ``(-f, 0, 0)`` here, and ``(0, 0, -f)`` is an axial push.
+        Convert with :func:`workbench.robot.world_vectors_to_base`.
     tip_torque : tuple of 3 float
-        External torque at the tip, base frame [N m].
+        External torque at the tip [N m], base frame (as ``tip_force``).
     analysis : {"static", "dynamic"}
         Static equilibrium for the final commands, or a time simulation.
     duration : float

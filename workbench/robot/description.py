@@ -16,7 +16,8 @@ towards +x (phi = 0).
 The base pose (``Robot.base_rotation``, ``Robot.base_position``) maps base-frame vectors
 to world-frame vectors; ``Robot.gravity`` is given in the world frame and
 :meth:`Robot.gravity_in_base` converts it.  Results of every model are reported in the
-base frame.
+base frame; :mod:`workbench.robot.frames` converts them to the world frame (the result tables'
+``tip_world_*`` columns, the report's figures).
 
 Example
 -------

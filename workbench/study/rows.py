@@ -97,6 +97,14 @@ def _arr(x) -> list[float] | None:
     return np.asarray(x, dtype=float).reshape(-1).tolist()
 
 
+def _tip_world(T: np.ndarray, robot) -> dict[str, float]:
+    """``tip_world_x/y/z``: the tip position in the world frame (``robot.base_rotation``/``base_position``)."""
+    from ..robot.frames import base_points_to_world
+
+    w = base_points_to_world(T[:3, 3], robot.base_rotation, robot.base_position)
+    return {"tip_world_x": float(w[0]), "tip_world_y": float(w[1]), "tip_world_z": float(w[2])}
+
+
 def row_from_result(res, case_id: str, model: str, params: Mapping[str, Any], robot,
                     wall_time: float, flat: Mapping[str, Any] | None = None) -> dict[str, Any]:
     """Flatten a :class:`~workbench.models.PhysicsResult` into a row of the sweep kind.
@@ -113,7 +121,8 @@ def row_from_result(res, case_id: str, model: str, params: Mapping[str, Any], ro
         "wall_time": float(wall_time),
         "robot_length": float(robot.length),
         "robot_gravity": float(np.linalg.norm(robot.gravity)),
-        "tip_x": float(T[0, 3]), "tip_y": float(T[1, 3]), "tip_z": float(T[2, 3]),
+        "tip_x": float(T[0, 3]), "tip_y": float(T[1, 3]), "tip_z": float(T[2, 3]),  # base frame
+        **_tip_world(T, robot),
         "tip_frame": _arr(T),
         "length_change": float(res.length_change),
         "tip_twist": float(res.tip_twist),

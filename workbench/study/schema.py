@@ -103,6 +103,7 @@ class ReportSection(BaseModel):
     assumptions: dict[str, str] = Field(default_factory=dict)
     sensitivity: list[str] = Field(default_factory=list)
     sensitivity_note: str = ""
+    frame: Literal["world", "base"] = "world"  # frame of the report's shape figures and 3-D view
 
 
 class StudyFile(BaseModel):

@@ -4,7 +4,8 @@ Registered as ``registry.FIGURES["fruit_harvester"]``: :func:`matches` picks ben
 (no ``[scenario]``) of the ``shao_harvester`` preset; :func:`figures` draws the assumed envelope
 (:mod:`.envelope`), the backbones with their best-fit arc centres, and how far the grasp centre
 drifts from the CC centre of arc with the payload.  Checked by the report tier of
-``tests/regression`` (the ``fruit_harvester`` study's ``report.html``).
+``tests/regression`` (the ``fruit_harvester`` study's ``report.html``).  Backbones are drawn in the world frame
+(the robot hangs: heavier payloads drop the tip); the centres are fitted in the bending plane.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from matplotlib.figure import Figure
 
 from ...compare.table import row_positions
 from ...report.figures import ReportFigure, fmt, model_color, model_label
+from ...report.scene import case_scene, to_frame
 from .envelope import HARVESTER_LIMITS, circle_fit, grasp_envelope
 
 __all__ = ["matches", "figures"]
@@ -45,7 +47,7 @@ def _envelope_panel(ax, D: float):
     ax.axhline(100, color="k", ls=":", lw=1)
     ax.text(s[0] * 1e3, 101, "paper: objects up to 100 mm", fontsize=7.5, va="bottom")
     ax.set_xlabel("arc length s [mm]")
-    ax.set_ylabel("object diameter d = 2/kappa - D [mm]")
+    ax.set_ylabel("object diameter d = 2/κ − D [mm]")
     ax.set_title("centre-of-arc grasp envelope (assumed limits)")
     ax.legend(frameon=False, fontsize=7.5, loc="upper left")
     return d_lo, d_hi
@@ -66,25 +68,35 @@ def _centre_offsets(ax_shape, ok: pd.DataFrame, m: str, bend: float, payloads, s
             continue
         c_fit, R = circle_fit(bp[1][:, [0, 2]])
         c_cc, _ = circle_fit(bc[1][:, [0, 2]])
-        offs.append(np.linalg.norm(c_fit - c_cc))
+        offs.append(np.linalg.norm(c_fit - c_cc))  # fitted in the base x-z plane (the bending plane)
         pls.append(pm)
-        if show:
+        if show:  # drawn in the world frame: the base hangs, gravity points down the page
+            scene = case_scene(rm.iloc[0].to_dict())
+
+            def world(P):
+                return 1e3 * to_frame(P, scene, "world")
+
+            def centre(c):
+                return world(np.array([c[0], 0.0, c[1]]))
+
             col = _PAYLOAD_COLORS[pi % len(_PAYLOAD_COLORS)]
-            ax_shape.plot(bp[1][:, 0] * 1e3, bp[1][:, 2] * 1e3, color=col, label=f"{model_label(m)} {fmt(1e3 * pm)} g")
-            ax_shape.plot(c_fit[0] * 1e3, c_fit[1] * 1e3, "o", color=col, ms=5)
+            wp, wc = world(bp[1]), centre(c_fit)
+            ax_shape.plot(wp[:, 0], wp[:, 2], color=col, label=f"{model_label(m)} {fmt(1e3 * pm)} g")
+            ax_shape.plot(wc[0], wc[2], "o", color=col, ms=5)
             if pi == 0:
-                ax_shape.plot(bc[1][:, 0] * 1e3, bc[1][:, 2] * 1e3, "k--", lw=1.8, label="CC (any payload)")
-                ax_shape.plot(c_cc[0] * 1e3, c_cc[1] * 1e3, "kx", ms=9, mew=2, label="CC centre of arc")
+                wb, wcc = world(bc[1]), centre(c_cc)
+                ax_shape.plot(wb[:, 0], wb[:, 2], "k--", lw=1.8, label="CC (any payload)")
+                ax_shape.plot(wcc[0], wcc[2], "kx", ms=9, mew=2, label="CC centre of arc")
     return offs, pls
 
 
 def _label_drift_axes(ax_shape, ax_c, bshow: float) -> None:
     ax_shape.set_aspect("equal")
-    ax_shape.set_xlabel("x [mm] (base frame)")
-    ax_shape.set_ylabel("z [mm] (base frame; the base hangs, gravity along +z)")
-    ax_shape.set_title(f"backbones and best-fit arc centres, kappa s = {fmt(bshow)} rad")
-    ax_shape.legend(frameon=False, fontsize=6.5)
-    ax_c.set_xlabel("payload [g]")
+    ax_shape.set_xlabel("world x [mm]")
+    ax_shape.set_ylabel("world z [mm] (gravity along −z; the base hangs at 0)")
+    ax_shape.set_title(f"backbones and best-fit arc centres, κs = {fmt(bshow)} rad")
+    ax_shape.legend(frameon=False, fontsize=6.5, loc="upper left", bbox_to_anchor=(1.0, 1.0))
+    ax_c.set_xlabel("payload mass [g]")
     ax_c.set_ylabel("|grasp centre - CC centre| [mm]")
     ax_c.set_title("grasp centre drift (best-fit arc of the backbone)")
     ax_c.legend(frameon=False, fontsize=7.5)
@@ -94,8 +106,8 @@ def figures(results, cmp: pd.DataFrame) -> list[ReportFigure]:
     """The envelope, the backbones at the largest bend, and the grasp-centre drift per model."""
     ok = results.ok
     lim = HARVESTER_LIMITS
-    fig = Figure(figsize=(14.0, 4.8), layout="constrained")
-    ax_env, ax_shape, ax_c = fig.subplots(1, 3)
+    fig = Figure(figsize=(15.0, 4.8), layout="constrained")
+    ax_env, ax_shape, ax_c = fig.subplots(1, 3, gridspec_kw={"width_ratios": [1, 1.35, 1]})
     D = float(ok["p.robot.outer_diameter"].iloc[0]) if "p.robot.outer_diameter" in ok else 0.06
     d_lo, d_hi = _envelope_panel(ax_env, D)
     phys = [m for m in results.models if m != "cc"]
@@ -108,7 +120,7 @@ def figures(results, cmp: pd.DataFrame) -> list[ReportFigure]:
             offs, pls = _centre_offsets(ax_shape, ok, m, bend, payloads, bend == bshow)
             if pls:
                 ax_c.plot(1e3 * np.array(pls), 1e3 * np.array(offs), marker="o", ls=_STYLES[bi % 3],
-                          color=model_color(m, results.models), label=f"{model_label(m)}, kappa s = {fmt(bend)} rad")
+                          color=model_color(m, results.models), label=f"{model_label(m)}, κs = {fmt(bend)} rad")
                 texts.append(f"kappa s = {fmt(bend)} rad ({model_label(m)}): grasp centre {fmt(1e3 * offs[0])} mm off the "
                              f"CC centre without payload, {fmt(1e3 * offs[-1])} mm with {fmt(1e3 * pls[-1])} g")
     _label_drift_axes(ax_shape, ax_c, bshow)

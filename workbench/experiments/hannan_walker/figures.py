@@ -16,6 +16,7 @@ from matplotlib.figure import Figure
 
 from ...compare.table import row_positions
 from ...report.figures import ReportFigure, fmt, model_color, model_label
+from ...report.scene import case_scene
 
 __all__ = ["matches", "figures"]
 
@@ -53,16 +54,17 @@ def _shape_panel(ax, err_ax, sub: pd.DataFrame, shape: str, first_shape: str, mo
     for m in models:
         ks, errs = _model_along_line(ax, sub[sub["model"] == m], m, models, a, b, n)
         if ks:
-            err_ax.plot(ks, 1e3 * np.array(errs), marker="o", color=model_color(m, models),
+            err_ax.plot(ks, 1e3 * np.array(errs), marker="o", ms=4, color=model_color(m, models),
                         ls="-" if shape == first_shape else "--", label=f"{model_label(m)}, {shape}")
             texts.append(f"{shape}, {model_label(m)}: tip-to-line error {fmt(1e3 * min(errs))}-{fmt(1e3 * max(errs))} mm")
     ax.plot(0, 0, "ks", ms=6)
     ax.set_aspect("equal")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("z [m]")
+    vertical = np.allclose(case_scene(r0.to_dict()).rotation, np.eye(3))
+    ax.set_xlabel("world x [m] (= base x: vertical mount)" if vertical else "base x [m]")
+    ax.set_ylabel("world z [m] (up; gravity along −z)" if vertical else "base z [m]")
     ax.set_title(f"{shape}: snapshots 1-{n} (cf. paper Figs 7-12)" if shape == "line"
                  else f"{shape}: Eq 11 null-space towards q_d")
-    ax.legend(frameon=False, fontsize=7.5, loc="lower left")
+    ax.legend(frameon=False, fontsize=7.5, loc="upper left", bbox_to_anchor=(0.0, -0.12), ncol=2)
 
 
 def figures(results, cmp: pd.DataFrame) -> list[ReportFigure]:
@@ -70,7 +72,7 @@ def figures(results, cmp: pd.DataFrame) -> list[ReportFigure]:
     ok = results.ok
     shapes = list(dict.fromkeys(ok["p.scenario.shape"]))
     models = list(results.models)
-    fig = Figure(figsize=(5.0 * len(shapes) + 4.6, 5.6), layout="constrained")
+    fig = Figure(figsize=(5.0 * len(shapes) + 5.6, 6.0), layout="constrained")
     axs = fig.subplots(1, len(shapes) + 1)
     texts: list[str] = []
     err_ax = axs[-1]
@@ -80,7 +82,7 @@ def figures(results, cmp: pd.DataFrame) -> list[ReportFigure]:
     err_ax.set_xlabel("sample along the line")
     err_ax.set_ylabel("|tip - line target| [mm]")
     err_ax.set_title("tracking error along the path")
-    err_ax.legend(frameon=False, fontsize=7)
+    err_ax.legend(frameon=False, fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0))
     fig.suptitle("Hannan & Walker trunk: CC plan replayed under gravity")
     summary = ("Backbone shapes of every path sample (the paper's six snapshots are photographs without "
                "numbers; these overlays are their model counterparts) and the tip's distance to the "

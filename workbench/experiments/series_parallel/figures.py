@@ -7,7 +7,8 @@ types (x/y/z translations, rx/ry/rz rotations, stack shapes), so the overview gr
 ``p.motion.shape``: (a) the 3-module platform positions, target vs Exudyn FK vs the fitted CC
 arc; (b) CC-fit position error vs amplitude per stack shape; (c) single-module IK->FK round-trip
 error vs amplitude per axis, failed (unreached) poses marked with crosses.  A second figure shows
-the legs along the single-module motions: compression relative to the Euler load, and clearance.
+the legs along the single-module motions: compression relative to the Euler load, and clearance;
+:mod:`.leg_figures` draws the legs themselves (Huang Figs 6 and 10).
 Checked by ``tests/motion/test_motion_run.py`` and the report tier of ``tests/regression``.
 """
 
@@ -24,7 +25,7 @@ __all__ = ["matches", "figures", "motion_figures", "motion_overview_figure", "mo
 
 def motion_overview_figure(df: pd.DataFrame) -> Figure:
     """The three-panel overview of a motion-study result table (all rows, failed included)."""
-    fig = Figure(figsize=(12, 4.3), layout="constrained")
+    fig = Figure(figsize=(13.5, 4.6), layout="constrained")
     axs = fig.subplots(1, 3, gridspec_kw={"width_ratios": [0.8, 1, 1.1]})
     # (a) stack shapes
     ax = axs[0]
@@ -46,20 +47,23 @@ def motion_overview_figure(df: pd.DataFrame) -> Figure:
             T = np.asarray(rows["target"]["positions"]).reshape(-1, 3)
             ax.plot(T[-1, 0], T[-1, 2], "r+", ms=12)
     ax.set_aspect("equal")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("z [m]")
+    ax.set_xlabel("world x [m]")
+    ax.set_ylabel("world z [m] (up)")
     ax.set_title("(a) 3 modules: target o, FK -, CC arc x", fontsize=10)
     for s, c in colors.items():
         ax.plot([], [], color=c, label=s)
-    ax.legend(fontsize=7, loc="lower right")
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), frameon=False, ncol=3)
     ax.grid(alpha=0.3)
     # (b) CC fit error vs amplitude (stack)
     ax = axs[1]
     cc = st[(st["model"] == "cc_fit") & (st["status"] == "ok")]
     for shape, g in cc.groupby("p.motion.shape"):
         g = g.sort_values("p.motion.value")
-        ax.plot(g["p.motion.value"], 1e3 * g["x.cc_max_error"], "o-", color=colors.get(shape, "k"), label=shape)
-    ax.set_xlabel("amplitude (translation [m], S / bend [rad])")
+        amp = float(np.max(np.abs(g["p.motion.value"]))) or 1.0  # one unit per shape: amplitudes as fractions
+        unit = "m" if shape == "translation" else "rad"
+        ax.plot(g["p.motion.value"] / amp, 1e3 * g["x.cc_max_error"], "o-", color=colors.get(shape, "k"),
+                label=f"{shape} (1 = {amp:g} {unit})")
+    ax.set_xlabel("amplitude / largest amplitude of the shape")
     ax.set_ylabel("max platform distance from CC arc [mm]")
     ax.set_title("(b) CC arc fit through FK platforms", fontsize=10)
     if len(cc):
@@ -78,7 +82,7 @@ def motion_overview_figure(df: pd.DataFrame) -> Figure:
     ax.set_xlabel("motion / Fig 6 amplitude")
     ax.set_ylabel("|FK(IK(T)) - T| [m]")
     ax.set_title("(c) one module: IK->FK round trip\n(x at 1e-17: IK failed)", fontsize=10)
-    ax.legend(fontsize=7, ncol=2)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0), frameon=False)
     ax.grid(alpha=0.3)
     return fig
 
@@ -93,7 +97,9 @@ def _module_curves(df: pd.DataFrame):
     if "p.motion.pivot" in md.columns:
         piv = md["p.motion.pivot"].notna()
         md.loc[piv, "_curve"] = [f"{a} @ {p:g} h" for a, p in zip(md.loc[piv, "p.motion.shape"], md.loc[piv, "p.motion.pivot"])]
-    for name, g in md.groupby("_curve", sort=False):
+    order = {"x": 0, "y": 1, "z": 2, "rx": 3, "ry": 4, "rz": 5}  # the paper's Fig 6 order, then pivot variants
+    groups = sorted(md.groupby("_curve", sort=False), key=lambda ng: (" @ " in ng[0], order.get(ng[0][:2].strip(), 9), ng[0]))
+    for name, g in groups:
         amp = float(np.max(np.abs(g["p.motion.value"]))) or 1.0
         unit = f"{np.degrees(amp):.0f} deg" if name.startswith("r") else f"{1e3 * amp:.0f} mm"
         yield f"{name} (1 = {unit})", amp, g.sort_values("p.motion.value")
@@ -101,7 +107,7 @@ def _module_curves(df: pd.DataFrame):
 
 def motion_legs_figure(df: pd.DataFrame) -> tuple[Figure, str]:
     """Leg loading and clearance along the single-module motions, and a sentence on the extremes."""
-    fig = Figure(figsize=(10, 3.8), layout="constrained")
+    fig = Figure(figsize=(11.5, 3.8), layout="constrained")
     axs = fig.subplots(1, 2)
     worst_ratio, worst_gap = (-np.inf, ""), (np.inf, "")
     for k, (label, amp, g) in enumerate(_module_curves(df)):
@@ -118,7 +124,7 @@ def motion_legs_figure(df: pd.DataFrame) -> tuple[Figure, str]:
         if ok.loc[j, "x.min_leg_gap"] < worst_gap[0]:
             worst_gap = (float(ok.loc[j, "x.min_leg_gap"]), where(ok.loc[j]))
     axs[0].axhline(1.0, color="k", lw=0.8, ls="--")
-    axs[0].set_ylabel("max leg compression / (4 pi^2 EI / L^2)")
+    axs[0].set_ylabel("max leg compression / (4π² EI / L²)")
     axs[0].set_title("(a) leg compression vs clamped Euler load", fontsize=10)
     axs[1].axhline(0.0, color="k", lw=0.8, ls="--")
     axs[1].set_ylabel("smallest gap between two legs [mm]")
@@ -126,7 +132,7 @@ def motion_legs_figure(df: pd.DataFrame) -> tuple[Figure, str]:
     for ax in axs:
         ax.set_xlabel("motion / Fig 6 amplitude")
         ax.grid(alpha=0.3)
-    axs[1].legend(fontsize=7, ncol=2)
+    axs[1].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0), frameon=False)
     text = ""
     if np.isfinite(worst_ratio[0]):
         text = (f" Largest leg compression: {worst_ratio[0]:.2f} x the clamped-clamped Euler load of a straight rod of "
@@ -163,5 +169,7 @@ def matches(results) -> bool:
 
 
 def figures(results, cmp: pd.DataFrame) -> list[ReportFigure]:
-    """:func:`motion_figures` of all rows of the study (failed rows included)."""
-    return motion_figures(results.results)
+    """:func:`motion_figures` of all rows (failed included), then the leg shapes (Huang Figs 6 and 10)."""
+    from .leg_figures import leg_shape_figures
+
+    return motion_figures(results.results) + leg_shape_figures(results.results)

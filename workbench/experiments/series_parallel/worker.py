@@ -21,7 +21,8 @@ Models (one row each, the row schema of ``docs/architecture.md``):
 ``positions`` are the base origin followed by the platform origins (base frame, [m]); ``stations``
 the nominal arc lengths ``k h``; ``robot_length = n h``; ``length_change`` the change of the
 polyline (arc, for ``cc_fit``) length through those points; ``tip_twist`` the twist of the top
-platform about the base z axis (swing-twist decomposition) [rad].  Non-finite results fail a row
+platform about the base z axis (swing-twist decomposition) [rad]; ``legs`` (series_parallel rows) the
+FK leg centrelines (n, 6, N+1, 3) [m], base frame.  Non-finite results fail a row
 by the rule of every study kind (:func:`workbench.study.rows.fail_non_finite`).  Was
 ``workbench/motion/worker.py``.
 
@@ -250,8 +251,10 @@ def _physics_row(row: dict[str, Any], state: dict[str, Any], geo, targets: np.nd
     extras.update(stress_columns(geo, modules))
     if sol.get("error_estimate", "richardson") != "none":  # discretisation error (estimate.py)
         extras.update(discretization_columns(geo, targets, sol, n, L, fk.poses, _inverse))
+    legs = np.asarray(fk.leg_positions, dtype=float)  # (n, 6, N+1, 3): the report draws Huang's Figs 6 and 10
     row.update(status="ok", error="", wall_time=time.perf_counter() - t0, converged=True,
-               iterations=ik_its + int(fk.iterations), **extras, **_shape_row(fk.poses, h))
+               iterations=ik_its + int(fk.iterations), **extras, **_shape_row(fk.poses, h),
+               legs=legs.reshape(-1).tolist(), _shapes={"legs": [-1, 6, legs.shape[2], 3]})
 
 
 def _series_parallel_row(base: Mapping[str, Any], geo, targets: np.ndarray, sol: Mapping[str, Any], n: int,

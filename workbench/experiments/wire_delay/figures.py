@@ -145,15 +145,18 @@ def _split_panel(ax, split_rows) -> None:
 
 
 def figures(results, cmp: pd.DataFrame) -> list[ReportFigure]:
-    """The wire-delay figure of the first physics model with time series (``[]`` if none)."""
+    """Cojocaru Fig 7 (:mod:`.fig7`), then the wire-delay figure of the first physics model with time series."""
+    from .fig7 import wire_lengths_figure
+
     ok = results.ok
+    fig7 = [wire_lengths_figure(ok.iloc[0].to_dict())] if not ok.empty else []
     phys = [m for m in results.models if m != "cc"]
     if not phys:
-        return []
+        return fig7
     m = phys[0]
     rows = ok[(ok["model"] == m) & ok["time"].map(lambda v: array_cell(v) is not None)]
     if rows.empty:
-        return []
+        return fig7
     rows = rows.sort_values("p.scenario.delay")
     fig = Figure(figsize=(12.5, 7.2), layout="constrained")
     axs = fig.subplots(2, 3).ravel()
@@ -169,4 +172,5 @@ def figures(results, cmp: pd.DataFrame) -> list[ReportFigure]:
     fig.suptitle("Cojocaru wire delay: where the kinematic virtual compression goes")
     summary = ("Wire 1 starts late; e is the common offset of the commanded wire lengths from the nearest CC "
                "configuration (e < 0: the wires would have to compress the bone). " + " ".join(texts))
-    return [ReportFigure("wire_delay_split", "Wire delay: virtual compression vs the physics", fig, summary)]
+    return fig7 + [ReportFigure("wire_delay_split", "Wire delay: virtual compression vs the physics", fig, summary,
+                                cases=tuple(map(str, rows["case_id"])))]

@@ -10,6 +10,7 @@ for dynamics integrates with implicit generalised-alpha, updating the tendon com
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import replace
 from typing import Callable
@@ -19,6 +20,7 @@ import numpy as np
 from ...models.inputs import check_model_inputs
 from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ...robot import LoadCase, Robot
+from ...models.backbone_frames import backbone_series, frame_stride
 from .._stepping import RampExhausted, RampPolicy, RampStalled, ramp
 from .chain import _Chain
 from .geometry import ChainGeometry, chain_geometry_from_robot
@@ -159,10 +161,21 @@ def _solve_dynamic(model: _Chain, params: SpringLinkParams, t0: float) -> Physic
     act = load.actuation
     start = np.zeros(len(model.tendons)) if act is None else act.command_at(0.0, load.ramp_time)
     _ramp_to(model, params, start)
-    rec_t, rec_tip, rec_T = [], [], []
+    rec_t, rec_tip, rec_T, bb_t, bb_p = [], [], [], [], []
     peak: dict[str, float] = {}  # largest stress extras over the recorded states
+    h = model.options.time_step if model.options.time_step > 0 else load.duration
+    stride = frame_stride(math.ceil(load.duration / h))
 
-    def record(t: float, r: PhysicsResult) -> None:
+    def record(t: float, r: PhysicsResult, final: bool = False) -> None:
+        while rec_t and rec_t[-1] >= t - 1e-12:  # a step retried at a smaller size: drop its samples
+            for lst in (rec_t, rec_tip, rec_T):
+                lst.pop()
+            while bb_t and bb_t[-1] >= t - 1e-12:
+                bb_t.pop()
+                bb_p.pop()
+        if final or len(rec_t) % stride == 0:  # decimated backbone frames for the report's viewer
+            bb_t.append(t)
+            bb_p.append(np.asarray(r.positions, dtype=float).copy())
         rec_t.append(t)
         rec_tip.append(r.tip_position.copy())
         rec_T.append(r.tendon_tensions.copy())
@@ -187,12 +200,13 @@ def _solve_dynamic(model: _Chain, params: SpringLinkParams, t0: float) -> Physic
         solver.SolveSystem(model.mbs, settings)
     except exu.SolverError as err:
         raise ModelFailure(f"spring_link: dynamic solve failed: {err}") from err
-    record(load.duration, model.result(SolverInfo(True)))
+    record(load.duration, model.result(SolverInfo(True)), final=True)
     info = SolverInfo(converged=True, iterations=int(solver.it.newtonStepsCount),
                       wall_time=time.perf_counter() - t0, message=f"{len(rec_t) - 1} time steps")
     res = model.result(
         info, time_=np.asarray(rec_t),
-        series={"tip_position": np.asarray(rec_tip), "tendon_tensions": np.asarray(rec_T)},
+        series={"tip_position": np.asarray(rec_tip), "tendon_tensions": np.asarray(rec_T),
+                **backbone_series(bb_t, bb_p)},
     )
     return replace(res, extras={**res.extras, **peak})
 

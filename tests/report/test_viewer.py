@@ -1,0 +1,52 @@
+"""The 3-D view's data: world-frame backbones of every model, disks, tendons, gravity, time frames."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from tests.regression.golden import STUDIES_DIR
+from workbench.report.load import load_results
+from workbench.report.scene import case_scene
+from workbench.report.viewer import _model_frames, viewer_scenes
+
+
+@pytest.fixture(scope="module")
+def quickstart(small_study_run):
+    return load_results(small_study_run(STUDIES_DIR / "quickstart.toml"))
+
+
+def test_scenes_are_in_the_world_frame_with_gravity_down(quickstart):
+    sc = viewer_scenes(quickstart)
+    assert sc["frame"] == "world" and len(sc["cases"]) == quickstart.ok["case_id"].nunique()
+    for case in sc["cases"]:
+        assert set(case["models"]) == {"cc", "ancf"}
+        g = np.asarray(case["gravity"])
+        assert g[2] < 0 and np.allclose(g[:2], 0)                   # world -z
+        bb = {m: np.asarray(v["frames"][-1][1]) for m, v in case["models"].items()}
+        d0 = bb["cc"][1] - bb["cc"][0]
+        assert d0[0] > 0.9 * np.linalg.norm(d0)                       # the horizontal rod leaves its base along world +x
+        assert bb["cc"][-1][2] > 0                                    # CC bends up (bend plane 0 = world up) ...
+        assert bb["ancf"][-1][2] < bb["cc"][-1][2]                    # ... the beam sags below it
+        assert case["disks"] and case["tendons"]
+        np.testing.assert_allclose(case["e0"], [0, 0, 1], atol=1e-12)  # base x axis = world up (horizontal mount)
+
+
+def test_base_frame_on_request(quickstart):
+    from dataclasses import replace
+
+    sc = viewer_scenes(replace(quickstart, frame="base"))
+    case = sc["cases"][0]
+    tip = np.asarray(case["models"]["cc"]["frames"][-1][1])[-1]
+    assert tip[2] > 0.3 and sc["frame"] == "base"                     # backbone along base +z
+
+
+def test_dynamic_rows_give_time_frames(quickstart):
+    row = quickstart.ok.iloc[0].to_dict()
+    P = np.asarray(row["positions"], float).reshape(-1, 3)
+    frames = np.stack([P * f for f in (0.0, 0.5, 1.0)])
+    row.update({"series.backbone_time": [0.0, 0.5, 1.0], "series.backbone": frames.reshape(-1).tolist(),
+                "time": [0.0, 0.25, 0.5, 0.75, 1.0]})
+    got, pts = _model_frames(row, case_scene(row), "world")
+    assert [f[0] for f in got] == [0.0, 0.5, 1.0]
+    np.testing.assert_allclose(np.asarray(got[-1][1]), np.round(case_scene(row).rotation @ P.T, 6).T, atol=1e-6)

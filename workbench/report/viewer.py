@@ -1,0 +1,113 @@
+"""Data of the report's interactive 3-D view: every case's backbones, all models overlaid.
+
+:func:`viewer_scenes` turns the ok rows into the JSON that ``assets/viewer.js`` draws: per case
+the models' backbones in the report's frame (world by default), over time for dynamic cases
+(the stored ``series.backbone`` frames; the final shape otherwise), the disks and tendon
+routing of the case's robot (:func:`.scene.case_scene`), gravity, and for series-parallel
+stacks the leg centrelines (``legs``) as extra polylines.  Coordinates are rounded to 1 µm to
+keep the page small.  The viewer is a small vendored canvas script (no library, no network):
+an orthographic view of a few polylines needs nothing more, and it keeps every report one
+offline file of modest size.  Checked by ``tests/report/test_viewer.py`` and the browser tests.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..compare.table import array_cell, row_positions
+from .load import ResultSet
+from .scene import base_vectors_in, case_scene, gravity_in, to_frame
+from .shapes import backbone_frames
+from .style import _case_title, model_color, model_label
+
+__all__ = ["MAX_VIEWER_CASES", "viewer_scenes"]
+
+#: cases the viewer carries at most (in canonical order); more are left out with a note
+MAX_VIEWER_CASES = 400
+
+
+def _r(a) -> list:
+    return np.round(np.asarray(a, dtype=float), 6).tolist()
+
+
+def _model_frames(row: dict, scene, frame: str) -> tuple[list, np.ndarray] | None:
+    """``([[t, points], ...], all points)`` of one model row in ``frame``."""
+    fr = backbone_frames(row)
+    if fr is not None:
+        t, P = fr
+        W = to_frame(P, scene, frame)
+        return [[float(ti), _r(Wi)] for ti, Wi in zip(t, W)], W.reshape(-1, 3)
+    bp = row_positions(row)
+    if bp is None:
+        return None
+    tt = array_cell(row.get("time"))
+    W = to_frame(bp[1], scene, frame)
+    return [[float(tt[-1]) if tt is not None and tt.size else 0.0, _r(W)]], W
+
+
+def _case(study: ResultSet, cid: str, rows: dict[str, dict]) -> dict[str, Any] | None:
+    row0 = next(iter(rows.values()))
+    scene = case_scene(row0)
+    models, pts = {}, []
+    for m, r in rows.items():
+        got = _model_frames(r, scene, study.frame)
+        if got is None:
+            continue
+        frames, P = got
+        pts.append(P)
+        stations = array_cell(r.get("stations"))
+        models[m] = {"label": model_label(m), "color": model_color(m, study.models), "reference": m == study.reference,
+                     "stations": _r(stations) if stations is not None else [], "frames": frames}
+    if not models:
+        return None
+    allp = np.vstack(pts)
+    lo, hi = allp.min(axis=0), allp.max(axis=0)
+    base = to_frame(np.zeros(3), scene, study.frame)
+    L = float(row0.get("robot_length") or 0.0) or float(np.linalg.norm(hi - lo)) or 1.0
+    physics = [m for m in models if m != study.reference]
+    main = physics[0] if physics else next(iter(models))
+    extra = _leg_lines(rows, scene, study.frame)
+    return {
+        "id": str(cid), "title": _case_title(row0, study.axes, study.labels) + f"  [{str(cid)[:8]}]",
+        "L": L, "extent": float(max(np.max(np.maximum(hi, base) - np.minimum(lo, base)), 1e-3 * L)), "center": _r(0.5 * (np.minimum(lo, base) + np.maximum(hi, base))), "base": _r(base),
+        "gravity": _r(gravity_in(scene, study.frame)), "main": main,
+        "e0": _r(base_vectors_in([1.0, 0.0, 0.0], scene, study.frame)),
+        "disks": [[float(s), float(r)] for s, r in zip(scene.disk_s, scene.disk_radius) if r > 0],
+        "tendons": [list(map(float, t)) for t in scene.tendons],
+        "models": models, "lines": extra,
+    }
+
+
+def _leg_lines(rows: dict[str, dict], scene, frame: str) -> list:
+    """Series-parallel legs: ``[[color, points], ...]`` of every leg of the ``series_parallel`` row."""
+    out = []
+    for m, r in rows.items():
+        legs = array_cell(r.get("legs"))
+        n_nodes = r.get("_legs_nodes")
+        if legs is None or not n_nodes:
+            continue
+        L = to_frame(legs.reshape(-1, int(n_nodes), 3), scene, frame)
+        out += [[model_color(m), _r(leg)] for leg in L]
+    return out
+
+
+def viewer_scenes(study: ResultSet, leg_nodes: int | None = None) -> dict[str, Any]:
+    """``{"frame", "cases": [...], "left_out": n}`` for ``assets/viewer.js`` (ok rows, canonical order).
+
+    ``leg_nodes``: nodes per series-parallel leg (the ``legs`` column's stored shape), if any.
+    """
+    ok = study.ok
+    ids = list(dict.fromkeys(ok["case_id"]))
+    cases = []
+    for cid in ids[:MAX_VIEWER_CASES]:
+        rows = {}
+        for _, r in ok[ok["case_id"] == cid].iterrows():
+            d = r.to_dict()
+            d["_legs_nodes"] = leg_nodes
+            rows[str(r["model"])] = d
+        c = _case(study, cid, rows)
+        if c is not None:
+            cases.append(c)
+    return {"frame": study.frame, "cases": cases, "left_out": max(0, len(ids) - MAX_VIEWER_CASES)}
