@@ -3,7 +3,10 @@
 :func:`discretization_columns` decides whether a model's row gets an estimate and computes it
 with :func:`workbench.models.discretization.estimate_discretization`: every physics model with
 a declared order (``workbench.registry.MODELS[name].order``) unless ``[solver] error_estimate =
-"none"`` or the model is listed in ``[solver] error_estimate_exempt``; CC rows carry none.  A
+"none"``; CC rows carry none.  A model listed in ``[solver] error_estimate_exempt`` (its
+discretisation is the robot's structure, e.g. one spring-link link per physical joint) carries
+``x.disc_tip_error = 0`` and a ``disc_status`` saying so: nothing to refine, and its CC comparison
+is judged as exact in that respect.  A
 dynamic estimate needs the CC tip history of the same commands: the ``cc`` model of
 ``model_lookup``, run once per case (:class:`CCReference`).  Imports no Exudyn.  Checked by
 ``tests/study/test_estimate.py``.
@@ -13,7 +16,7 @@ from __future__ import annotations
 
 from typing import Any, Callable
 
-__all__ = ["CCReference", "estimates_model", "discretization_columns"]
+__all__ = ["CCReference", "EXEMPT_STATUS", "estimates_model", "discretization_columns"]
 
 
 class CCReference:
@@ -52,9 +55,11 @@ def estimates_model(name: str, options) -> bool:
     """True if rows of model ``name`` get an estimate under ``options`` (see the module docstring)."""
     if name == "cc" or getattr(options, "error_estimate", "none") == "none":
         return False
-    if name in getattr(options, "error_estimate_exempt", ()):
-        return False
     return _order(name) is not None
+
+
+#: ``disc_status`` of an exempt model's rows.
+EXEMPT_STATUS = "exempt: the discretisation is the robot's structure ([solver] error_estimate_exempt)"
 
 
 def discretization_columns(name: str, run: Callable, robot, load, options, result,
@@ -64,6 +69,9 @@ def discretization_columns(name: str, run: Callable, robot, load, options, resul
 
     if not estimates_model(name, options):
         return {}
+    if name in getattr(options, "error_estimate_exempt", ()):
+        return {"x.disc_tip_error": 0.0, "x.disc_order_observed": float("nan"), "x.disc_order": float("nan"),
+                "disc_status": EXEMPT_STATUS}
     ref = None
     if load.analysis == "dynamic":
         try:

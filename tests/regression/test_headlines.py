@@ -1,0 +1,44 @@
+"""Regression tier: every committed study's headlines are converged and its report states question,
+findings, assumptions and sensitivity (issue 13).
+
+Runs on the small copies of the studies (the session's shared run, :func:`tests.conftest.small_study_run`);
+their resolutions follow the committed studies' (see each small study's header).  The four sections
+are built as the page builds them (:func:`workbench.report.findings.opening_sections`; figures are
+not rasterised here).
+"""
+
+from __future__ import annotations
+
+import re
+
+import matplotlib
+import pytest
+
+from tests.regression.golden import small_study_paths
+from workbench.compare.table import compare_table
+from workbench.report.findings import opening_sections
+from workbench.report.headline import headlines
+from workbench.report.load import load_results
+from workbench.report.style import STYLE
+
+pytestmark = pytest.mark.regression
+
+
+@pytest.mark.parametrize("path", small_study_paths(), ids=lambda p: p.stem)
+def test_headlines_converged_and_four_sections(path, small_study_run):
+    study = load_results(small_study_run(path))
+    cmp = compare_table(study.results, reference=study.reference, derived=study.derived)
+    heads = headlines(study, cmp)
+    assert heads, f"{path.stem}: no headline"
+    bad = [f"{h.reference} vs {h.model}: {h.error_pct:.3g} % L ± {h.disc_pct:.3g} % L" for h in heads
+           if h.cc_pair and not h.converged]
+    assert not bad, f"{path.stem}: headline(s) not converged: {bad}"
+    assert all(h.n_not_converged == 0 for h in heads if h.cc_pair), [
+        (h.model, h.n_not_converged, h.n_cases) for h in heads]
+    with matplotlib.rc_context(STYLE):
+        parts = opening_sections(study, cmp, lambda f: f"<figure data-figure='{f.name}'></figure>")
+    assert set(parts) == {"question", "findings", "assumptions", "sensitivity"}
+    for key, html in parts.items():
+        text = re.sub(r"<[^>]+>", " ", html).strip()
+        assert len(text) > 20, f"{path.stem}: section {key} is empty: {html!r}"
+    assert "no error estimate" not in parts["findings"] and "± " in parts["findings"]  # every headline has its bar
