@@ -24,7 +24,34 @@ from workbench.report.style import STYLE
 pytestmark = pytest.mark.regression
 
 
-@pytest.mark.parametrize("path", small_study_paths(), ids=lambda p: p.stem)
+#: Studies whose headline is known not to converge at a size the default suite can afford (strict:
+#: an unexpected pass fails, so the mark is removed when it is fixed).
+KNOWN_NOT_CONVERGED = {
+    "wire_delay": "the dynamic estimate of 4 beam3d elements at 10 ms needs 2 / 1 elements at 20 / 40 ms, "
+                  "outside the asymptotic range (error bar 0.12 m on a 3.7 mm peak); the committed 40-element "
+                  "study's snapped 3 s peak is itself not converged (docs/models.md, 'Wire delay')",
+}
+
+
+def _params():
+    for p in small_study_paths():
+        reason = KNOWN_NOT_CONVERGED.get(p.stem)
+        yield pytest.param(p, id=p.stem, marks=[pytest.mark.xfail(strict=True, reason=reason)] if reason else [])
+
+
+def test_wire_delay_sections_even_when_not_converged(small_study_run):
+    """The report of a not-converged study still says so, in the four sections."""
+    path = next(p for p in small_study_paths() if p.stem == "wire_delay")
+    study = load_results(small_study_run(path))
+    cmp = compare_table(study.results, reference=study.reference, derived=study.derived)
+    with matplotlib.rc_context(STYLE):
+        parts = opening_sections(study, cmp, lambda f: "")
+    assert "NOT CONVERGED" in parts["findings"] and "peak tip error over time" in parts["findings"]
+    assert "at the end of that case" in parts["findings"]  # dynamics: peak and final value
+    assert "move_time" in parts["assumptions"]
+
+
+@pytest.mark.parametrize("path", list(_params()))
 def test_headlines_converged_and_four_sections(path, small_study_run):
     study = load_results(small_study_run(path))
     cmp = compare_table(study.results, reference=study.reference, derived=study.derived)
