@@ -55,6 +55,8 @@ def _headline_sentence(study: ResultSet, h: Headline) -> str:
     s = f"{pair_label(h.reference, h.model)}: {what} {_pm(h)} ({_case_text(study, h.case_id)})"
     if h.dynamic and np.isfinite(h.final_pct):
         s += f"; at the end of that case {fmt(h.final_pct)} % L"
+    if not h.cc_pair and "target" in (h.reference, h.model):
+        return s + " (against the commanded target: the error bar is the model's own estimate, the target has none)."
     if not h.cc_pair:
         return s + " (a difference between physics models: the error bar is the sum of both models' estimates)."
     if not h.converged:
