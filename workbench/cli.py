@@ -3,59 +3,95 @@
 ::
 
     workbench run STUDY.toml [--out DIR] [--workers N | --scheduler ADDR | --in-process]
-                             [--resume] [--no-report] [--max-cases N]
+                             [--resume [--retry-failed]] [--no-report] [--max-cases N]
     workbench show DIR
     workbench validate STUDY.toml
+    workbench report DIR [--out DIR] [--formats png,svg]
 
 Executors of ``run``: by default the cases run one after another in a child process that is
-restarted if a case crashes it; ``--workers N`` starts a Dask ``LocalCluster`` with N worker
-processes inside the command; ``--scheduler tcp://host:8786`` uses a running Dask cluster
-(its workers must have the workbench installed); ``--in-process`` runs in this process (for
-debugging: a crashing case takes the command down).
+restarted if a case crashes it or runs past ``[solver] max_case_seconds``; ``--workers N``
+starts a Dask ``LocalCluster`` with N worker processes inside the command; ``--scheduler
+tcp://host:8786`` uses a running Dask cluster (its workers must have the same workbench
+installed; the address is checked before anything is written); ``--in-process`` runs in this
+process: the debugging executor, without isolation.
 
-Exit codes: 0 every case ok, 1 some cases failed, 2 bad input (invalid study file, folder
-mismatch), 130 interrupted.
+The report of a run goes to ``reports/<name of the data folder>/`` (``--out data/x2`` ->
+``reports/x2/``), so two runs never overwrite each other's report.
+
+Exit codes (:data:`EXIT_CODES`, also in ``--help``): 0 every case ok, 1 some cases failed,
+2 bad input (nothing was run), 3 infrastructure failed (cluster lost, workers killed: finished
+cases are stored and ``--resume`` retries the rest), 130 interrupted (Ctrl-C), 143 terminated
+(SIGTERM); after 130/143 finished cases are stored and ``--resume`` continues.
 
 ``run`` and ``validate`` choose the study kind once (:func:`workbench.study.kinds.kind_of` reads
 ``[study] kind``, :func:`~workbench.study.kinds.get_kind` finds it in ``workbench.registry.KINDS``)
 and then use only that kind's ``load`` / ``expand`` / ``models`` and the one runner
 :func:`workbench.study.run_cases`.  Checked by ``tests/study/test_cli.py``,
-``tests/study/test_spec.py`` and ``tests/study/test_kinds.py``.
+``tests/study/test_cli_errors.py``, ``tests/study/test_spec.py`` and ``tests/study/test_kinds.py``.
 """
 
 from __future__ import annotations
 
 import argparse
 import importlib
+import os
+import signal
 import sys
 from pathlib import Path
 from typing import Sequence
 
 from .report.command import add_report_arguments, report_command
 
-__all__ = ["main"]
+__all__ = ["EXIT_CODES", "main"]
+
+EXIT_CODES = {
+    0: "every case ok",
+    1: "some cases failed (model failures, crashes, timeouts: see `workbench show`)",
+    2: "bad input: study file, options, or a result folder in use / of another study (nothing was run)",
+    3: "infrastructure failed: the cluster was lost or workers were killed; finished cases are stored, "
+       "--resume retries the rest",
+    130: "interrupted (Ctrl-C): finished cases are stored; continue with --resume",
+    143: "terminated (SIGTERM, e.g. a batch scheduler): finished cases are stored; continue with --resume",
+}
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised in the main thread so the run stores what finished (exit 143)."""
+
+
+def _epilog() -> str:
+    return "exit codes:\n" + "\n".join(f"  {k:>3}  {v}" for k, v in EXIT_CODES.items())
 
 
 def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="workbench", description="Continuum-robot workbench: run and inspect studies.")
     sub = p.add_subparsers(dest="command", required=True)
 
-    r = sub.add_parser("run", help="run a study file (TOML)")
+    r = sub.add_parser("run", help="run a study file (TOML)", epilog=_epilog(),
+                       formatter_class=argparse.RawDescriptionHelpFormatter,
+                       description="Run a study.  Default executor: one case after another in an isolated child "
+                                   "process (a crash or a timeout fails only that case).")
     r.add_argument("study", help="study file, e.g. studies/example.toml")
-    r.add_argument("--out", help="output folder (default data/<study.name>)")
+    r.add_argument("--out", help="output folder (default data/<study.name>); its report goes to reports/<folder name>")
     ex = r.add_mutually_exclusive_group()
     ex.add_argument("--workers", type=int, metavar="N", help="Dask LocalCluster with N worker processes")
     ex.add_argument("--scheduler", metavar="ADDR", help="address of a running Dask scheduler (tcp://host:8786)")
-    ex.add_argument("--in-process", action="store_true", help="run cases in this process (debugging)")
-    r.add_argument("--resume", action="store_true", help="continue a run: only cases not yet stored")
+    ex.add_argument("--in-process", action="store_true",
+                    help="run cases in this process: the debugging executor, without isolation (a crashing "
+                         "case ends the command)")
+    r.add_argument("--resume", action="store_true",
+                   help="continue a run: compute what is not stored; retries cases that failed for "
+                        "infrastructure reasons (timeout, memory, killed, lost)")
+    r.add_argument("--retry-failed", action="store_true", help="with --resume: also retry model failures and crashes")
     r.add_argument("--no-report", action="store_true", help="do not build the HTML report afterwards")
     r.add_argument("--max-cases", type=int, metavar="N", help="override study.max_cases")
-    r.add_argument("--reports-dir", default="reports", help="where reports go (default reports/<name>)")
-    r.add_argument("--progress", choices=("auto", "on", "off"), default="auto", help="progress bar (auto: on a TTY)")
+    r.add_argument("--reports-dir", default="reports", help="where reports go (default reports/<data folder name>)")
+    r.add_argument("--progress", choices=("auto", "on", "off"), default="auto",
+                   help="progress bar (auto: a bar on a terminal, a log line every 10%% or 30 s otherwise)")
     # advanced / tests: 'module:function' returning the model function for a name
     r.add_argument("--model-lookup", help=argparse.SUPPRESS)
     r.add_argument("--arc-actuation", help=argparse.SUPPRESS)
-    r.add_argument("--flush-rows", type=int, default=256, help=argparse.SUPPRESS)
+    r.add_argument("--flush-rows", type=int, default=None, help=argparse.SUPPRESS)
 
     s = sub.add_parser("show", help="summarise a study result folder")
     s.add_argument("folder", help="e.g. data/example")
@@ -79,22 +115,47 @@ def _resolve(dotted: str):
     return getattr(importlib.import_module(mod), fn)
 
 
-def _print_summary(summary, reports_dir: Path | None = None, report_note: str | None = None,
-                   show_run: bool = True) -> None:
+def _clip(text: str, n: int = 200) -> str:
+    """``text`` cut at a word boundary near ``n`` characters (with an ellipsis)."""
+    text = " ".join(str(text).split())
+    if len(text) <= n:
+        return text
+    cut = text.rfind(" ", 0, n)
+    return text[:cut if cut > n // 2 else n] + " ..."
+
+
+def _print_summary(summary, report_note: str | None = None, show_run: bool = True) -> None:
+    from .study.lock import describe_holder, lock_holder
     from .study.runner import read_manifest, study_name
 
     man = read_manifest(summary.folder)
     name = study_name(man, "?")
     runs = man.get("runs", [])
+    study_file = (runs[-1].get("study_file") if runs else None) or man.get("study_file") or "STUDY.toml"
     print(f"study {name!r}: {summary.folder}")
     this_run = f" (this run: {summary.n_run} run, {summary.n_skipped} already stored)" if show_run else ""
     print(f"  cases {summary.n_cases}: ok {summary.n_ok}, failed {summary.n_failed}{this_run}")
     missing = summary.n_cases - summary.n_ok - summary.n_failed
     if missing > 0:
-        print(f"  not run yet: {missing} (continue with: workbench run STUDY --out {summary.folder} --resume)")
+        print(f"  not run yet: {missing} (continue with: workbench run {study_file} --out {summary.folder} --resume)")
+    if summary.failures:
+        kinds = ", ".join(f"{k} {v}" for k, v in summary.failures.items())
+        retried = sum(v for k, v in summary.failures.items() if k in ("timeout", "memory", "killed", "lost"))
+        hint = f"; --resume retries {retried} of them" if retried else ""
+        print(f"  failed rows by reason: {kinds}{hint}")
+    if summary.n_duplicates:
+        print(f"  WARNING: {summary.n_duplicates} duplicate (case_id, model) rows (two runs wrote into this folder); "
+              f"--resume recomputes them")
     if runs:
-        print(f"  runs {len(runs)}: first start {runs[0].get('start')}, last end {runs[-1].get('end')}, "
-              f"last executor {runs[-1].get('executor')}")
+        last = runs[-1]
+        state, holder = lock_holder(summary.folder)
+        if last.get("end"):
+            end = f"last end {last['end']} ({last.get('outcome') or 'completed'})"
+        elif state == "running":
+            end = f"running now ({describe_holder(holder)})"
+        else:
+            end = "the last run did not record its end (killed?)"
+        print(f"  runs {len(runs)}: first start {runs[0].get('start')}, {end}, last executor {last.get('executor')}")
     if show_run:
         print(f"  wall time of this run: {summary.wall_time:.2f} s")
     elif runs and runs[-1].get("wall_time") is not None:
@@ -104,24 +165,27 @@ def _print_summary(summary, reports_dir: Path | None = None, report_note: str | 
     for m, d in summary.per_model.items():
         print(f"  {m:<{w}}  {d['ok']:>6}  {d['failed']:>6}  {d['wall_time']:>14.3f}")
     if summary.failed_cases:
-        import pandas as pd
+        from .study.store import read_columns
 
-        df = pd.read_parquet(summary.folder, columns=["case_id", "model", "status", "error"])
+        df = read_columns(summary.folder, ["case_id", "model", "status", "error", "failure"])
         bad = df[df["status"] != "ok"].sort_values(["case_id", "model"]).head(10)
         print(f"  failures ({len(df[df['status'] != 'ok'])} rows; first {len(bad)}):")
         for _, r in bad.iterrows():
-            print(f"    {r['case_id']} {r['model']}: {str(r['error'])[:160]}")
+            print(f"    {r['case_id']} {r['model']} [{r['failure'] or '?'}]: {_clip(r['error'])}")
     if report_note:
         print(f"  report: {report_note}")
-    elif reports_dir is not None:
-        found = [reports_dir / n for n in ("report.html", "index.html") if (reports_dir / n).exists()]
-        print(f"  report: {found[0] if found else 'none found in ' + str(reports_dir)}")
+
+
+def _report_dir(folder: Path, reports_dir: str | Path = "reports") -> Path:
+    """Where the report of the data folder ``folder`` goes: ``<reports_dir>/<folder name>``."""
+    return Path(reports_dir) / folder.resolve().name
 
 
 def _build_report(data_dir: Path, out_dir: Path) -> str:
     """Build the HTML report of ``data_dir`` into ``out_dir``; what to print as its location."""
     from .report import build_report
 
+    print(f"building report {out_dir} ...", file=sys.stderr, flush=True)
     out = build_report(data_dir, out_dir)
     return str(out if out is not None else out_dir)
 
@@ -142,73 +206,181 @@ def _cmd_validate(args) -> int:
     except StudyError as e:
         _err(e.problems)
         return 2
-    n_cases, models = len(kind.expand(study)), kind.models(study)
+    n_cases = kind.count(study) if hasattr(kind, "count") else len(kind.expand(study))
+    models = kind.models(study)
     print(f"{args.study}: ok: study {study.name!r}, {n_cases} cases x {len(models)} models "
           f"({', '.join(models)}), config hash {study.config_hash}")
+    for note in getattr(study, "notes", ()):
+        print(f"  note: {note}")
     return 0
 
 
-def _cmd_run(args) -> int:
-    from .study import DaskExecutor, IsolatedExecutor, SerialExecutor, StudyError, run_cases
+def _check_out(folder: Path) -> str | None:
+    """Why ``folder`` cannot be a result folder (``None``: it can), checked before anything runs."""
+    text = str(folder)
+    if not text.strip():
+        return "--out: empty path"
+    try:
+        if folder.exists() and not folder.is_dir():
+            return f"--out {folder}: exists and is not a folder"
+        p = folder
+        while not p.exists() and p != p.parent:
+            p = p.parent
+    except (ValueError, OSError) as e:
+        return f"--out {text!r}: invalid path ({e})"
+    if not p.is_dir():
+        return f"--out {folder}: {p} is a file, not a folder"
+    if not os.access(p, os.W_OK | os.X_OK):
+        return f"--out {folder}: no permission to write in {p}"
+    return None
 
+
+def _executor(args):
+    """The executor the options ask for, or the one-line problem with them."""
+    from .study import DaskExecutor, IsolatedExecutor, SerialExecutor
+    from .study.executors import check_scheduler_address
+
+    if args.workers is not None and args.workers < 1:
+        return None, f"--workers: must be >= 1, got {args.workers}"
+    if args.scheduler:
+        problem = check_scheduler_address(args.scheduler)
+        if problem:
+            return None, f"--scheduler {args.scheduler}: {problem}"
+        return DaskExecutor(scheduler=args.scheduler), None
+    if args.workers is not None:
+        return DaskExecutor(n_workers=args.workers), None
+    if args.in_process:
+        return SerialExecutor(), None
+    return IsolatedExecutor(), None
+
+
+def _on_sigterm(signum, frame):
+    raise Terminated()
+
+
+def _cmd_run(args) -> int:
+    old = signal.signal(signal.SIGTERM, _on_sigterm)
+    folder = None
+    try:
+        rc, folder = _run(args)
+        return rc
+    except Terminated:
+        _err([f"terminated (SIGTERM); finished cases are stored in {folder or 'the output folder'}; "
+              f"continue with --resume"])
+        return 143
+    except KeyboardInterrupt:
+        _err([f"interrupted; finished cases are stored in {folder or 'the output folder'}; continue with --resume"])
+        return 130
+    finally:
+        signal.signal(signal.SIGTERM, old)
+
+
+def _run(args) -> tuple[int, Path | None]:
+    from .study import StudyError, run_cases
+    from .study.outcomes import ExecutorStartError, InfrastructureError
+    from .study.store import CorruptPart
+
+    if args.retry_failed and not args.resume:
+        _err(["--retry-failed: needs --resume (it retries the failed cases of a stored run)"])
+        return 2, None
     try:
         kind, study = _load(args)
     except StudyError as e:
         _err(e.problems)
-        return 2
-    if args.workers is not None and args.workers < 1:
-        _err([f"--workers: must be >= 1, got {args.workers}"])
-        return 2
-    folder = Path(args.out) if args.out else Path("data") / study.name
-    if args.scheduler:
-        executor = DaskExecutor(scheduler=args.scheduler)
-    elif args.workers is not None:
-        executor = DaskExecutor(n_workers=args.workers)
-    elif args.in_process:
-        executor = SerialExecutor()
-    else:
-        executor = IsolatedExecutor()
+        return 2, None
+    if args.out is not None and not args.out.strip():
+        _err(["--out: empty path (give a folder, e.g. --out data/my_run)"])
+        return 2, None
+    folder = Path(args.out) if args.out is not None else Path("data") / study.name
+    problem = _check_out(folder)
+    executor, exec_problem = _executor(args)
+    if problem or exec_problem:
+        _err([problem or exec_problem])
+        return 2, None
+    if args.in_process and sys.stderr.isatty():  # (the manifest and `show` name the executor too)
+        _err(["--in-process: cases run in this process without isolation (the debugging executor): a case that "
+              "crashes ends the command (the cases before it are stored), the time limit interrupts Python code only"])
     lookup = _resolve(args.model_lookup) if args.model_lookup else None
     arc = _resolve(args.arc_actuation) if args.arc_actuation else None
     progress = {"auto": None, "on": True, "off": False}[args.progress]
     try:
-        summary = run_cases(kind, study, folder, executor, resume=args.resume, progress=progress,
-                            flush_rows=args.flush_rows, model_lookup=lookup, arc_actuation=arc)
+        summary = run_cases(kind, study, folder, executor, resume=args.resume, retry_failed=args.retry_failed,
+                            progress=progress, flush_rows=args.flush_rows, model_lookup=lookup, arc_actuation=arc)
     except StudyError as e:
         _err(e.problems)
-        return 2
-    except KeyboardInterrupt:
-        _err([f"interrupted; finished cases are stored in {folder}; continue with --resume"])
-        return 130
-    reports_dir = Path(args.reports_dir) / study.name
+        return 2, folder
+    except CorruptPart as e:
+        _err([f"{e.path}: unreadable Parquet part ({e.reason})"])
+        return 2, folder
+    except ExecutorStartError as e:
+        _err([f"{e}; nothing was run"])
+        return 2, folder
+    except InfrastructureError as e:
+        stored = "finished cases are stored; continue with --resume" if folder.exists() else "nothing was stored"
+        _err([f"{folder}: infrastructure failed: {e}; {stored}"])
+        return 3, folder
     note = "skipped (--no-report)" if args.no_report else None
     if not args.no_report:
         try:
-            note = _build_report(folder, reports_dir)
+            note = _build_report(folder, _report_dir(folder, args.reports_dir))
         except Exception as e:  # noqa: BLE001 - the results are stored; report failure is not fatal
-            note = f"FAILED: {type(e).__name__}: {e}"
+            note = f"FAILED: {type(e).__name__}: {_clip(e)} (retry with: workbench report {folder})"
     _print_summary(summary, report_note=note)
-    return summary.exit_code
+    return summary.exit_code, folder
 
 
 def _cmd_show(args) -> int:
-    from .study.runner import summarize
-    from .study.store import MANIFEST
+    from .study import StudyError
+    from .study.runner import read_manifest, summarize
+    from .study.store import MANIFEST, CorruptPart
 
     folder = Path(args.folder)
     if not (folder / MANIFEST).exists():
         _err([f"{folder}: not a study result folder (no {MANIFEST})"])
         return 2
-    summary = summarize(folder)
-    from .study.runner import read_manifest, study_name
-
-    name = study_name(read_manifest(folder), folder.name)
-    _print_summary(summary, reports_dir=Path("reports") / name, show_run=False)
+    try:
+        read_manifest(folder)
+        summary = summarize(folder)
+        found = [_report_dir(folder) / n for n in ("report.html", "index.html") if (_report_dir(folder) / n).exists()]
+        _print_summary(summary, report_note=str(found[0]) if found else f"none yet in {_report_dir(folder)}",
+                       show_run=False)
+    except StudyError as e:
+        _err(e.problems)
+        return 2
+    except CorruptPart as e:
+        _err([f"{e.path}: unreadable Parquet part ({e.reason})"])
+        return 2
+    except FileNotFoundError:
+        _err([f"{folder}: holds a manifest but no stored rows yet (the run stored nothing, or is starting)"])
+        return 2
     return summary.exit_code
 
 
 def _cmd_report(args) -> int:
-    return report_command(args)
+    from .study import StudyError
+    from .study.store import CorruptPart
+
+    from .study.runner import read_manifest
+    from .study.store import MANIFEST, check_parts
+
+    folder = Path(args.folder)
+    if args.out is None:
+        args.out = str(_report_dir(folder))
+    try:
+        if (folder / MANIFEST).exists():
+            read_manifest(folder)
+            if not any(folder.glob("part-*.parquet")):
+                _err([f"{folder}: holds a manifest but no stored rows yet (the run stored nothing, or is starting)"])
+                return 2
+            check_parts(folder)
+        return report_command(args)
+    except StudyError as e:
+        _err(e.problems)
+    except CorruptPart as e:
+        _err([f"{e.path}: unreadable Parquet part ({e.reason})"])
+    except (ValueError, OSError) as e:
+        _err([f"{folder}: cannot build the report: {_clip(e)}"])
+    return 2
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -8,6 +8,10 @@ trigger failure modes:
 - 7.0  -> returns NaN positions
 - 66.0 -> ``os._exit(3)`` (kills the worker process)
 - 5.0  -> result with ``converged = False``
+- 99.0 -> sleeps for an hour (a hanging case)
+- 98.0 -> asks for 64 GB (a case that eats memory)
+
+``lookup_ancf_exits`` maps ``cc`` to the arc and ``ancf`` to a model that kills its process.
 """
 
 from __future__ import annotations
@@ -20,7 +24,7 @@ import numpy as np
 
 from workbench.models.result import PhysicsResult, SolverInfo
 
-RAISE, NAN, EXIT, NOCONV = 13.0, 7.0, 66.0, 5.0
+RAISE, NAN, EXIT, NOCONV, HANG, HOG = 13.0, 7.0, 66.0, 5.0, 99.0, 98.0
 
 #: a valid study (no sweep) the tests extend
 GOOD = textwrap.dedent("""\
@@ -55,6 +59,10 @@ def _arc(robot, load, options, *, spin: float = 0.0):
         raise RuntimeError("fake model exploded")
     if t0 == EXIT:
         os._exit(3)
+    if t0 == HANG:
+        time.sleep(3600)
+    if t0 == HOG:
+        np.empty(8 * 10**9).fill(1.0)
     L = robot.length
     g = robot.sections[0].tendons
     EI = robot.sections[0].cross_section.EI
@@ -119,8 +127,58 @@ def fake_arc_actuation(robot, kappa, phi, mode, pretension=0.0):
     return TendonActuation(mode, tuple(vals), pretension=pretension)
 
 
+def exiting_model(robot, load, options):
+    os._exit(4)
+
+
+def lookup_ancf_exits(name):
+    """``cc``: the arc; ``ancf``: kills its process (exit status 4)."""
+    return arc if name == "cc" else exiting_model
+
+
+def killed_once_model(robot, load, options):
+    """The arc, but the first call with T0 = 2 N SIGKILLs its process (marker file: $WB_KILL_ONCE)."""
+    marker = os.environ.get("WB_KILL_ONCE")
+    if marker and float(load.actuation.values[0]) == 2.0 and not os.path.exists(marker):
+        open(marker, "w").close()
+        os.kill(os.getpid(), 9)
+    return arc(robot, load, options)
+
+
+def lookup_kill_once(name):
+    """``cc``: :func:`killed_once_model` (an outside kill, the first time only); ``ancf``: the arc."""
+    return killed_once_model if name == "cc" else arc
+
+
+def _kill_worker_model(robot, load, options, once: bool):
+    """The arc, but the 2 N case SIGKILLs the *Dask worker* (the sandbox's parent): a lost machine."""
+    marker = os.environ.get("WB_KILL_ONCE")
+    if float(load.actuation.values[0]) == 2.0 and (not once or (marker and not os.path.exists(marker))):
+        if marker:
+            open(marker, "w").close()
+        os.kill(os.getppid(), 9)
+        time.sleep(60)
+    return arc(robot, load, options)
+
+
+def lookup_kills_worker_once(name):
+    return lambda robot, load, options: _kill_worker_model(robot, load, options, once=True)
+
+
+def lookup_kills_worker_always(name):
+    return lambda robot, load, options: _kill_worker_model(robot, load, options, once=False)
+
+
 def die_on_one(x):
-    """Task for executor tests: SIGKILLs its own process on payload 1."""
+    """Task for executor tests: yields x, then SIGKILLs its own process on payload 1, else yields x * x."""
+    yield x
     if x == 1:
         os.kill(os.getpid(), 9)
-    return x * x
+    yield x * x
+
+
+def sleepy(x):
+    """Task for executor tests: yields x, then sleeps x seconds, then yields -x."""
+    yield x
+    time.sleep(x)
+    yield -x

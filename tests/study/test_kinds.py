@@ -88,13 +88,14 @@ def test_series_parallel_kind_refuses_the_sweep_hooks(tmp_path):
 
 
 def test_crashed_series_parallel_case_gets_one_failed_row_per_model(tmp_path):
-    """A worker crash (here: the executor reports it) is a failed row for each of the kind's models."""
-    from workbench.study import WorkerCrash
+    """A worker crash (here: the executor reports it) is a failed row for each of the kind's models
+    (they are computed together: no model is blamed alone, nothing is rerun)."""
+    from workbench.study.outcomes import Crash, Outcome
 
     class Crashing(SerialExecutor):
-        def imap_unordered(self, fn, payloads):
+        def imap_unordered(self, fn, payloads, limits=None, chunk_size=1):
             for i, _ in enumerate(payloads):
-                yield i, WorkerCrash("worker died (test)")
+                yield i, Outcome([], Crash("crash", "worker died (test)"))
 
     p = tmp_path / "sp.toml"
     p.write_text(SP_TINY)
@@ -103,5 +104,5 @@ def test_crashed_series_parallel_case_gets_one_failed_row_per_model(tmp_path):
     df = pd.read_parquet(tmp_path / "out")
     assert summary.n_failed == 2 and len(df) == 6
     assert set(df["model"]) == {"target", "series_parallel", "cc_fit"}
-    assert (df["error"] == "worker died (test)").all()
+    assert (df["error"] == "worker died (test)").all() and (df["failure"] == "crash").all()
     assert read_manifest(tmp_path / "out")["runs"][0]["cases_done"] == 2

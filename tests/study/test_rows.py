@@ -43,5 +43,5 @@ def test_failed_rows_one_per_model_with_extra_cells():
                        extra={"robot_length": 0.8})
     assert [r["model"] for r in rows] == ["a", "b"]
     assert rows[0] == {"case_id": "c1", "model": "a", "p.robot.length": 0.8, "robot_length": 0.8,
-                       "status": "failed", "error": "boom", "wall_time": 0.0}
+                       "status": "failed", "error": "boom", "failure": "model", "wall_time": 0.0}
     assert math.isnan(failed_rows("c1", {}, ("a",), "crash")[0]["wall_time"])

@@ -38,8 +38,8 @@ def test_an_interrupted_run_still_finishes_its_manifest(tmp_path, write_study):
     session = RunSession.open(out, study, cases, ({} for _ in cases), "test", progress=False)
     with pytest.raises(KeyboardInterrupt):
         with session:
-            session.record([[{"case_id": cases[0].case_id, "model": "cc", "status": "ok", "error": "",
-                              "wall_time": 0.0}]], 1)
+            session.record(cases[0].case_id, [{"case_id": cases[0].case_id, "model": "cc", "status": "ok",
+                                               "error": "", "wall_time": 0.0}])
             raise KeyboardInterrupt
     man = read_manifest(out)
     assert man["runs"][0]["end"] is not None and man["runs"][0]["cases_done"] == 1

@@ -12,6 +12,7 @@ import pytest
 from workbench.cli import main
 from workbench.models.result import SolverOptions
 from workbench.study import StudyError, count_cases, load_study
+from workbench.study.schema import LIMIT_KEYS
 from workbench.study.spec import SolverSection
 
 HERE = Path(__file__).parent
@@ -20,14 +21,14 @@ ROOT = HERE.parents[1]
 
 
 def _expectation(path: Path) -> tuple[str, str]:
-    first = path.read_text().splitlines()[0]
+    first = path.read_bytes().split(b"\n")[0].decode("utf-8")  # (non_utf8.toml is not UTF-8 further down)
     assert first.startswith("# expect: "), f"{path} lacks its '# expect: key | reason' line"
     key, _, reason = first[len("# expect: "):].partition(" | ")
     return key.strip(), reason.strip()
 
 
 def test_corpus_is_large_enough():
-    assert len(BAD) >= 30
+    assert len(BAD) >= 60
 
 
 @pytest.mark.parametrize("path", BAD, ids=[p.stem for p in BAD])
@@ -83,10 +84,12 @@ def test_cli_subprocess_exit_code_and_single_line():
 
 
 def test_solver_section_mirrors_solver_options():
+    """[solver] = the SolverOptions fields + the per-case limits (which never reach the case parameters)."""
     fields = {f.name: f.default for f in dataclasses.fields(SolverOptions)}
     section = SolverSection()
-    assert set(SolverSection.model_fields) == set(fields)
-    assert section.model_dump() == {k: list(v) if isinstance(v, tuple) else v for k, v in fields.items()}
+    assert set(SolverSection.model_fields) == set(fields) | set(LIMIT_KEYS)
+    assert section.model_dump(exclude=set(LIMIT_KEYS)) == {k: list(v) if isinstance(v, tuple) else v
+                                                           for k, v in fields.items()}
 
 
 def test_good_study_and_defaults(write_study):

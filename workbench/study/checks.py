@@ -17,25 +17,26 @@ Checked by ``tests/study/test_spec.py`` (every file in ``tests/study/bad_configs
 
 from __future__ import annotations
 
+import math
+import re
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
+import numpy as np
 from pydantic import ValidationError
 
 from .build import build_load, build_options, build_robot
-from .expand import count_cases, expand
-from .messages import UNITS, StudyError, check_robot_value, num, pydantic_problems, suggest
+from .expand import count_cases, sweep_blocks
+from .messages import UNITS, StudyError, check_robot_value, join_key, num, pydantic_problems, suggest
 from .params import canonical_json
 from .scenarios import SCENARIOS, load_with_scenario, scenario_parameters
-from .schema import SECTION_MODELS, SWEEP_SECTIONS, SweepSection
+from .schema import LIMIT_KEYS, SECTION_MODELS, SWEEP_SECTIONS, SweepSection
 
-__all__ = ["check_scenario", "load_rules", "case_rules", "check_cases", "check_override", "check_sweep",
-           "known_paths"]
+__all__ = ["CHECK_SECONDS", "CaseCheck", "check_scenario", "load_rules", "case_rules", "check_cases",
+           "check_override", "check_sweep", "known_paths"]
 
 # Load list fields whose entries must be >= 0.
 _NONNEG_LIST_FIELDS = ("tensions", "start_delays", "ramp_durations")
-# At most this many per-case problems are listed.
-_MAX_CASE_PROBLEMS = 20
 
 
 # ---------------------------------------------------------------------------------------
@@ -77,7 +78,7 @@ def check_named_params(section: str, raw: Mapping[str, Any], defaults: Mapping[s
             continue
         cv, prob = check_robot_value(k, v, defaults[k])
         if prob:
-            problems.append(f"{section}.{k}: {prob}")
+            problems.append(join_key(f"{section}.{k}", prob))
         else:
             out[k] = cv
     return out, problems
@@ -130,28 +131,57 @@ def _count_rules(load: Mapping[str, Any], robot) -> list[str]:
     return out
 
 
-def case_rules(params: dict[str, Any], study: Any = None) -> list[str]:
+#: Most time steps a dynamic case may take (``load.duration / solver.time_step``): a sanity bound.
+MAX_TIME_STEPS = 10_000_000
+
+
+def case_rules(params: dict[str, Any], study: Any = None, min_time_step: float | None = None) -> list[str]:
     """Checks of one resolved case that need the robot (tendon counts, section counts, a dry build).
 
-    ``study`` is not used (kept for the old signature ``_case_rules(params, study)``).
+    ``study`` is not used (kept for the old signature ``_case_rules(params, study)``);
+    ``min_time_step`` (default ``params["solver"]["time_step"]``) bounds the step count of a
+    dynamic case by :data:`MAX_TIME_STEPS`.
     """
+    import warnings
+
+    with warnings.catch_warnings(), np.errstate(all="ignore"):  # a bad value is reported, not warned about
+        warnings.simplefilter("ignore")
+        return _case_rules(params, min_time_step)
+
+
+def _keyed(section: str, e: BaseException, names: Any) -> str:
+    """``"<section>.<name>: <message>"`` when the message names exactly one parameter, else ``"<section>: ..."``."""
+    import re
+
+    msg = " ".join(str(e).split()) or type(e).__name__
+    low = msg.lower()
+
+    def named(n: str) -> bool:
+        return any(re.search(rf"(?<![A-Za-z0-9_]){re.escape(w)}(?![A-Za-z0-9_])", low) for w in (n, n.replace("_", " ")))
+
+    hits = [n for n in names if named(n.lower())]
+    hits = [h for h in hits if not any(h != o and h in o for o in hits)]
+    return f"{section}.{hits[0]}: {msg}" if len(hits) == 1 else f"{section}: {msg}"
+
+
+def _case_rules(params: dict[str, Any], min_time_step: float | None) -> list[str]:
     try:
         robot = build_robot(params["robot"], params["derived"])
     except Exception as e:  # noqa: BLE001 - every build failure is a user input problem here
-        return [f"robot: {e}"]
+        return [_keyed("robot", e, [k for k in params["robot"] if k != "preset"])]
     out = []
     load = params["load"]
     if params.get("scenario"):
         try:
             load = load_with_scenario(robot, load, params["scenario"])
         except Exception as e:  # noqa: BLE001 - an infeasible scenario is an input problem
-            return [f"scenario: {e}"]
+            return [_keyed("scenario", e, [k for k in params["scenario"] if k != "name"])]
         out.extend(load_rules(load, "load (with scenario)"))
     out.extend(_count_rules(load, robot))
-    try:
-        build_options(params["solver"])
-    except (TypeError, ValueError) as e:
-        out.append(f"solver: {e}")
+    dt = min_time_step if min_time_step is not None else params.get("solver", {}).get("time_step")
+    if load.get("analysis") == "dynamic" and dt and load.get("duration", 0.0) / dt > MAX_TIME_STEPS:
+        out.append(f"solver.time_step: load.duration / time_step = {load['duration'] / dt:.3g} steps exceeds "
+                   f"{MAX_TIME_STEPS:.0e} (a sanity bound)")
     if not out:
         # dry-build the load case (tendon commands from the CC arc command): infeasible
         # commands are input errors, reported before anything runs
@@ -160,39 +190,159 @@ def case_rules(params: dict[str, Any], study: Any = None) -> list[str]:
         except ImportError:
             pass  # workbench.models.cc not installed: checked when the case runs
         except Exception as e:  # noqa: BLE001
-            out.append(f"load: {e}")
+            key = "load.bend_plane" if load.get("bend_angle") is not None and "plane" in str(e) else None
+            out.append(f"{key}: {e}" if key else _keyed("load", e, [k for k in load if load.get(k) is not None]))
     return out
 
 
-def check_cases(study, source: str) -> None:
-    """The size limit, duplicate cases and :func:`case_rules` of every case of a complete study.
+def _duplicate_entries(blocks: list[list[dict[str, Any]]], names: list[str]) -> list[str]:
+    """Identical entries inside one block (blocks set disjoint keys, so only these repeat a case)."""
+    out = []
+    for block, name in zip(blocks, names):
+        seen: dict[str, int] = {}
+        for i, entry in enumerate(block):
+            key = canonical_json(entry)
+            if key in seen:
+                out.append(f"{name}[{i}]: identical parameters to {name}[{seen[key]}] ({key}); the sweep would "
+                           f"run the same case twice")
+            else:
+                seen[key] = i
+    return out
+
+
+def _block_names(study) -> list[str]:
+    sw = study.sweep
+    names = [f'sweep.product["{p}"]' for p in sw.get("product", {})]
+    names += ["sweep.zip"] * bool(sw.get("zip")) + ["sweep.cases"] * ("cases" in sw)
+    return names + [f"sweep.{b}" for b in ("random", "latin_hypercube") if sw.get(b)]
+
+
+def _projection(blocks, keep) -> list[list[tuple[int, dict[str, Any]]]]:
+    """Per block, the distinct projections of its entries onto the keys ``keep(path)`` (with their first index)."""
+    out = []
+    for block in blocks:
+        seen: dict[str, tuple[int, dict]] = {}
+        for i, entry in enumerate(block):
+            sub = {k: v for k, v in entry.items() if keep(k)}
+            seen.setdefault(canonical_json(sub), (i, sub))
+        out.append(list(seen.values()))
+    return out
+
+
+@dataclass
+class CaseCheck:
+    """What :func:`check_cases` found: problems (one line per distinct problem) and how much it built."""
+
+    problems: list[str] = field(default_factory=list)
+    built: int = 0
+    distinct: int = 0
+
+    @property
+    def note(self) -> str:
+        """A sentence for ``validate`` when the time budget stopped the dry builds early (else ``""``)."""
+        if self.built >= self.distinct:
+            return ""
+        return (f"dry-built {self.built} of {self.distinct} distinct robot/load combinations within the "
+                f"{CHECK_SECONDS:g} s validation budget; the others are built when their case runs")
+
+
+#: Seconds :func:`check_cases` spends dry-building cases before it stops (huge sweeps stay answerable).
+CHECK_SECONDS = 10.0
+
+
+_NUMBER = re.compile(r"-?\d+(\.\d+)?(e[+-]?\d+)?")
+
+
+def _group(found: dict[str, list[tuple[int, dict]]], total: int, unit: str = "cases") -> list[str]:
+    """One line per distinct problem: where it occurs (one case, several, or every case).
+
+    Messages that differ only in their numbers (the case's values) are one problem; the line
+    shows the first case's message.
+    """
+    merged: dict[str, tuple[str, list[tuple[int, dict]]]] = {}
+    for msg, where in found.items():
+        key = _NUMBER.sub("#", msg)
+        first, acc = merged.setdefault(key, (msg, []))
+        acc.extend(where)
+    lines = []
+    for msg, where in merged.values():
+        where = sorted(where, key=lambda w: w[0])
+        key, _, reason = msg.partition(": ")
+        index, swept = where[0]
+        example = f"case {index}: {canonical_json(swept)}" if swept else ""
+        if len(where) == 1:
+            lines.append(f"{key} ({example}): {reason}" if example else msg)
+        elif len(where) == total:
+            lines.append(f"{key} (every case, e.g. {example}): {reason}")
+        else:
+            lines.append(f"{key} ({len(where)} of {total} {unit}, e.g. {example}): {reason}")
+    return lines
+
+
+def check_cases(study, source: str, budget: float | None = None) -> CaseCheck:
+    """The size limit, duplicate cases and :func:`case_rules` of a complete study, bounded in time and memory.
+
+    The cases are counted, not expanded; duplicates are found inside each sweep block; the dry
+    builds run over the distinct combinations of robot / derived / scenario / load values
+    (solver values are checked on their own), lazily, for at most ``budget`` seconds (default
+    :data:`CHECK_SECONDS`).  A problem that occurs in many cases is one line.
 
     Raises
     ------
     StudyError
-        One line per problem (at most about 20 case problems are listed).
+        One line per distinct problem.
     """
+    import itertools
+    import time
+
     n = count_cases(study)
     if n > study.max_cases:
         raise StudyError([f"{source}: sweep: {n} cases exceed the limit max_cases = {study.max_cases} "
                           f"(raise study.max_cases or --max-cases)"])
-    case_problems: list[str] = []
-    seen: dict[str, int] = {}
-    for c in expand(study):
-        if c.case_id in seen:
-            case_problems.append(f"sweep: cases {seen[c.case_id]} and {c.index} have identical parameters "
-                                 f"({canonical_json(c.swept)})")
-            continue
-        seen[c.case_id] = c.index
-        for m in case_rules(c.params, study):
-            key, _, reason = m.partition(": ")
-            where = f" (case {c.index}: {canonical_json(c.swept)})" if c.swept else ""
-            case_problems.append(f"{key}{where}: {reason}")
-        if len(case_problems) > _MAX_CASE_PROBLEMS:
-            case_problems.append("... (further case problems not listed)")
+    blocks = sweep_blocks(study)
+    dup = _duplicate_entries(blocks, _block_names(study))
+    if dup:
+        raise StudyError([f"{source}: {p}" for p in dup])
+    sizes = [len(b) for b in blocks]
+    strides = [1] * len(blocks)
+    for i in range(len(blocks) - 2, -1, -1):
+        strides[i] = strides[i + 1] * sizes[i + 1]
+    rl = _projection(blocks, lambda k: not k.startswith("solver."))
+    sv = _projection(blocks, lambda k: k.startswith("solver."))
+    check = CaseCheck(distinct=math.prod(len(b) for b in rl) if rl else 1)
+    steps = [study.base["solver"].get("time_step")] + [sub["solver.time_step"] for b in sv for _, sub in b
+                                                      if "solver.time_step" in sub]
+    min_dt = min((x for x in steps if x), default=None)
+    found: dict[str, list[tuple[int, dict]]] = {}
+    t_end = time.monotonic() + (CHECK_SECONDS if budget is None else budget)
+    for combo in itertools.product(*rl):
+        if time.monotonic() > t_end:
             break
-    if case_problems:
-        raise StudyError([f"{source}: {p}" for p in case_problems])
+        params = _params(study.base, [sub for _, sub in combo])
+        index = sum(i * st for (i, _), st in zip(combo, strides))
+        swept = {k: v for b, (i, _) in zip(blocks, combo) for k, v in b[i].items()}
+        for m in case_rules(params, study, min_dt):
+            found.setdefault(m, []).append((index, swept))
+        check.built += 1
+    for combo in itertools.product(*sv):
+        try:
+            build_options(_params(study.base, [sub for _, sub in combo])["solver"])
+        except (TypeError, ValueError) as e:
+            found.setdefault(f"solver: {e}", []).append((0, {k: v for _, sub in combo for k, v in sub.items()}))
+    unit = "cases" if check.distinct == n else "robot/load combinations"
+    check.problems = _group(found, check.distinct, unit)
+    if check.problems:
+        raise StudyError([f"{source}: {p}" for p in check.problems])
+    return check
+
+
+def _params(base: dict[str, dict[str, Any]], parts: list[dict[str, Any]]) -> dict[str, dict[str, Any]]:
+    params = {sec: dict(d) for sec, d in base.items()}
+    for part in parts:
+        for path, value in part.items():
+            section, _, key = path.partition(".")
+            params[section][key] = value
+    return params
 
 
 # ---------------------------------------------------------------------------------------
@@ -245,6 +395,9 @@ class _Axes:
         if path == "scenario.name":
             self.problems.append(f'{where}["scenario.name"]: the scenario cannot be swept (one study per scenario)')
             return False
+        if path in {f"solver.{k}" for k in LIMIT_KEYS}:
+            self.problems.append(f'{where}["{path}"]: a per-case limit of the run, not a parameter: it cannot be swept')
+            return False
         if path not in self.known:
             if path.partition(".")[0] not in SWEEP_SECTIONS:
                 self.problems.append(f'{where}["{path}"]: unknown axis; axes are dotted keys into '
@@ -268,7 +421,7 @@ class _Axes:
         for i, v in enumerate(values):
             cv, prob = self.value(path, v)
             if prob:
-                self.problems.append(f'{where}["{path}"][{i}]: {prob}')
+                self.problems.append(join_key(f'{where}["{path}"][{i}]', prob))
             res.append(cv)
         return res
 
@@ -300,7 +453,7 @@ def _check_cases(cases: list[dict[str, Any]], axes: _Axes) -> list[dict[str, Any
                 continue
             cv, prob = axes.value(path, v)
             if prob:
-                axes.problems.append(f'sweep.cases[{i}]["{path}"]: {prob}')
+                axes.problems.append(join_key(f'sweep.cases[{i}]["{path}"]', prob))
             entry[path] = cv
         out.append(entry)
     if len({frozenset(c) for c in cases}) > 1:

@@ -4,8 +4,11 @@
 :class:`~workbench.robot.LoadCase` and the :class:`~workbench.models.SolverOptions` of a case
 (:mod:`workbench.study.build`), calls every model (each in its own ``try``: one model failing
 does not stop the others) and turns each :class:`~workbench.models.PhysicsResult` into one
-result-table row (:mod:`workbench.study.rows`).  :func:`evaluate_batch` is the task function of
-the sweep study kind (:data:`workbench.study.kinds.SWEEP`).  Nothing here imports Exudyn; models
+result-table row (:mod:`workbench.study.rows`).  :func:`iter_case_rows` yields the rows one
+model at a time; :func:`evaluate_rows` is the task function of the sweep study kind
+(:data:`workbench.study.kinds.SWEEP`): the executors stream each row to the parent as soon as
+it exists, so a model that crashes the process does not take the finished models' rows with
+it.  Robots are memoised per process (:func:`_robot_memo`: they are frozen values).  Nothing here imports Exudyn; models
 are looked up (and imported) lazily through ``model_lookup`` (default
 :func:`workbench.models.get_model`).
 
@@ -20,7 +23,7 @@ from __future__ import annotations
 
 import time
 import traceback
-from typing import Any, Callable, Mapping, Sequence
+from typing import Any, Callable, Iterator, Mapping, Sequence
 
 from .build import build_load, build_options, build_robot, gravity_from_parameter, resolve_case
 from .estimate import CCReference, discretization_columns
@@ -34,6 +37,8 @@ __all__ = [
     "evaluate_case",
     "evaluate_payload",
     "evaluate_batch",
+    "evaluate_rows",
+    "iter_case_rows",
     "failed_rows",
     "row_from_result",
     "gravity_from_parameter",
@@ -75,7 +80,7 @@ def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str]
         Replaces ``workbench.models.cc.actuation_from_arc`` (tests).
     robot_cache : dict, optional
         Memo of built robots (and the parameters they were built with) keyed by their
-        parameters (robots are frozen), shared by the cases of one batch.
+        parameters (robots are frozen); default: this process's memo.
 
     Returns
     -------
@@ -88,6 +93,32 @@ def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str]
         ``p.load.*`` the load (a scenario's fields applied); ``case_id`` stays the hash of the
         parameters as configured.
     """
+    return list(iter_case_rows(case_id, params, models, model_lookup, arc_actuation, robot_cache))
+
+
+class _Memo(dict):
+    """A dict that forgets everything once it holds ``maxsize`` entries (bounded memo)."""
+
+    maxsize = 256
+
+    def __setitem__(self, key: str, value: Any) -> None:
+        if len(self) >= self.maxsize:
+            self.clear()
+        super().__setitem__(key, value)
+
+
+_ROBOTS = _Memo()
+
+
+def _robot_memo() -> dict[str, Any]:
+    """This process's memo of built robots (workers build a robot once per parameter set)."""
+    return _ROBOTS
+
+
+def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str],
+                   model_lookup: Callable[[str], Callable] | None = None, arc_actuation: Callable | None = None,
+                   robot_cache: dict[str, Any] | None = None) -> Iterator[dict[str, Any]]:
+    """The rows of :func:`evaluate_case`, yielded one model at a time (never raises for a model)."""
     from ..models import quiet_if_loaded
 
     if model_lookup is None:
@@ -95,13 +126,13 @@ def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str]
     try:
         # the rows record the parameters the case runs with (derived gravity, scenario load
         # fields applied); the case id stays the hash of the parameters as configured
-        robot, ran = resolve_case(params, robot_cache)
+        robot, ran = resolve_case(params, _robot_memo() if robot_cache is None else robot_cache)
         load = build_load(robot, ran["load"], arc_actuation)
         options = build_options(ran["solver"])
     except Exception as e:  # noqa: BLE001 - recorded as the case's failure reason
-        return failed_rows(case_id, params, models, f"building the case failed: {_reason(e)}")
+        yield from failed_rows(case_id, params, models, f"building the case failed: {_reason(e)}")
+        return
     flat = flatten_params(ran)
-    rows = []
     cc_reference = CCReference(model_lookup, robot, load, options)
     for name in models:
         t0 = time.perf_counter()
@@ -116,10 +147,16 @@ def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str]
             if row["status"] == "ok":  # the discretisation-error estimate (study/estimate.py)
                 with quiet_if_loaded():
                     row.update(discretization_columns(name, fn, robot, load, options, res, cc_reference))
-            rows.append(row)
         except Exception as e:  # noqa: BLE001 - ModelFailure, exudyn.SolverError, bugs: all recorded
-            rows.append(failed_rows(case_id, ran, [name], _reason(e), time.perf_counter() - t0, flat)[0])
-    return rows
+            kind = "memory" if isinstance(e, MemoryError) else "model"
+            row = failed_rows(case_id, ran, [name], _reason(e), time.perf_counter() - t0, flat, failure=kind)[0]
+        yield row
+
+
+def evaluate_rows(payload: tuple) -> Iterator[dict[str, Any]]:
+    """The sweep kind's task: ``payload = (case_id, params, models, model_lookup, arc_actuation)``; yields rows."""
+    case_id, params, models, model_lookup, arc_actuation = payload
+    return iter_case_rows(case_id, params, models, model_lookup, arc_actuation)
 
 
 def evaluate_payload(payload: tuple) -> list[dict[str, Any]]:
@@ -128,7 +165,7 @@ def evaluate_payload(payload: tuple) -> list[dict[str, Any]]:
 
 
 def evaluate_batch(batch: tuple) -> list[list[dict[str, Any]]]:
-    """The task function the runner submits: several cases, one list of rows per case.
+    """Several cases, one list of rows per case (the task function before units; kept for callers).
 
     ``batch = (cases, models, model_lookup, arc_actuation)`` with ``cases`` a list of
     ``(case_id, params)``.  Batching amortises the per-task cost of process executors; robots

@@ -1,55 +1,99 @@
-"""Executors: run a task function over payloads, yielding results as they finish.
+"""Executors: run units of work, yielding an :class:`~workbench.study.outcomes.Outcome` per unit.
 
 One small interface (:class:`Executor`)::
 
     with executor:
-        for index, outcome in executor.imap_unordered(fn, payloads):
-            ...   # outcome is fn(payloads[index]) or a WorkerCrash
+        for index, outcome in executor.imap_unordered(fn, payloads, limits, chunk_size):
+            ...   # outcome.rows: what fn(payloads[index]) yielded; outcome.crash: why it stopped
 
-``fn`` must catch its own exceptions (:func:`~workbench.study.evaluate.evaluate_payload`
-does); executors only report what ``fn`` cannot: a worker process that died (segfault,
-``os._exit``, out of memory) as a :class:`WorkerCrash` blamed on the payload it was running.
+``fn(payload)`` yields the rows of one unit (one case, the models still to run) and catches
+its own exceptions (:func:`~workbench.study.evaluate.evaluate_rows` does); executors report what
+``fn`` cannot: the process running it died, ran past ``limits.seconds`` or hit ``limits.memory``
+(:class:`~workbench.study.outcomes.CaseLimits`).
 
-- :class:`SerialExecutor` -- in-process, one after another; debuggable (pdb, breakpoints),
-  used by unit tests; a crash kills the caller too.
-- :class:`IsolatedExecutor` -- one at a time in a single spawned child process that is
-  restarted after a crash (crash-safe serial; the CLI default).
+- :class:`SerialExecutor` -- in this process, one after another: the debugging executor
+  (pdb, breakpoints), **without isolation**: a case that crashes the process ends the run (the
+  rows of the cases before it are stored: the runner flushes after every case); the time limit
+  interrupts Python code only (SIGALRM), there is no memory cap.
+- :class:`IsolatedExecutor` -- one at a time in a child process (a
+  :class:`~workbench.study.sandbox.Sandbox`) that is restarted after a crash or timeout: the
+  CLI default.
 - :class:`DaskExecutor` -- Dask distributed: a ``LocalCluster`` started inside the command
-  (one thread per worker process, ``worker-saturation`` 1.0, ``allowed-failures`` small so a
-  crashing task is not retried for ever) or an existing scheduler address.
+  (one thread per worker process) or an existing scheduler; every worker runs its units in its
+  own sandbox (:mod:`workbench.study.dask_worker`), so only a lost worker is a Dask failure.
+  Cluster failures raise :class:`~workbench.study.outcomes.InfrastructureError` with one line.
+
+Checked by ``tests/study/test_executors.py`` and ``tests/study/test_sandbox.py``.
 """
 
 from __future__ import annotations
 
 import logging
-import multiprocessing as mp
 import signal
-from dataclasses import dataclass
+import threading
+import time
+import uuid
 from typing import Any, Callable, Iterator, Protocol, Sequence
 
-__all__ = ["Executor", "WorkerCrash", "SerialExecutor", "IsolatedExecutor", "DaskExecutor"]
+from .outcomes import CaseLimits, Crash, ExecutorStartError, InfrastructureError, Outcome
+from .sandbox import Sandbox
 
+__all__ = ["DaskExecutor", "Executor", "IsolatedExecutor", "SerialExecutor", "WorkerCrash"]
 
-@dataclass(frozen=True)
-class WorkerCrash:
-    """The worker running a payload died; ``reason`` says how."""
-
-    reason: str
+WorkerCrash = Crash  # the old name of a crashed unit's record (deprecated)
+_NO_LIMITS = CaseLimits()
 
 
 class Executor(Protocol):
-    slots: int  # tasks it runs at once (batch sizing)
+    """What the runner needs of an executor (see the module docstring)."""
+
+    name: str
+    slots: int  # units it runs at once (chunk sizing)
+    isolates_cases: bool  # False: a crashing case takes the caller down (flush after every case)
 
     def __enter__(self) -> "Executor": ...
     def __exit__(self, *exc: Any) -> None: ...
-    def imap_unordered(self, fn: Callable[[Any], Any], payloads: Sequence[Any]) -> Iterator[tuple[int, Any]]: ...
+    def imap_unordered(self, fn: Callable[[Any], Any], payloads: Sequence[Any], limits: CaseLimits = _NO_LIMITS,
+                       chunk_size: int = 1) -> Iterator[tuple[int, Outcome]]: ...
+
+
+class _CaseTimeout(BaseException):
+    """Raised by SIGALRM inside an in-process case (a BaseException: models catch ``Exception``)."""
+
+
+def _run_here(fn: Callable[[Any], Any], payload: Any, seconds: float | None) -> Outcome:
+    rows: list[Any] = []
+    timed = seconds is not None and threading.current_thread() is threading.main_thread()
+
+    def _alarm(*_: Any) -> None:
+        raise _CaseTimeout
+
+    old = signal.signal(signal.SIGALRM, _alarm) if timed else None
+    if timed:
+        signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        for row in fn(payload):
+            rows.append(row)
+    except _CaseTimeout:
+        return Outcome(rows, Crash("timeout", f"stopped after max_case_seconds = {seconds:g} s (in-process: "
+                                              f"the limit interrupts Python code only)"))
+    except MemoryError as e:
+        return Outcome(rows, Crash("memory", f"MemoryError: {e}"))
+    except Exception as e:  # noqa: BLE001 - fn should not raise; blame the unit, go on
+        return Outcome(rows, Crash("crash", f"task raised {type(e).__name__}: {str(e)[:500]}"))
+    finally:
+        if timed:
+            signal.setitimer(signal.ITIMER_REAL, 0)
+            signal.signal(signal.SIGALRM, old)
+    return Outcome(rows)
 
 
 class SerialExecutor:
-    """In-process serial execution (no isolation: for debugging and unit tests)."""
+    """In-process serial execution: the debugging executor, without isolation (module docstring)."""
 
-    name = "serial (in-process)"
+    name = "serial (in-process, no isolation)"
     slots = 1
+    isolates_cases = False
 
     def __enter__(self) -> "SerialExecutor":
         return self
@@ -57,93 +101,63 @@ class SerialExecutor:
     def __exit__(self, *exc: Any) -> None:
         return None
 
-    def imap_unordered(self, fn, payloads):
+    def imap_unordered(self, fn, payloads, limits=_NO_LIMITS, chunk_size=1):
         for i, p in enumerate(payloads):
-            yield i, fn(p)
-
-
-def _describe_exit(code: int | None) -> str:
-    if code is None:
-        return "worker process died (exit code unknown)"
-    if code < 0:
-        try:
-            return f"worker process killed by signal {signal.Signals(-code).name}"
-        except ValueError:
-            return f"worker process killed by signal {-code}"
-    return f"worker process exited with status {code}"
-
-
-def _child_loop(conn, fn) -> None:
-    while True:
-        try:
-            msg = conn.recv()
-        except EOFError:
-            return
-        if msg is None:
-            return
-        i, payload = msg
-        try:
-            out = fn(payload)
-        except BaseException as e:  # noqa: BLE001 - fn should not raise; report it, keep serving
-            out = WorkerCrash(f"task raised {type(e).__name__}: {e}")
-        conn.send((i, out))
+            yield i, _run_here(fn, p, limits.seconds)
 
 
 class IsolatedExecutor:
-    """Serial execution in one spawned child process, restarted after a crash."""
+    """Serial execution in one child process (a sandbox), restarted after a crash or timeout."""
 
     name = "serial (isolated child process)"
     slots = 1
+    isolates_cases = True
 
     def __init__(self) -> None:
-        self._ctx = mp.get_context("spawn")
-        self._proc = None
-        self._conn = None
-        self._fn = None
+        self._box: Sandbox | None = None
 
     def __enter__(self) -> "IsolatedExecutor":
         return self
 
-    def _start(self, fn) -> None:
-        parent, child = self._ctx.Pipe()
-        self._proc = self._ctx.Process(target=_child_loop, args=(child, fn), daemon=True)
-        self._proc.start()
-        child.close()
-        self._conn, self._fn = parent, fn
-
-    def _stop(self) -> None:
-        if self._proc is None:
-            return
-        try:
-            self._conn.send(None)
-        except (BrokenPipeError, OSError):
-            pass
-        self._proc.join(timeout=5)
-        if self._proc.is_alive():
-            self._proc.kill()
-            self._proc.join()
-        self._conn.close()
-        self._proc = self._conn = None
-
     def __exit__(self, *exc: Any) -> None:
-        self._stop()
+        if self._box is not None:
+            self._box.__exit__(*exc)
+            self._box = None
 
-    def imap_unordered(self, fn, payloads):
+    def imap_unordered(self, fn, payloads, limits=_NO_LIMITS, chunk_size=1):
+        want = Sandbox(limits.memory)
+        if self._box is None or self._box.memory != want.memory:
+            if self._box is not None:
+                self._box.close()
+            self._box = want
         for i, p in enumerate(payloads):
-            if self._proc is None or self._fn is not fn:
-                self._stop()
-                self._start(fn)
-            try:
-                self._conn.send((i, p))
-                j, out = self._conn.recv()
-            except (EOFError, ConnectionResetError, BrokenPipeError):
-                self._proc.join(timeout=10)
-                code = self._proc.exitcode
-                self._conn.close()
-                self._proc = self._conn = None
-                yield i, WorkerCrash(_describe_exit(code))
-                continue
-            yield j, out
+            yield i, self._box.run(fn, p, limits.seconds)
+
+
+def check_scheduler_address(address: str, timeout: float = 5.0) -> str | None:
+    """Why ``address`` is not a reachable Dask scheduler (``None`` when a TCP connection succeeds).
+
+    Accepts ``tcp://host:port``, ``tls://host:port`` and ``host:port``; other protocols
+    (``inproc://``, ``ucx://``) are passed on unchecked.
+    """
+    import socket
+
+    proto, sep, rest = address.partition("://")
+    if not sep:
+        proto, rest = "tcp", address
+    if proto not in ("tcp", "tls"):
+        return None if proto in ("inproc", "ucx", "ws", "wss") else f"unknown protocol {proto!r} (use tcp://host:port)"
+    host, _, port = rest.rstrip("/").rpartition(":")
+    host = host.strip("[]")
+    if not host or not port.isdigit() or not 0 < int(port) < 65536:
+        return "not an address of the form tcp://host:port"
+    try:
+        with socket.create_connection((host, int(port)), timeout=timeout):
+            return None
+    except socket.gaierror as e:
+        return f"unknown host {host!r} ({e.strerror or e})"
+    except OSError as e:
+        return f"nothing answers at {host}:{port} ({e.strerror or e}); is the scheduler running?"
 
 
 class DaskExecutor:
@@ -154,120 +168,164 @@ class DaskExecutor:
     n_workers : int, optional
         Worker processes of the ``LocalCluster`` started on entry (default: CPU count).
     scheduler : str, optional
-        Address of an existing scheduler (``tcp://host:8786``) instead of a local cluster.
-        Its ``worker-saturation`` / ``allowed-failures`` are the cluster's own settings.
+        Address of an existing scheduler (``tcp://host:8786``) instead of a local cluster.  Its
+        ``allowed-failures`` is read from the scheduler (for the lost-worker message).
     allowed_failures : int
-        How many worker deaths a task may cause before it is marked failed
+        Local cluster: how many worker losses a task may cause before it is given up
         (``distributed.scheduler.allowed-failures``; 1 = one retry on another worker).
     lost_timeout : float
-        Give up (``RuntimeError``) when the cluster has had no worker for this long [s].
+        Give up (:class:`InfrastructureError`) when the cluster has had no worker for this long [s].
+    connect_timeout : float
+        Seconds to wait for the scheduler on entry.
     """
 
+    isolates_cases = True
+
     def __init__(self, n_workers: int | None = None, scheduler: str | None = None,
-                 allowed_failures: int = 1, lost_timeout: float = 120.0) -> None:
-        self.lost_timeout = float(lost_timeout)
+                 allowed_failures: int = 1, lost_timeout: float = 120.0, connect_timeout: float = 10.0) -> None:
         if n_workers is not None and n_workers < 1:
             raise ValueError(f"n_workers must be >= 1, got {n_workers}")
-        self.n_workers = n_workers
-        self.scheduler = scheduler
+        self.n_workers, self.scheduler = n_workers, scheduler
         self.allowed_failures = int(allowed_failures)
-        self._cluster = None
-        self._client = None
-        self._cfg = None
+        self.lost_timeout, self.connect_timeout = float(lost_timeout), float(connect_timeout)
+        self._cluster = self._client = self._cfg = None
         self.name = f"dask ({scheduler})" if scheduler else f"dask LocalCluster ({n_workers or 'auto'} workers)"
 
     def __enter__(self) -> "DaskExecutor":
+        try:
+            self._connect()
+        except BaseException as e:
+            self.__exit__(None, None, None)
+            if isinstance(e, KeyboardInterrupt):
+                raise
+            where = self.scheduler or "a local cluster"
+            first = str(e).splitlines()[0] if str(e) else ""
+            raise ExecutorStartError(f"cannot start Dask on {where}: {type(e).__name__}: {first}".rstrip(": ")) \
+                from None
+        return self
+
+    def _connect(self) -> None:
         import os
 
         import dask
         from distributed import Client, LocalCluster
 
+        from .dask_worker import SandboxPlugin
+
         self._cfg = dask.config.set({
             "distributed.scheduler.worker-saturation": 1.0,
             "distributed.scheduler.allowed-failures": self.allowed_failures,
             "distributed.scheduler.work-stealing": False,
-            "distributed.worker.daemon": False,
         })
         self._cfg.__enter__()
-        try:
-            if self.scheduler:
-                self._client = Client(self.scheduler)
-            else:
-                n = self.n_workers or os.cpu_count() or 1
-                self._cluster = LocalCluster(
-                    n_workers=n, threads_per_worker=1, processes=True,
-                    dashboard_address=None, silence_logs=logging.CRITICAL,
-                )
-                self._client = Client(self._cluster)
-        except BaseException:
-            self.__exit__(None, None, None)
-            raise
-        return self
+        if self.scheduler:
+            self._client = Client(self.scheduler, timeout=self.connect_timeout)
+            try:
+                self.allowed_failures = int(self._client.run_on_scheduler(_allowed_failures))
+            except Exception:  # noqa: BLE001 - an old scheduler: keep the local setting
+                pass
+        else:
+            n = self.n_workers or os.cpu_count() or 1
+            # no dashboard; the scheduler's HTTP routes on a free port (the default 8787 may be taken)
+            self._cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                                         dashboard_address=":0", scheduler_kwargs={"dashboard": False},
+                                         silence_logs=logging.CRITICAL)
+            self._client = Client(self._cluster, timeout=self.connect_timeout)
+        self._client.register_plugin(SandboxPlugin(), name="workbench-sandbox")
 
     def __exit__(self, *exc: Any) -> None:
-        if self._client is not None:
-            self._client.close()
-            self._client = None
-        if self._cluster is not None:
-            self._cluster.close()
-            self._cluster = None
+        for obj in (self._client, self._cluster):
+            if obj is not None:
+                try:
+                    obj.close()
+                except Exception:  # noqa: BLE001 - closing a broken cluster: nothing left to save
+                    pass
+        self._client = self._cluster = None
         if self._cfg is not None:
             self._cfg.__exit__(None, None, None)
             self._cfg = None
 
     @property
     def slots(self) -> int:
-        """Worker threads of the cluster (for batch sizing)."""
+        """Worker threads of the cluster (for chunk sizing)."""
         if self._client is None:
             return self.n_workers or 1
-        return max(1, sum(self._client.nthreads().values()))
+        try:
+            return max(1, sum(self._client.nthreads().values()))
+        except Exception:  # noqa: BLE001
+            return 1
 
-    def imap_unordered(self, fn, payloads):
-        import time
+    def _lost(self) -> Crash:
+        n = self.allowed_failures
+        return Crash("lost", f"the Dask worker running this case was lost {n + 1} time(s) "
+                             f"(the scheduler's allowed-failures = {n}); --resume retries it")
 
-        from distributed import wait
+    def imap_unordered(self, fn, payloads, limits=_NO_LIMITS, chunk_size=1):
         from distributed.scheduler import KilledWorker
 
-        import uuid
+        from .dask_worker import run_units
 
         tag = uuid.uuid4().hex[:12]
-        index = {}
-        futures = []
-        for i, p in enumerate(payloads):
-            f = self._client.submit(fn, p, pure=False, key=f"cases-{tag}-{i}")
-            index[f.key] = i
-            futures.append(f)
-        remaining = set(futures)
+        size = max(1, int(chunk_size))
+        starts = list(range(0, len(payloads), size))
+        futures = {}
+        try:
+            for k, s in enumerate(starts):
+                f = self._client.submit(run_units, fn, list(payloads[s:s + size]), limits, pure=False,
+                                        key=f"cases-{tag}-{k}")
+                futures[f.key] = (f, s, min(size, len(payloads) - s))
+        except Exception as e:  # noqa: BLE001
+            raise InfrastructureError(f"cannot submit to the Dask scheduler: {type(e).__name__}: {e}") from None
+        remaining = {f for f, _, _ in futures.values()}
         lost_since = None
         try:
             while remaining:
-                try:
-                    done, _ = wait(list(remaining), timeout=5.0, return_when="FIRST_COMPLETED")
-                except TimeoutError:
-                    done = set()
-                if not done:
-                    # a cluster without workers would wait for ever: give up after a while
-                    if not self._client.scheduler_info().get("workers"):
-                        lost_since = lost_since or time.monotonic()
-                        if time.monotonic() - lost_since > self.lost_timeout:
-                            raise RuntimeError(
-                                f"the Dask cluster has had no workers for {self.lost_timeout:.0f} s; "
-                                f"finished cases are stored (continue with --resume)")
-                    else:
-                        lost_since = None
-                    continue
+                done, lost_since = self._wait(remaining, lost_since)
                 for f in done:
                     remaining.discard(f)
-                    i = index[f.key]
+                    _, start, n = futures[f.key]
                     try:
-                        out = f.result()
+                        outs = f.result()
                     except KilledWorker:
-                        out = WorkerCrash(f"worker process died while running this case "
-                                          f"({self.allowed_failures + 1} worker(s) lost)")
-                    except Exception as e:  # noqa: BLE001
-                        out = WorkerCrash(f"task failed: {type(e).__name__}: {e}")
+                        outs = [Outcome([], self._lost()) for _ in range(n)]
+                    except Exception as e:  # noqa: BLE001 - the sandbox catches every case: systemic
+                        raise InfrastructureError(
+                            f"the Dask workers cannot run the cases: {type(e).__name__}: {str(e)[:300]} (is the "
+                            f"same workbench installed in the workers' environment?)") from None
                     f.release()
-                    yield i, out
+                    for j, out in enumerate(outs):
+                        yield start + j, out
         finally:
-            for f in futures:
-                f.cancel()
+            for f, _, _ in futures.values():
+                try:
+                    f.cancel()
+                except Exception:  # noqa: BLE001
+                    pass
+
+    def _wait(self, remaining, lost_since):
+        """Futures done within 5 s; raises :class:`InfrastructureError` after ``lost_timeout`` without workers."""
+        from distributed import wait
+
+        try:
+            done, _ = wait(list(remaining), timeout=min(5.0, max(0.5, self.lost_timeout / 2)),
+                           return_when="FIRST_COMPLETED")
+        except TimeoutError:
+            done = set()
+        except Exception as e:  # noqa: BLE001 - the scheduler went away
+            raise InfrastructureError(f"lost the Dask scheduler: {type(e).__name__}: {e}") from None
+        if done:
+            return done, None
+        try:
+            workers = self._client.scheduler_info().get("workers")
+        except Exception as e:  # noqa: BLE001
+            raise InfrastructureError(f"lost the Dask scheduler: {type(e).__name__}: {e}") from None
+        if workers:
+            return set(), None
+        lost_since = lost_since or time.monotonic()
+        if time.monotonic() - lost_since > self.lost_timeout:
+            raise InfrastructureError(f"the Dask cluster has had no workers for {self.lost_timeout:.0f} s")
+        return set(), lost_since
+
+
+def _allowed_failures(dask_scheduler=None) -> int:
+    return dask_scheduler.allowed_failures

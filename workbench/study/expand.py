@@ -19,7 +19,7 @@ import numpy as np
 
 from .params import case_id_for, flatten_params
 
-__all__ = ["Case", "expand", "count_cases", "case_id_for", "flatten_params"]
+__all__ = ["Case", "expand", "count_cases", "case_id_for", "flatten_params", "sweep_blocks"]
 
 
 class SweepSpec(Protocol):
@@ -53,7 +53,8 @@ class Case:
     swept: dict[str, Any]
 
 
-def _blocks(study: SweepSpec) -> list[list[dict[str, Any]]]:
+def sweep_blocks(study: SweepSpec) -> list[list[dict[str, Any]]]:
+    """The sweep's blocks in order, each a list of entries ``{dotted path: value}`` (cases = their product)."""
     sw = study.sweep
     blocks: list[list[dict[str, Any]]] = []
     for path, values in sw.get("product", {}).items():
@@ -110,7 +111,7 @@ def count_cases(study: SweepSpec) -> int:
 def expand(study: SweepSpec) -> list[Case]:
     """All cases of ``study``, in a deterministic order (blocks' Cartesian product)."""
     cases = []
-    for i, combo in enumerate(itertools.product(*_blocks(study))):
+    for i, combo in enumerate(itertools.product(*sweep_blocks(study))):
         swept: dict[str, Any] = {}
         for part in combo:
             swept.update(part)

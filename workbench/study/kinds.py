@@ -8,10 +8,12 @@ today:
 
 ``"sweep"`` (:data:`SWEEP`)
     ``run(robot, load, options)`` models over a robot preset, swept (:mod:`workbench.study.spec`);
-    cases are evaluated in batches (:func:`workbench.study.evaluate.evaluate_batch`).
+    each unit (a case, the models still to compute) yields its rows model by model
+    (:func:`workbench.study.evaluate.evaluate_rows`), so a crash keeps the finished models.
 ``"series_parallel"``
     Huang's series-parallel trunk driven by platform poses
-    (``workbench/experiments/series_parallel/kind.py``); one case per task.
+    (``workbench/experiments/series_parallel/kind.py``); the three rows of a case are computed
+    together (``separable_models = False``).
 
 A new kind is a :class:`StudyKind` object in its experiment folder plus one ``registry.KINDS``
 row; the run session, manifest, store, executors, CLI and report come with the pipeline.
@@ -23,12 +25,13 @@ from __future__ import annotations
 
 import tomllib
 from pathlib import Path
-from typing import Any, Callable, Protocol, Sequence
+from typing import Any, Callable, Iterable, Protocol, Sequence
 
 from .. import registry
 from .build import parameters_as_run
-from .evaluate import evaluate_batch
-from .expand import Case, expand
+from .evaluate import evaluate_rows
+from .expand import Case, count_cases, expand
+from .outcomes import CaseLimits
 from .spec import Study, load_study
 
 __all__ = ["StudyKind", "SweepKind", "SWEEP", "get_kind", "kind_of"]
@@ -47,13 +50,19 @@ class StudyKind(Protocol):
     flush_rows : int
         Default number of buffered rows per Parquet part.
     task : callable
-        The executor's task function: ``task(payload) -> [rows of case 1, rows of case 2, ...]``
-        (module-level, picklable; never raises for a case).
+        The executor's task function: ``task(payload)`` returns or yields the rows of one unit
+        (one case, the models of the payload), one per model; a generator lets the executor
+        keep the finished models' rows when a later model crashes the process (module-level,
+        picklable; never raises for a case).
+    separable_models : bool
+        The models of a case can be computed one at a time (a unit may name a subset of
+        :meth:`models`); ``False``: a case is always computed whole.
     """
 
     name: str
     flush_rows: int
-    task: Callable[[Any], list[list[dict[str, Any]]]]
+    task: Callable[[Any], Iterable[dict[str, Any]]]
+    separable_models: bool
 
     def load(self, path: str | Path, max_cases: int | None = None) -> Any:
         """Read and validate a study file (:class:`~workbench.study.messages.StudyError` listing every problem)."""
@@ -71,29 +80,37 @@ class StudyKind(Protocol):
         """Check the run's extra options (``model_lookup``, ``arc_actuation``); what :meth:`payload` gets."""
 
     def batch_size(self, n_cases: int, slots: int) -> int:
-        """Cases per task when the caller does not choose (``slots``: parallel workers)."""
+        """Units per Dask task when the caller does not choose (``slots``: parallel workers)."""
 
-    def payload(self, spec: Any, cases: Sequence[Case], options: Any) -> Any:
-        """The argument of :attr:`task` for one batch of cases."""
+    def payload(self, spec: Any, case: Case, models: Sequence[str], options: Any) -> Any:
+        """The argument of :attr:`task` for one unit: ``case`` and the ``models`` to compute."""
+
+    def limits(self, spec: Any) -> CaseLimits:
+        """The per-case limits of the study (``[solver] max_case_seconds`` / ``max_case_memory``)."""
 
 
 class SweepKind:
     """The sweep study kind: ``run(robot, load, options)`` models over a swept robot and load.
 
-    Batches of cases per task (about 8 tasks per worker slot, at most 32 cases each): that
-    amortises the per-task cost of process executors while keeping the load balanced; a batch
-    whose worker dies is rerun case by case (:func:`~workbench.study.runner.run_cases`).
+    Units are grouped into Dask tasks (about 8 tasks per worker slot, at most 32 units each):
+    that amortises the per-task cost while keeping the load balanced; each unit still runs and
+    is timed on its own in the worker's sandbox.
     """
 
     name = "sweep"
     flush_rows = 256
-    task = staticmethod(evaluate_batch)
+    separable_models = True
+    task = staticmethod(evaluate_rows)
 
     def load(self, path: str | Path, max_cases: int | None = None) -> Study:
         return load_study(path, max_cases=max_cases)
 
     def expand(self, spec: Study) -> list[Case]:
         return expand(spec)
+
+    def count(self, spec: Study) -> int:
+        """Number of cases, without expanding them."""
+        return count_cases(spec)
 
     def models(self, spec: Study) -> tuple[str, ...]:
         return tuple(spec.models)
@@ -110,9 +127,12 @@ class SweepKind:
     def batch_size(self, n_cases: int, slots: int) -> int:
         return min(32, max(1, -(-n_cases // (8 * max(1, slots)))))
 
-    def payload(self, spec: Study, cases: Sequence[Case], options: tuple) -> tuple:
+    def payload(self, spec: Study, case: Case, models: Sequence[str], options: tuple) -> tuple:
         model_lookup, arc_actuation = options
-        return [(c.case_id, c.params) for c in cases], spec.models, model_lookup, arc_actuation
+        return case.case_id, case.params, tuple(models), model_lookup, arc_actuation
+
+    def limits(self, spec: Study) -> CaseLimits:
+        return spec.limits
 
 
 #: The sweep study kind (``registry.KINDS["sweep"]``).
@@ -142,7 +162,7 @@ def kind_of(path: str | Path) -> str:
     """
     try:
         data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+    except (OSError, ValueError, RecursionError):  # unreadable, not UTF-8, not TOML, nested too deeply
         return "sweep"
     st = data.get("study")
     kind = st.get("kind") if isinstance(st, dict) else None

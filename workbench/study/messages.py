@@ -24,7 +24,7 @@ from pydantic import BaseModel, ValidationError
 
 __all__ = [
     "StudyError", "UNITS", "suggest", "fmt_loc", "num", "translate", "known_keys", "pydantic_problems",
-    "check_robot_value", "read_toml",
+    "check_robot_value", "collapse_indexed", "join_key", "read_toml", "MAX_COUNT", "MAX_DEPTH",
 ]
 
 
@@ -40,7 +40,8 @@ class StudyError(ValueError):
 UNITS = {
     "bend_angle": "rad", "bend_plane": "rad", "tensions": "N", "length_changes": "m",
     "pretension": "N", "tip_force": "N", "tip_torque": "N m", "duration": "s", "ramp_time": "s",
-    "start_delays": "s", "ramp_durations": "s", "time_step": "s",
+    "start_delays": "s", "ramp_durations": "s", "time_step": "s", "max_case_seconds": "s",
+    "max_case_memory": "bytes",
 }
 
 
@@ -147,12 +148,87 @@ def _robot_unit(key: str) -> str:
     return ""
 
 
+#: Upper bound of integer preset / scenario parameters (counts of sections, disks, tendons,
+#: samples): beyond it building the robot alone would exhaust time or memory.
+MAX_COUNT = 10_000
+
+
+def _check_list(key: str, value: Any, default: tuple | list) -> tuple[Any, str | None]:
+    """A list override of a list-valued default: numbers (or what the default holds), finite, sane by name."""
+    u = _robot_unit(key)
+    if not isinstance(value, list):
+        return value, f"must be a list (like the default {list(default)!r}), got {type(value).__name__} {value!r}"
+    if not value:
+        return value, "must not be an empty list"
+    numeric = all(isinstance(d, (int, float)) and not isinstance(d, bool) for d in default)
+    if not numeric:
+        return value, None
+    out = []
+    for i, v in enumerate(value):
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            return value, f"[{i}] must be a number{u}, got {type(v).__name__} {v!r}"
+        v = float(v)
+        if not math.isfinite(v):
+            return value, f"[{i}] must be finite{u}, got {v}"
+        if _POSITIVE_PAT.search(key) and v <= 0:
+            return value, f"[{i}] must be > 0{u}, got {num(v)}"
+        if _NONNEG_PAT.search(key) and v < 0:
+            return value, f"[{i}] must be >= 0{u}, got {num(v)}"
+        out.append(v)
+    return out, None
+
+
+_INDEXED = re.compile(r"^(?P<head>.*?)\[(?P<i>\d+)\](?P<tail>[^:]*): (?P<reason>.*)$")
+
+
+def collapse_indexed(problems: list[str]) -> list[str]:
+    """Lines that differ only in one list index merged: ``a[0]: r``, ``a[1]: r`` -> ``a[0, 1]: r``.
+
+    One mistake repeated over a list (``models = ["x", "x"]``) is then one line.  Order kept.
+    """
+    groups: dict[tuple[str, str, str], list[str]] = {}
+    order: list[Any] = []
+    for line in problems:
+        m = _INDEXED.match(line)
+        if not m:
+            order.append(line)
+            continue
+        key = (m["head"], m["tail"], m["reason"])
+        if key not in groups:
+            groups[key] = []
+            order.append(key)
+        groups[key].append(m["i"])
+    out = []
+    for item in order:
+        if isinstance(item, str):
+            out.append(item)
+        else:
+            head, tail, reason = item
+            out.append(f"{head}[{', '.join(groups[item])}]{tail}: {reason}")
+    return out
+
+
+def join_key(key: str, problem: str) -> str:
+    """``"<key>: <problem>"``, with an element index that starts ``problem`` moved into the key.
+
+    ``join_key("robot.d", "[1] must be finite")`` -> ``"robot.d[1]: must be finite"``.
+    """
+    if problem.startswith("[") and "] " in problem:
+        idx, _, rest = problem.partition("] ")
+        return f"{key}{idx}]: {rest}"
+    return f"{key}: {problem}"
+
+
 def check_robot_value(key: str, value: Any, default: Any) -> tuple[Any, str | None]:
     """Check one robot override against the preset default's type and physical sanity.
 
-    Returns ``(coerced_value, problem_or_None)``.
+    Integers are bounded by :data:`MAX_COUNT`; list defaults take lists whose entries are
+    checked like scalars (``"[i] must be finite"``: the caller prefixes the key).  Returns
+    ``(coerced_value, problem_or_None)``.
     """
     u = _robot_unit(key)
+    if isinstance(default, (list, tuple)):
+        return _check_list(key, value, default)
     if isinstance(default, bool):
         if not isinstance(value, bool):
             return value, f"must be a boolean (true/false), got {type(value).__name__} {value!r}"
@@ -164,11 +240,16 @@ def check_robot_value(key: str, value: Any, default: Any) -> tuple[Any, str | No
             return value, f"must be >= 1, got {value}"
         if value < 0:
             return value, f"must be >= 0, got {value}"
+        if value > MAX_COUNT:
+            return value, f"must be <= {MAX_COUNT} (a sanity bound), got {value}"
         return value, None
     if isinstance(default, float) or default is None:
         if isinstance(value, bool) or not isinstance(value, (int, float)):
-            if default is None and isinstance(value, (str, list)):
+            if default is None and isinstance(value, str):
                 return value, None
+            if default is None and isinstance(value, list):
+                return _check_list(key, value, [0.0] if all(
+                    isinstance(x, (int, float)) and not isinstance(x, bool) for x in value) else [""])
             return value, f"must be a number{u}, got {type(value).__name__} {value!r}"
         v = float(value)
         if not math.isfinite(v):
@@ -183,6 +264,27 @@ def check_robot_value(key: str, value: Any, default: Any) -> tuple[Any, str | No
             return value, f"must be a string, got {type(value).__name__} {value!r}"
         return value, None
     return value, None
+
+
+#: Deepest nesting of arrays / tables a study file may have (the formats need 4).
+MAX_DEPTH = 16
+
+
+def _too_deep(obj: Any, loc: str = "", depth: int = 0) -> str | None:
+    """The key path of the first value nested deeper than :data:`MAX_DEPTH`, else ``None``."""
+    if depth > MAX_DEPTH:
+        return loc or "<top>"
+    if isinstance(obj, dict):
+        for k, v in obj.items():
+            found = _too_deep(v, f"{loc}.{k}" if loc else str(k), depth + 1)
+            if found:
+                return found
+    elif isinstance(obj, list):
+        for i, v in enumerate(obj):
+            found = _too_deep(v, f"{loc}[{i}]", depth + 1)
+            if found:
+                return found
+    return None
 
 
 def read_toml(path: str | Path, *, cannot_read: str = "cannot read file",
@@ -200,14 +302,31 @@ def read_toml(path: str | Path, *, cannot_read: str = "cannot read file",
     Raises
     ------
     StudyError
-        The file cannot be read (``OSError``) or is not valid TOML.
+        The file cannot be read (``OSError``, a folder), is not UTF-8, is not valid TOML or
+        is nested deeper than :data:`MAX_DEPTH`.
     """
     p = Path(path)
     try:
-        text = p.read_text(encoding="utf-8")
+        if p.is_dir():
+            raise StudyError([f"{p}: {cannot_read}: is a folder, not a TOML file"])
+        data = p.read_bytes()
     except OSError as e:
         raise StudyError([f"{p}: {cannot_read}: {e.strerror or e}"]) from None
+    except ValueError as e:  # e.g. a NUL byte in the path
+        raise StudyError([f"{p!r}: {cannot_read}: {e}"]) from None
     try:
-        return tomllib.loads(text)
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        line = data[:e.start].count(b"\n") + 1
+        raise StudyError([f"{p}: {cannot_read}: not UTF-8 text (byte 0x{data[e.start]:02x} on line {line}); "
+                          f"TOML files must be UTF-8"]) from None
+    try:
+        out = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
         raise StudyError([f"{p}: {syntax_error}: {e}"]) from None
+    except RecursionError:
+        raise StudyError([f"{p}: {syntax_error}: arrays or tables nested too deeply"]) from None
+    deep = _too_deep(out)
+    if deep:
+        raise StudyError([f"{p}: {deep}: nested more than {MAX_DEPTH} levels deep"])
+    return out

@@ -2,7 +2,8 @@
 
 Every study kind writes the row schema of ``docs/architecture.md`` ("Result table"): the keys
 ``case_id``, ``model``, the case's ``p.*`` parameters, ``status`` (``ok`` | ``failed``),
-``error`` (the reason), ``wall_time`` and the results.  The same rule marks a row failed for
+``error`` (the reason), ``failure`` (why: :data:`~workbench.study.outcomes.FAILURE_KINDS`, empty
+when ok), ``wall_time`` and the results.  The same rule marks a row failed for
 both kinds (:func:`fail_non_finite`): a non-finite number in ``positions``, ``tip_frame``,
 ``length_change``, ``tip_twist``, a ``series.*`` or an ``x.*`` cell, or tendon tensions that are
 partly NaN (all-NaN means "this model predicts no forces", e.g. CC kinematics in length mode).
@@ -32,7 +33,7 @@ def _base_row(case_id: str, model: str, params: Mapping[str, Any], flat: Mapping
 
 def failed_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str], reason: str,
                 wall_time: float = float("nan"), flat: Mapping[str, Any] | None = None,
-                extra: Mapping[str, Any] | None = None) -> list[dict[str, Any]]:
+                extra: Mapping[str, Any] | None = None, failure: str = "model") -> list[dict[str, Any]]:
     """One failed row per model (a case that could not be built, a crashed worker, a failed target).
 
     Parameters
@@ -49,10 +50,12 @@ def failed_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str], 
         ``flatten_params(params)``, when the caller has it already.
     extra : dict, optional
         Further cells of every row (e.g. ``robot_length``).
+    failure : str
+        The ``failure`` cell: one of :data:`~workbench.study.outcomes.FAILURE_KINDS`.
     """
     flat = flatten_params(params) if flat is None else flat
     return [{**_base_row(case_id, m, params, flat), **(extra or {}), "status": "failed", "error": reason,
-             "wall_time": wall_time} for m in models]
+             "failure": failure, "wall_time": wall_time} for m in models]
 
 
 def _not_finite(cell: Any) -> bool:
@@ -88,6 +91,7 @@ def fail_non_finite(row: dict[str, Any]) -> dict[str, Any]:
         if bad:
             row["status"] = "failed"
             row["error"] = f"non-finite result in {', '.join(bad)}"
+            row["failure"] = "model"
     return row
 
 
@@ -118,6 +122,7 @@ def row_from_result(res, case_id: str, model: str, params: Mapping[str, Any], ro
         **_base_row(case_id, model, params, flat),
         "status": "ok",
         "error": "",
+        "failure": "",
         "wall_time": float(wall_time),
         "robot_length": float(robot.length),
         "robot_gravity": float(np.linalg.norm(robot.gravity)),
@@ -149,4 +154,5 @@ def row_from_result(res, case_id: str, model: str, params: Mapping[str, Any], ro
     if row["status"] == "ok" and not res.solver.converged:
         row["status"] = "failed"
         row["error"] = f"not converged: {res.solver.message}".rstrip(": ")
+        row["failure"] = "model"
     return row

@@ -1,17 +1,20 @@
 """Run a study: one driver for every study kind, and the summary of a result folder.
 
 :func:`run_cases` runs the cases of any :class:`~workbench.study.kinds.StudyKind` through one
-:class:`~workbench.study.session.RunSession` (manifest, run record, store, progress bar, finish):
-it expands the study, skips the cases already stored (resume), submits batches of cases to the
-executor and stores each case's rows as they arrive.  A batch whose worker dies is rerun case by
-case, so the crash is blamed on its case (a failed row per model with the executor's reason).
-:func:`run_study` is ``run_cases(SWEEP, ...)``; :func:`summarize` counts a stored table.
+:class:`~workbench.study.session.RunSession` (lock, manifest, run record, store, progress,
+finish): it expands the study, plans what is left to compute (resume, retries), enters the
+executor (a cluster that cannot start stops the run before anything is written), submits the
+units and stores each unit's rows as they arrive.  A unit whose process crashed keeps the rows
+of the models that finished; the model that was running gets a failed row with the crash's
+reason and ``failure`` kind, and for a kind whose models are computed one by one the remaining
+models are run again in a fresh process (:func:`_complete`).  :func:`run_study` is
+``run_cases(SWEEP, ...)``; :func:`summarize` counts a stored table.
 
 ``open_run_manifest``, ``finish_run``, ``package_versions``, ``git_commit``, ``read_manifest``,
 ``_now`` and ``_write_manifest`` moved to :mod:`workbench.study.session` and are re-exported here.
 
 Checked by ``tests/study/test_store.py``, ``tests/study/test_executors.py``, ``tests/study/test_cli.py``,
-``tests/study/test_kinds.py`` and ``tests/motion/test_motion_run.py``.
+``tests/study/test_kinds.py``, ``tests/study/test_retry.py`` and ``tests/motion/test_motion_run.py``.
 """
 
 from __future__ import annotations
@@ -21,9 +24,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable
 
-from .executors import Executor, SerialExecutor, WorkerCrash
+from .executors import Executor, SerialExecutor
 from .kinds import SWEEP, StudyKind
+from .lock import FolderLock
+from .outcomes import CaseLimits, Outcome
 from .params import flatten_params
+from .plan import Unit
 from .rows import failed_rows
 from .session import (  # all but RunSession re-exported (their old home; deprecated here)
     RunSession,
@@ -37,14 +43,22 @@ from .session import (  # all but RunSession re-exported (their old home; deprec
     study_name,
 )
 from .spec import Study
+from .store import read_columns
 
 __all__ = ["RunSummary", "finish_run", "open_run_manifest", "run_cases", "run_study", "read_manifest",
            "package_versions", "git_commit", "study_name", "summarize"]
 
+#: failure kinds that make the exit code 3 ("the infrastructure failed": --resume retries them)
+_INFRA_EXIT = ("killed", "lost")
+
 
 @dataclass
 class RunSummary:
-    """Outcome of :func:`run_cases` (counts over the whole table, including earlier runs)."""
+    """Outcome of :func:`run_cases` (counts over the whole table, including earlier runs).
+
+    ``failures`` counts failed rows per ``failure`` kind; ``n_duplicates`` the rows beyond the
+    first of a (case_id, model) pair (0 in a folder only locked runs wrote).
+    """
 
     folder: Path
     n_cases: int
@@ -55,34 +69,51 @@ class RunSummary:
     wall_time: float
     per_model: dict[str, dict[str, float]] = field(default_factory=dict)
     failed_cases: list[str] = field(default_factory=list)
+    failures: dict[str, int] = field(default_factory=dict)
+    n_duplicates: int = 0
 
     @property
     def exit_code(self) -> int:
+        """0 every case ok; 3 some rows failed because workers were killed or lost; else 1 if any failed."""
+        if any(self.failures.get(k) for k in _INFRA_EXIT):
+            return 3
         return 1 if self.n_failed else 0
 
 
-def _execute(kind: StudyKind, spec: Any, session: RunSession, executor: Executor, batch_size: int | None,
-             options: Any, recorded: dict[str, dict[str, Any]]) -> None:
-    """Submit the session's cases in batches; rerun a crashed batch case by case.
+def _complete(unit: Unit, out: Outcome, params: dict[str, Any], separable: bool) -> tuple[list[dict], Unit | None]:
+    """The rows to store for ``unit`` from ``out``, and the unit still to run (models after a crash), if any."""
+    rows = [r for r in out.rows if r.get("model") in unit.models]
+    done = {r["model"] for r in rows}
+    missing = [m for m in unit.models if m not in done]
+    cid = unit.case.case_id
+    if not missing:
+        return rows, None
+    crash = out.crash
+    if crash is None:  # a task that ended without a row for some model: a bug, recorded as such
+        return rows + failed_rows(cid, params, missing, "the task returned no row for this model",
+                                  failure="crash"), None
+    if separable and crash.kind in ("crash", "killed"):
+        reason = f"{crash.reason} while computing model {missing[0]!r}"
+        rows += failed_rows(cid, params, missing[:1], reason, failure=crash.kind)
+        return rows, (Unit(unit.case, tuple(missing[1:])) if len(missing) > 1 else None)
+    return rows + failed_rows(cid, params, missing, crash.reason, failure=crash.kind), None
 
-    A case whose worker died gets a failed row per model, recording ``recorded[case_id]``.
-    """
-    todo = session.todo
-    size = batch_size or kind.batch_size(len(todo), getattr(executor, "slots", 1))
-    pending = [todo[i:i + size] for i in range(0, len(todo), size)]
-    models = kind.models(spec)
+
+def _execute(kind: StudyKind, spec: Any, session: RunSession, executor: Executor, chunk_size: int,
+             options: Any, recorded: dict[str, dict[str, Any]], limits: CaseLimits) -> None:
+    """Submit the session's units; store each outcome; rerun the models left after a crash."""
+    separable = getattr(kind, "separable_models", True)
+    pending = list(session.todo)
     while pending:
-        retry: list[list] = []
-        payloads = [kind.payload(spec, b, options) for b in pending]
-        for i, out in executor.imap_unordered(kind.task, payloads):
-            batch = pending[i]
-            if isinstance(out, WorkerCrash):
-                if len(batch) > 1:  # find the culprit: rerun the batch case by case
-                    retry.extend([c] for c in batch)
-                    continue
-                out = [failed_rows(batch[0].case_id, recorded[batch[0].case_id], models, out.reason)]
-            session.record(out, len(batch))
-        pending = retry
+        payloads = [kind.payload(spec, u.case, u.models, options) for u in pending]
+        requeue: list[Unit] = []
+        for i, out in executor.imap_unordered(kind.task, payloads, limits, chunk_size):
+            unit = pending[i]
+            rows, more = _complete(unit, out, recorded[unit.case.case_id], separable)
+            if more is not None:
+                requeue.append(more)
+            session.record(unit.case.case_id, rows, complete=more is None)
+        pending = requeue
 
 
 def run_cases(
@@ -92,10 +123,13 @@ def run_cases(
     executor: Executor | None = None,
     *,
     resume: bool = False,
+    retry_failed: bool = False,
+    force: bool = False,
     progress: bool | None = None,
     flush_rows: int | None = None,
     flush_seconds: float = 2.0,
     batch_size: int | None = None,
+    limits: CaseLimits | None = None,
     **options: Any,
 ) -> RunSummary:
     """Run every (remaining) case of ``spec``, a validated study of ``kind``, into ``folder``.
@@ -107,19 +141,27 @@ def run_cases(
     spec : object
         What ``kind.load`` returned.
     folder : path-like
-        Output folder (created).  Without ``resume`` it must not hold results yet.
+        Output folder (created; locked while the run lasts).  Without ``resume`` it must not
+        hold results yet (``force``: they are discarded).
     executor : Executor, optional
-        Default :class:`SerialExecutor`.  Entered and exited here.
+        Default :class:`SerialExecutor`.  Entered (before anything is written) and exited here.
     resume : bool
-        Skip cases whose rows are already stored; refuses a folder whose manifest has a
-        different config hash.
+        Compute only what is not stored (:mod:`workbench.study.plan`: failed rows of the
+        infrastructure kinds are retried); refuses a folder whose manifest has another config hash.
+    retry_failed : bool
+        With ``resume``: also recompute rows that failed for any other reason.
+    force : bool
+        Discard the folder's stored results first.
     progress : bool, optional
-        Show a tqdm bar (default: only when stderr is a TTY).
+        A bar (True), nothing (False), or (None) a bar on a terminal and log lines otherwise.
     flush_rows, flush_seconds : int, float
-        When buffered rows are written as a part (see :class:`ResultStore`); ``flush_rows``
-        defaults to ``kind.flush_rows``.
+        When buffered rows are written as a part (also on a timer); ``flush_rows`` defaults to
+        ``kind.flush_rows``.  An executor without isolation writes after every case.
     batch_size : int, optional
-        Cases per task; default ``kind.batch_size(n, executor.slots)``.
+        Units per Dask task; default ``kind.batch_size(n, executor.slots)``.
+    limits : CaseLimits, optional
+        Per-case limits; default ``kind.limits(spec)`` (``[solver] max_case_seconds`` /
+        ``max_case_memory``).
     **options
         Passed to ``kind.run_options`` (sweep: ``model_lookup``, ``arc_actuation``, see
         :func:`~workbench.study.evaluate.evaluate_case`; picklable for processes).
@@ -127,18 +169,37 @@ def run_cases(
     Raises
     ------
     StudyError
-        Options the kind refuses, or folder/resume mismatch (user errors: the CLI exits with 2).
+        Options the kind refuses, a locked folder, folder/resume mismatch (user errors: exit 2).
+    InfrastructureError
+        The executor could not start or failed during the run (exit 3; finished cases are stored).
     """
     run_opts = kind.run_options(spec, **options)
     cases = kind.expand(spec)
     recorded = {c.case_id: kind.recorded_params(spec, c) for c in cases}
     executor = executor or SerialExecutor()
-    session = RunSession.open(
-        folder, spec, cases, (flatten_params(p) for p in recorded.values()),
-        getattr(executor, "name", type(executor).__name__), resume=resume, progress=progress,
-        flush_rows=kind.flush_rows if flush_rows is None else flush_rows, flush_seconds=flush_seconds)
-    with session, executor:
-        _execute(kind, spec, session, executor, batch_size, run_opts, recorded)
+    limits = limits if limits is not None else (kind.limits(spec) if hasattr(kind, "limits") else CaseLimits())
+    folder = Path(folder)
+    lock = FolderLock(folder).acquire(_now())
+    try:
+        executor.__enter__()
+    except BaseException:
+        lock.release(remove_folder=True)
+        raise
+    try:
+        session = RunSession.open(
+            folder, spec, cases, (flatten_params(p) for p in recorded.values()),
+            getattr(executor, "name", type(executor).__name__), models=kind.models(spec),
+            separable=getattr(kind, "separable_models", True), resume=resume, retry_failed=retry_failed,
+            force=force, progress=progress, flush_rows=kind.flush_rows if flush_rows is None else flush_rows,
+            flush_seconds=flush_seconds, lock=lock, flush_each=not getattr(executor, "isolates_cases", True),
+            limits=limits)
+        with session:
+            chunk = batch_size or kind.batch_size(len(session.todo), getattr(executor, "slots", 1))
+            _execute(kind, spec, session, executor, chunk, run_opts, recorded, limits)
+    except BaseException as e:
+        executor.__exit__(type(e), e, e.__traceback__)
+        raise
+    executor.__exit__(None, None, None)
     return summarize(session.folder, n_cases=len(cases), n_run=len(session.todo),
                      wall_time=time.perf_counter() - session.t0)
 
@@ -149,40 +210,57 @@ def run_study(
     executor: Executor | None = None,
     *,
     resume: bool = False,
+    retry_failed: bool = False,
+    force: bool = False,
     model_lookup: Callable | None = None,
     arc_actuation: Callable | None = None,
     progress: bool | None = None,
     flush_rows: int = 256,
     flush_seconds: float = 2.0,
     batch_size: int | None = None,
+    limits: CaseLimits | None = None,
 ) -> RunSummary:
     """Run every (remaining) case of the sweep study ``study`` into ``folder``: ``run_cases(SWEEP, ...)``.
 
     See :func:`run_cases` for the parameters; ``model_lookup`` and ``arc_actuation`` are passed to
-    :func:`~workbench.study.evaluate.evaluate_case`.  A batch whose worker dies is rerun case by
-    case, so the crash is blamed on its case.
+    :func:`~workbench.study.evaluate.evaluate_case`.
     """
-    return run_cases(SWEEP, study, folder, executor, resume=resume, progress=progress, flush_rows=flush_rows,
-                     flush_seconds=flush_seconds, batch_size=batch_size, model_lookup=model_lookup,
-                     arc_actuation=arc_actuation)
+    return run_cases(SWEEP, study, folder, executor, resume=resume, retry_failed=retry_failed, force=force,
+                     progress=progress, flush_rows=flush_rows, flush_seconds=flush_seconds, batch_size=batch_size,
+                     limits=limits, model_lookup=model_lookup, arc_actuation=arc_actuation)
 
 
 def summarize(folder: str | Path, *, n_cases: int | None = None, n_run: int = 0,
               wall_time: float = float("nan")) -> RunSummary:
-    """Counts over the stored table of ``folder`` (``n_cases`` default: the manifest's)."""
-    import pandas as pd
+    """Counts over the stored table of ``folder`` (``n_cases`` default: the manifest's).
 
+    Raises
+    ------
+    CorruptPart
+        A part file cannot be read (the message names it).
+    """
     folder = Path(folder)
-    df = pd.read_parquet(folder, columns=["case_id", "model", "status", "wall_time"])
+    df = read_columns(folder, ["case_id", "model", "status", "wall_time", "failure", "error"])
     if n_cases is None:
         n_cases = read_manifest(folder).get("n_cases", df["case_id"].nunique())
+    n_dup = int(df.duplicated(["case_id", "model"]).sum()) if len(df) else 0
     case_ok = df["status"].eq("ok").groupby(df["case_id"]).all()
     per_model = {}
     for m, g in df.groupby("model", sort=True):
         per_model[str(m)] = {"ok": int((g["status"] == "ok").sum()), "failed": int((g["status"] != "ok").sum()),
                              "wall_time": float(g["wall_time"].sum(skipna=True))}
+    bad = df[df["status"] != "ok"]
+    kinds = bad["failure"].fillna("").where(bad["failure"].fillna("") != "",
+                                            bad["error"].fillna("").map(_failure_of_error))
     return RunSummary(
         folder=folder, n_cases=int(n_cases), n_run=n_run, n_skipped=int(n_cases) - n_run,
         n_ok=int(case_ok.sum()), n_failed=int((~case_ok).sum()), wall_time=wall_time,
         per_model=per_model, failed_cases=sorted(case_ok.index[~case_ok.values].tolist()),
+        failures={str(k): int(v) for k, v in kinds.value_counts().sort_index().items()}, n_duplicates=n_dup,
     )
+
+
+def _failure_of_error(e: str) -> str:
+    from .outcomes import failure_of_error
+
+    return failure_of_error(e)

@@ -17,8 +17,9 @@ from typing import Any, Literal
 from pydantic import BaseModel, ConfigDict, Field
 
 __all__ = [
-    "DEFAULT_MAX_CASES", "SWEEP_SECTIONS", "SECTION_MODELS", "StudySection", "LoadSection", "SolverSection",
-    "DerivedSection", "SweepSection", "ReportSection", "StudyFile",
+    "DEFAULT_MAX_CASES", "DEFAULT_MAX_CASE_SECONDS", "LIMIT_KEYS", "MAX_RESOLUTION", "SWEEP_SECTIONS",
+    "SECTION_MODELS", "CaseLimitFields", "StudySection", "LoadSection", "SolverSection", "DerivedSection",
+    "SweepSection", "ReportSection", "StudyFile",
 ]
 
 DEFAULT_MAX_CASES = 5000
@@ -26,6 +27,27 @@ DEFAULT_MAX_CASES = 5000
 SWEEP_SECTIONS = ("robot", "load", "solver", "derived", "scenario")
 
 _CFG = ConfigDict(strict=True, extra="forbid", allow_inf_nan=False)
+
+#: Default wall-clock limit of one case [s] (``[solver] max_case_seconds``).
+DEFAULT_MAX_CASE_SECONDS = 3600.0
+#: ``[solver]`` keys that limit a case's run; not solver options, not in the case parameters or the
+#: config hash (raising a limit and resuming retries the cases that hit it).
+LIMIT_KEYS = ("max_case_seconds", "max_case_memory")
+#: Upper bounds of the resolutions (a sanity bound: beyond them a case would hang or exhaust memory).
+MAX_RESOLUTION = {"n_elements": 4096, "n_stations": 100_001, "max_load_steps": 100_000}
+
+
+class CaseLimitFields(BaseModel):
+    """The per-case limits of a ``[solver]`` section (every study kind), see :data:`LIMIT_KEYS`.
+
+    ``max_case_seconds`` [s] (default 1 h) stops a case that runs longer (stored failed,
+    ``failure = "timeout"``); ``max_case_memory`` [bytes] caps the address space of the process
+    running it (default: 3/4 of the physical memory of the machine running it).
+    """
+
+    model_config = _CFG
+    max_case_seconds: float = Field(default=DEFAULT_MAX_CASE_SECONDS, gt=0.0, le=7 * 86400.0)
+    max_case_memory: float | None = Field(default=None, ge=2.0**28)
 
 
 class StudySection(BaseModel):
@@ -54,15 +76,15 @@ class LoadSection(BaseModel):
     ramp_durations: list[float] | None = None
 
 
-class SolverSection(BaseModel):
-    """Mirror of :class:`workbench.models.SolverOptions` (a test checks the fields agree)."""
+class SolverSection(CaseLimitFields):
+    """Mirror of :class:`workbench.models.SolverOptions` plus the limits (a test checks the fields agree)."""
 
     model_config = _CFG
-    n_elements: int = Field(default=16, ge=1)
+    n_elements: int = Field(default=16, ge=1, le=MAX_RESOLUTION["n_elements"])
     tendon_model: Literal["continuum", "eyelets"] = "continuum"
-    n_stations: int = Field(default=33, ge=2)
+    n_stations: int = Field(default=33, ge=2, le=MAX_RESOLUTION["n_stations"])
     newton_tolerance: float = Field(default=1e-9, gt=0.0)
-    max_load_steps: int = Field(default=200, ge=1)
+    max_load_steps: int = Field(default=200, ge=1, le=MAX_RESOLUTION["max_load_steps"])
     time_step: float = Field(default=2e-3, gt=0.0)
     damping: float = Field(default=0.0, ge=0.0)
     spectral_radius: float = Field(default=0.8, ge=0.0, le=1.0)

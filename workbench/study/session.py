@@ -1,24 +1,29 @@
-"""The run session of one study run: manifest, run record, result store, progress bar, finish.
+"""The run session of one study run: folder lock, manifest, run record, store, progress, finish.
 
 Every study kind runs through one :class:`RunSession` (:func:`workbench.study.runner.run_cases`):
 
-1. :func:`open_run_manifest` continues (``resume``) or starts the folder's ``_manifest.json``
-   (resolved spec, config hash, case count, package versions, git commit, runs) and refuses to
-   mix runs of different studies;
-2. the :class:`~workbench.study.store.ResultStore` is opened with every case's ``p.*``
-   parameters (they fix the column types) and the cases already stored are skipped;
-3. a run record (host, pid, platform, executor, start, cases to run) is appended; on resume the
-   versions and git commit are refreshed to the code that continues the run;
-4. :meth:`RunSession.record` stores the rows of finished cases and advances the progress bar;
-5. :meth:`RunSession.close` (also on errors and interrupts: a ``with`` block) flushes the store,
-   closes the bar and records the end and wall time, so an interrupted run leaves a consistent
-   folder that ``--resume`` continues.
+1. the folder's lock is taken (:class:`~workbench.study.lock.FolderLock`: one run per folder;
+   a second is refused with one line) and held until :meth:`RunSession.close`;
+2. :func:`open_run_manifest` continues (``resume``) or starts ``_manifest.json`` and refuses
+   to mix runs of different studies; a changed name, description or ``[report]`` is recorded
+   (:func:`presentation_changes`) and the manifest takes the new values;
+3. the :class:`~workbench.study.store.ResultStore` is opened (``p.*`` column types fixed up
+   front) and the work is planned (:mod:`workbench.study.plan`): per case the models not
+   stored yet, plus those whose stored rows failed for a reason ``--resume`` retries
+   (:data:`~workbench.study.outcomes.INFRASTRUCTURE`; every failure with ``retry_failed``) and
+   duplicated rows; the rows to recompute are removed first;
+4. a run record (host, pid, executor, limits, start, what is retried) is appended; on resume
+   the versions and git commit are refreshed to the code that continues the run;
+5. :meth:`RunSession.record` stores the rows of finished units; a timer thread flushes rows
+   that waited ``flush_seconds`` (a run killed between cases loses at most that much);
+6. :meth:`RunSession.close` (also on errors and interrupts) flushes, records the end, the wall
+   time and the outcome, and releases the lock.
 
 ``open_run_manifest``, ``finish_run``, ``package_versions``, ``git_commit``, ``read_manifest``,
 ``_now`` and ``_write_manifest`` are re-exported by :mod:`workbench.study.runner` (their old home).
 
-Checked by ``tests/study/test_store.py`` (resume, refusals), ``tests/study/test_cli.py`` and
-``tests/study/test_session.py``.
+Checked by ``tests/study/test_store.py``, ``tests/study/test_session.py``, ``tests/study/test_lock.py``
+and ``tests/study/test_retry.py``.
 """
 
 from __future__ import annotations
@@ -30,17 +35,22 @@ import platform
 import socket
 import subprocess
 import sys
+import threading
 import time
 from dataclasses import dataclass, field
 from importlib import metadata
 from pathlib import Path
 from typing import Any, Callable, Iterable, Mapping, Sequence
 
+from .lock import FolderLock
 from .messages import StudyError
-from .store import MANIFEST, ResultStore, SchemaMismatch, atomic_write_bytes
+from .outcomes import CaseLimits
+from .plan import Unit, plan_units
+from .progress import Progress
+from .store import MANIFEST, CorruptPart, ResultStore, SchemaMismatch, atomic_write_bytes
 
-__all__ = ["RunSession", "finish_run", "git_commit", "open_run_manifest", "package_versions", "read_manifest",
-           "study_name"]
+__all__ = ["RunSession", "Unit", "finish_run", "git_commit", "open_run_manifest", "package_versions",
+           "presentation_changes", "read_manifest", "study_name"]
 
 _PACKAGES = ("trunk-workbench", "exudyn", "numpy", "scipy", "pandas", "pyarrow", "dask",
              "distributed", "pydantic", "tqdm")
@@ -81,8 +91,23 @@ def git_commit() -> dict[str, Any]:
 
 
 def read_manifest(folder: str | Path) -> dict[str, Any]:
-    """The ``_manifest.json`` of a result folder."""
-    return json.loads((Path(folder) / MANIFEST).read_text())
+    """The ``_manifest.json`` of a result folder.
+
+    Raises
+    ------
+    StudyError
+        The file is not a JSON object (one line naming it); ``FileNotFoundError`` when missing.
+    """
+    path = Path(folder) / MANIFEST
+    text = path.read_bytes()
+    try:
+        data = json.loads(text.decode("utf-8"))
+    except (UnicodeDecodeError, json.JSONDecodeError) as e:
+        raise StudyError([f"{path}: corrupt manifest, not valid JSON ({e}); restore it or use another --out"]) \
+            from None
+    if not isinstance(data, dict):
+        raise StudyError([f"{path}: corrupt manifest: a JSON {type(data).__name__}, not an object"])
+    return data
 
 
 def study_name(manifest: Mapping[str, Any], default: Any = None) -> Any:
@@ -95,6 +120,21 @@ def _write_manifest(folder: Path, manifest: dict[str, Any]) -> None:
     atomic_write_bytes(folder / MANIFEST, lambda f: f.write(data))
 
 
+def presentation_changes(old: Mapping[str, Any], new: Mapping[str, Any]) -> dict[str, list[Any]]:
+    """What differs between two resolved specs in what does not change results: name, description, ``[report]``.
+
+    Returns ``{"study.name": [old, new], ...}`` (empty when nothing changed).
+    """
+    out: dict[str, list[Any]] = {}
+    os_, ns = old.get("study") or {}, new.get("study") or {}
+    for key in ("name", "description"):
+        if os_.get(key) != ns.get(key):
+            out[f"study.{key}"] = [os_.get(key), ns.get(key)]
+    if (old.get("report") or {}) != (new.get("report") or {}):
+        out["report"] = [old.get("report") or {}, new.get("report") or {}]
+    return out
+
+
 def open_run_manifest(folder: Path, config_hash: str, resume: bool,
                       fresh: Callable[[], dict[str, Any]]) -> dict[str, Any]:
     """The manifest a run continues (``resume``) or starts (``fresh()``); refuses to mix runs.
@@ -102,19 +142,20 @@ def open_run_manifest(folder: Path, config_hash: str, resume: bool,
     Raises
     ------
     StudyError
-        The folder holds results and ``resume`` is off; the stored config hash differs; or
-        the folder holds Parquet parts without a manifest.
+        The folder holds results and ``resume`` is off; the stored config hash differs; the
+        folder holds Parquet parts without a manifest; the manifest is corrupt.
     """
     if (folder / MANIFEST).exists():
         old = read_manifest(folder)
         name = study_name(old)
         if not resume:
-            raise StudyError([f"{folder}: already holds results of study {name!r}; "
-                              f"use --resume to continue it or --out to choose another folder"])
+            raise StudyError([f"{folder}: already holds results of study {name!r}; use --resume to continue "
+                              f"it, --force to discard them, or --out to choose another folder"])
         if old.get("config_hash") != config_hash:
             raise StudyError([f"{folder}: --resume refused: the study's config hash {config_hash} differs from "
                               f"the stored run's {old.get('config_hash')} (parameters, sweep, seed or models "
                               f"changed); use another --out"])
+        old.setdefault("runs", [])
         return old
     if folder.exists() and any(folder.glob("part-*.parquet")):
         raise StudyError([f"{folder}: holds Parquet parts but no {MANIFEST}; refusing to mix results"])
@@ -127,12 +168,22 @@ def finish_run(folder: Path, manifest: dict[str, Any], run_rec: dict[str, Any], 
 
     Called from a ``finally`` block, so an interrupted run still leaves a consistent folder.
     """
-    store.close()
-    if bar is not None:
-        bar.close()
-    run_rec["end"] = _now()
-    run_rec["wall_time"] = round(time.perf_counter() - t0, 3)
-    _write_manifest(folder, manifest)
+    try:
+        store.close()
+    finally:
+        if bar is not None:
+            bar.close()
+        run_rec["end"] = _now()
+        run_rec["wall_time"] = round(time.perf_counter() - t0, 3)
+        _write_manifest(folder, manifest)
+
+
+def _outcome(exc: BaseException | None) -> str:
+    if exc is None:
+        return "completed"
+    if isinstance(exc, KeyboardInterrupt):
+        return f"interrupted ({type(exc).__name__})"
+    return f"stopped: {type(exc).__name__}: {str(exc)[:300]}"
 
 
 @dataclass
@@ -143,15 +194,16 @@ class RunSession:
     ----------
     folder : Path
     manifest : dict
-        The folder's manifest (written at open and at close).
+        The folder's manifest (written at open, on flushes and at close).
     run_rec : dict
         This run's record in ``manifest["runs"]``.
     store : ResultStore
-    todo : list
-        The cases of this run (those not stored yet), in expansion order.
-    bar : tqdm or None
-    t0 : float
-        ``time.perf_counter()`` at the start.
+    todo : list of Unit
+        What this run computes: per case (expansion order) the models still to run.
+    lock : FolderLock
+    progress : Progress
+    flush_each : bool
+        Write every unit's rows at once (the in-process executor: a crash kills the run).
     n_ok, n_failed : int
         Cases of this run whose rows are all ``ok`` / not all ``ok``.
     """
@@ -160,87 +212,180 @@ class RunSession:
     manifest: dict[str, Any]
     run_rec: dict[str, Any]
     store: ResultStore
-    todo: list[Any]
-    bar: Any = None
+    todo: list[Unit]
+    lock: FolderLock
+    progress: Progress
+    flush_each: bool = False
     t0: float = field(default_factory=time.perf_counter)
     n_ok: int = 0
     n_failed: int = 0
+    _failed_ids: set = field(default_factory=set)
+    _stop: threading.Event = field(default_factory=threading.Event)
+    _timer: threading.Thread | None = None
+    _closed: bool = False
+
+    @property
+    def bar(self) -> Any:
+        return self.progress.bar
 
     @classmethod
     def open(cls, folder: str | Path, spec: Any, cases: Sequence[Any], param_rows: Iterable[Mapping[str, Any]],
-             executor_name: str, *, resume: bool = False, progress: bool | None = None,
-             flush_rows: int = 256, flush_seconds: float = 2.0) -> "RunSession":
+             executor_name: str, *, models: Sequence[str] = (), separable: bool = True, resume: bool = False,
+             retry_failed: bool = False, force: bool = False, progress: bool | None = None,
+             flush_rows: int = 256, flush_seconds: float = 2.0, lock: FolderLock | None = None,
+             flush_each: bool = False, limits: CaseLimits | None = None) -> "RunSession":
         """Open (or continue) the run of ``cases`` of ``spec`` in ``folder``.
 
         Parameters
         ----------
         folder : path-like
         spec : object
-            The validated study: ``path``, ``config_hash`` and ``resolved()`` are recorded.
+            The validated study: ``path``, ``name``, ``config_hash`` and ``resolved()`` are recorded.
         cases : sequence of Case
-            Every case of the study (``case_id``, ``params``).
         param_rows : iterable of dict
             The flattened ``p.*`` parameters of every case (fix the column types).
         executor_name : str
-            Recorded in the run record.
-        resume, progress, flush_rows, flush_seconds
-            See :func:`workbench.study.runner.run_cases`.
+        models : sequence of str
+            The models every case writes a row for (``kind.models(spec)``).
+        separable : bool
+            Models of a case can be computed one by one (sweeps); ``False``: a case is
+            recomputed whole (series-parallel).
+        resume, retry_failed, force
+            Continue the stored run; also retry model failures; discard stored results first.
+        lock : FolderLock, optional
+            A lock the caller already holds (else taken here); released by :meth:`close`.
 
         Raises
         ------
         StudyError
-            Folder/resume mismatch (:func:`open_run_manifest`).
+            Locked folder, folder/resume mismatch, corrupt manifest or part, other column types.
         """
         folder = Path(folder)
+        lock = lock if lock is not None and lock.held else FolderLock(folder).acquire(_now())
+        try:
+            return cls._open_locked(folder, spec, cases, param_rows, executor_name, models, separable, resume,
+                                    retry_failed, force, progress, flush_rows, flush_seconds, lock, flush_each,
+                                    limits or CaseLimits())
+        except BaseException:
+            lock.release(remove_folder=True)
+            raise
+
+    @classmethod
+    def _open_locked(cls, folder, spec, cases, param_rows, executor_name, models, separable, resume,
+                     retry_failed, force, progress, flush_rows, flush_seconds, lock, flush_each, limits):
+        if force:
+            _discard_results(folder)
         config_hash = spec.config_hash
+        resolved = spec.resolved()
         manifest = open_run_manifest(folder, config_hash, resume, lambda: {
-            "study": spec.resolved(), "study_file": spec.path, "config_hash": config_hash,
+            "study": resolved, "study_file": spec.path, "config_hash": config_hash,
             "n_cases": len(cases), "versions": package_versions(), "git": git_commit(), "runs": [],
         })
-        folder.mkdir(parents=True, exist_ok=True)
+        changes = presentation_changes(manifest.get("study") or {}, resolved) if manifest["runs"] else {}
         try:
             store = ResultStore(folder, param_rows, flush_rows, flush_seconds)
+            store.cleanup_temporaries()
+            stored = store.stored_rows()
         except SchemaMismatch as e:
             raise StudyError([f"{folder}: --resume refused: {e} (the folder was written by another workbench "
                               f"version that recorded these parameters differently); use another --out"]) from None
-        store.cleanup_temporaries()
-        finished = store.finished_case_ids()
-        todo = [c for c in cases if c.case_id not in finished]
+        except CorruptPart as e:
+            raise StudyError([f"{e.path}: unreadable Parquet part ({e.reason}); move it out of {folder} (--resume "
+                              f"then recomputes its cases) or use another --out"]) from None
+        plan = plan_units(cases, tuple(models), stored, retry_failed=retry_failed, separable=separable)
+        store.remove_rows(plan.remove)
         run_rec = {"host": socket.gethostname(), "pid": os.getpid(), "platform": platform.platform(),
-                   "executor": executor_name, "start": _now(), "end": None, "cases_to_run": len(todo),
-                   "cases_done": 0}
+                   "executor": executor_name, "start": _now(), "end": None, "outcome": None,
+                   "cases_to_run": len(plan.units), "cases_done": 0,
+                   "limits": {"max_case_seconds": limits.seconds, "max_case_memory": limits.memory},
+                   "study_file": spec.path}
+        if plan.retried:
+            run_rec["retried"] = plan.retried
+        if changes:
+            run_rec["changed"] = changes
+            manifest["study"] = {**manifest["study"], "study": {**manifest["study"].get("study", {}),
+                                                                 **{k: resolved["study"].get(k) for k in
+                                                                    ("name", "description")}},
+                                 "report": resolved.get("report", {})}
+        if lock.stale:
+            run_rec["stale_lock"] = lock.stale
         manifest["runs"].append(run_rec)
         if resume:
             manifest["versions"] = package_versions()
             manifest["git"] = git_commit()
         _write_manifest(folder, manifest)
-        show = progress if progress is not None else sys.stderr.isatty()
-        session = cls(folder=folder, manifest=manifest, run_rec=run_rec, store=store, todo=todo)
-        if todo and show:
-            from tqdm import tqdm
-
-            session.bar = tqdm(total=len(todo), unit="case", dynamic_ncols=True, file=sys.stderr)
+        bar = Progress(len(plan.units), spec.name, progress)
+        session = cls(folder=folder, manifest=manifest, run_rec=run_rec, store=store, todo=plan.units, lock=lock,
+                      progress=bar, flush_each=flush_each)
+        session._start_timer()
         return session
 
-    def record(self, rows_per_case: Iterable[list[dict[str, Any]]], n_cases: int) -> None:
-        """Store the rows of ``n_cases`` finished cases (one row list per case)."""
-        for rows in rows_per_case:
-            self.store.add(rows)
-            if all(r["status"] == "ok" for r in rows):
-                self.n_ok += 1
-            else:
-                self.n_failed += 1
-        self.run_rec["cases_done"] += n_cases
-        if self.bar is not None:
-            self.bar.set_postfix_str(f"ok={self.n_ok} failed={self.n_failed}", refresh=False)
-            self.bar.update(n_cases)
+    # -- running ------------------------------------------------------------------------------
+    def _start_timer(self) -> None:
+        def loop() -> None:
+            while not self._stop.wait(0.5):
+                try:
+                    if self.store.flush_if_due() is not None:
+                        self._write_manifest()
+                except Exception:  # noqa: BLE001 - the main thread flushes again and reports
+                    pass
 
-    def close(self) -> None:
-        """Flush the store, close the bar, record the end of the run (:func:`finish_run`)."""
-        finish_run(self.folder, self.manifest, self.run_rec, self.store, self.bar, self.t0)
+        self._timer = threading.Thread(target=loop, name="workbench-flush", daemon=True)
+        self._timer.start()
+
+    def _write_manifest(self) -> None:
+        with self.store._lock:  # one writer of the manifest at a time (timer thread, main thread)
+            _write_manifest(self.folder, self.manifest)
+
+    def record(self, case_id: str, rows: list[dict[str, Any]], complete: bool = True) -> None:
+        """Store the rows of one unit of case ``case_id``; ``complete``: no more units of it follow.
+
+        A row without a ``failure`` cell gets one (``""`` when ok, else ``"model"``).
+        """
+        for r in rows:
+            if not r.get("failure"):
+                r["failure"] = "" if r.get("status") == "ok" else "model"
+        self.store.add(rows)
+        if self.flush_each:
+            self.store.flush()
+        if any(r.get("status") != "ok" for r in rows):
+            self._failed_ids.add(case_id)
+        if not complete:
+            return
+        if case_id in self._failed_ids:
+            self.n_failed += 1
+        else:
+            self.n_ok += 1
+        self.run_rec["cases_done"] += 1
+        self.progress.update(self.n_ok, self.n_failed)
+
+    def close(self, exc: BaseException | None = None) -> None:
+        """Flush the store, stop the timer, record end, wall time and outcome, release the lock."""
+        if self._closed:
+            return
+        self._closed = True
+        self._stop.set()
+        if self._timer is not None:
+            self._timer.join(timeout=10)
+        self.run_rec["outcome"] = _outcome(exc)
+        try:
+            finish_run(self.folder, self.manifest, self.run_rec, self.store, None, self.t0)
+        finally:
+            self.progress.close()
+            self.lock.release()
 
     def __enter__(self) -> "RunSession":
         return self
 
-    def __exit__(self, *exc: Any) -> None:
-        self.close()
+    def __exit__(self, exc_type: Any, exc: BaseException | None, tb: Any) -> None:
+        self.close(exc)
+
+
+def _discard_results(folder: Path) -> None:
+    """``--force``: remove the stored parts, schema and manifest (under the lock)."""
+    from .store import SCHEMA_FILE
+
+    for p in folder.glob("part-*.parquet"):
+        p.unlink()
+    for name in (SCHEMA_FILE, MANIFEST):
+        (folder / name).unlink(missing_ok=True)

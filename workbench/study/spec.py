@@ -35,7 +35,7 @@ Checked by ``tests/study/test_spec.py`` (every file of ``tests/study/bad_configs
 from __future__ import annotations
 
 import hashlib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -63,15 +63,18 @@ from .messages import (
     fmt_loc,
     known_keys,
     num,
+    collapse_indexed,
     pydantic_problems,
     read_toml,
     suggest,
     translate,
 )
+from .outcomes import CaseLimits
 from .params import canonical_json
 from .schema import (
     _CFG,
     DEFAULT_MAX_CASES,
+    LIMIT_KEYS,
     SECTION_MODELS,
     SWEEP_SECTIONS,
     DerivedSection,
@@ -122,6 +125,13 @@ class Study:
         "load": {...}, "solver": {...}, "derived": {...}}`` (plain data).
     sweep : dict
         The ``[sweep]`` section as plain data (keys validated).
+    report : dict
+        The ``[report]`` hints.
+    limits : CaseLimits
+        ``[solver] max_case_seconds`` / ``max_case_memory`` (not in ``base``: they limit a run,
+        they do not change a result).
+    notes : tuple of str
+        What validation wants the user to know without refusing the file (one line each).
     """
 
     path: str
@@ -133,10 +143,12 @@ class Study:
     base: dict[str, dict[str, Any]]
     sweep: dict[str, Any] = field(default_factory=dict)
     report: dict[str, Any] = field(default_factory=dict)
+    limits: CaseLimits = field(default_factory=CaseLimits)
+    notes: tuple[str, ...] = ()
 
     def resolved(self) -> dict[str, Any]:
-        """Plain-data resolved spec (what the manifest records)."""
-        return {
+        """Plain-data resolved spec (what the manifest records; the limits under ``solver``)."""
+        out = {
             "study": {
                 "name": self.name, "description": self.description, "seed": self.seed,
                 "models": list(self.models), "max_cases": self.max_cases,
@@ -145,13 +157,15 @@ class Study:
             "sweep": self.sweep,
             "report": self.report,
         }
+        out["solver"] = {**out.get("solver", {}), "max_case_seconds": self.limits.seconds,
+                         "max_case_memory": self.limits.memory}
+        return out
 
     @property
     def config_hash(self) -> str:
         """Hash of everything that changes results (not name/description/max_cases)."""
         payload = {"models": list(self.models), "seed": self.seed, "base": self.base, "sweep": self.sweep}
         return hashlib.sha256(canonical_json(payload).encode()).hexdigest()[:16]
-        payload = {"models": list(self.models), "seed": self.seed, "base": self.base, "sweep": self.sweep}
 
 
 # ---------------------------------------------------------------------------------------
@@ -209,7 +223,8 @@ def _check_models(sections: Mapping[str, BaseModel]) -> list[str]:
         if m not in MODEL_NAMES:
             problems.append(f"study.models[{i}]: unknown model {m!r}{suggest(m, list(MODEL_NAMES))}"
                             .replace("; known keys:", "; known models:"))
-    if len(set(st.models)) != len(st.models):
+    known = [m for m in st.models if m in MODEL_NAMES]
+    if len(set(known)) != len(known):
         problems.append("study.models: lists a model twice")
     rep = sections.get("report")
     if rep is not None and rep.reference is not None and rep.reference not in st.models:
@@ -251,19 +266,37 @@ def _resolve_robot(rraw: Any) -> tuple[dict[str, Any] | None, dict[str, Any], li
     return {"preset": preset, **values}, defaults, problems + more
 
 
+def _swept_paths(raw_sweep: Any) -> set[str]:
+    """Every dotted key a ``[sweep]`` table names (any block), for cross-key rules."""
+    if not isinstance(raw_sweep, dict):
+        return set()
+    out: set[str] = set()
+    for block, body in raw_sweep.items():
+        if isinstance(body, dict):
+            out.update(k for k in body if k != "n")
+        elif isinstance(body, list):
+            out.update(k for entry in body if isinstance(entry, dict) for k in entry)
+    return out
+
+
 def _load_and_derived_rules(sections: Mapping[str, BaseModel], rraw: Any,
-                            preset_defaults: Mapping[str, Any]) -> list[str]:
-    """The load's cross-field rules; ``derived.gravity_parameter`` against ``robot.gravity``."""
+                            preset_defaults: Mapping[str, Any], raw_sweep: Any = None) -> list[str]:
+    """The load's cross-field rules; ``derived.gravity_parameter`` (set or swept) against ``robot.gravity``."""
     problems = []
     load = sections.get("load")
     if load is not None:
         problems.extend(load_rules(load.model_dump(), "load"))
     derived = sections.get("derived")
-    if derived is not None and derived.gravity_parameter is not None and isinstance(rraw, dict):
-        if "gravity" in rraw:
-            problems.append("derived.gravity_parameter: conflicts with robot.gravity (set one of them)")
+    swept = _swept_paths(raw_sweep)
+    gamma = (derived is not None and derived.gravity_parameter is not None) or "derived.gravity_parameter" in swept
+    if gamma and isinstance(rraw, dict):
+        where = "derived.gravity_parameter" if derived is not None and derived.gravity_parameter is not None \
+            else 'sweep["derived.gravity_parameter"]'
+        if "gravity" in rraw or "robot.gravity" in swept:
+            other = "robot.gravity" if "gravity" in rraw else 'sweep["robot.gravity"]'
+            problems.append(f"{where}: conflicts with {other} (gamma sets the gravity; set one of them)")
         if preset_defaults and "gravity" not in preset_defaults:
-            problems.append("derived.gravity_parameter: the preset has no 'gravity' parameter to derive")
+            problems.append(f"{where}: the preset has no 'gravity' parameter to derive")
     return problems
 
 
@@ -275,7 +308,7 @@ def _resolve_base(sections: Mapping[str, BaseModel], robot_base: dict[str, Any] 
     base = {
         "robot": robot_base,
         "load": sections["load"].model_dump(),
-        "solver": sections["solver"].model_dump(),
+        "solver": sections["solver"].model_dump(exclude=set(LIMIT_KEYS)),
         "derived": sections["derived"].model_dump(),
     }
     if scenario_base is not None:  # only when given: keeps case ids of scenario-free studies
@@ -305,29 +338,59 @@ def _sensitivity_rules(rep: Any, base: dict[str, Any] | None, sweep: Mapping[str
     return problems
 
 
+def _drop_kind(raw: dict[str, Any], source: str) -> None:
+    """``[study] kind``: ``"sweep"`` is this kind (dropped); any other value is the one problem of the file."""
+    st = raw.get("study")
+    if not isinstance(st, dict) or "kind" not in st:
+        return
+    from .. import registry
+
+    if st["kind"] == "sweep":
+        raw["study"] = {k: v for k, v in st.items() if k != "kind"}
+        return
+    raise StudyError([f"{source}: study.kind: unknown study kind {st['kind']!r}; known kinds: "
+                      f"{', '.join(registry.KINDS)}"])
+
+
+def _whole_file_problem(raw: Mapping[str, Any], source: str) -> None:
+    """One line instead of many for a file that is empty or belongs to another study kind."""
+    if not raw:
+        raise StudyError([f"{source}: the file is empty (a study needs at least [study] and [robot])"])
+    st = raw.get("study")
+    if ("motions" in raw or "geometry" in raw) and not (isinstance(st, dict) and "kind" in st):
+        raise StudyError([f"{source}: study.kind: missing; a file with [motions] / [geometry] is a series-parallel "
+                          f"study: add kind = \"series_parallel\" to [study]"])
+
+
 def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: int | None = None) -> Study:
     """Validate an already parsed study mapping (see :func:`load_study`)."""
     raw = dict(raw)
+    _whole_file_problem(raw, source)
+    _drop_kind(raw, source)
     sections, problems = _parse_sections(raw)
     problems += _check_models(sections)
     robot_base, preset_defaults, robot_problems = _resolve_robot(raw.get("robot"))
     problems += robot_problems
-    problems += _load_and_derived_rules(sections, raw.get("robot"), preset_defaults)
+    problems += _load_and_derived_rules(sections, raw.get("robot"), preset_defaults, raw.get("sweep"))
     scenario_base, scenario_problems = check_scenario(raw.get("scenario"))
     problems += scenario_problems
     base = _resolve_base(sections, robot_base, scenario_base)
     sweep: dict[str, Any] = {}
     if "sweep" in sections and base is not None:
         sweep, sweep_problems = check_sweep(sections["sweep"], base, preset_defaults)
+        if raw.get("scenario") is not None and scenario_base is None:  # knock-on errors of a bad [scenario]
+            sweep_problems = [p for p in sweep_problems if '["scenario.' not in p.partition(": ")[0]]
         problems += sweep_problems
     problems += _sensitivity_rules(sections.get("report"), base, sweep)
     st = sections.get("study")
     if problems or st is None or base is None:
-        raise StudyError([f"{source}: {p}" for p in problems] or [f"{source}: invalid study"])
+        raise StudyError([f"{source}: {p}" for p in collapse_indexed(problems)] or [f"{source}: invalid study"])
+    solver = sections["solver"]
     study = Study(
         path=source, name=st.name, description=st.description, seed=st.seed,
         models=tuple(st.models), max_cases=int(max_cases if max_cases is not None else st.max_cases),
         base=base, sweep=sweep, report=sections["report"].model_dump(exclude_defaults=True),
+        limits=CaseLimits(solver.max_case_seconds, solver.max_case_memory),
     )
-    check_cases(study, source)  # size limit, duplicates, a dry build of every case
-    return study
+    check = check_cases(study, source)  # size limit, duplicates, a dry build of every case (time-bounded)
+    return replace(study, notes=(check.note,)) if check.note else study

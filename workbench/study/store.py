@@ -6,9 +6,11 @@ Layout of ``data/<study>/``::
     part-0000000000000000000-schema.parquet   zero rows: the table's full schema (sorts first)
     part-<time_ns>-<pid>-<seq>.parquet    result rows, all rows of a case in one part
 
-Every file is written to a dot-name, fsynced and renamed (then the folder is fsynced), so
-``pandas.read_parquet(folder)`` always reads a consistent table and a SIGKILL at any moment
-loses at most the not-yet-flushed cases, which ``--resume`` recomputes.  The manifest is
+Every file is written to a unique dot-name (``.<name>.<pid>-<random>.tmp``), fsynced and renamed
+(then the folder is fsynced), so ``pandas.read_parquet(folder)`` always reads a consistent table
+and a SIGKILL at any moment loses at most the not-yet-flushed rows, which ``--resume``
+recomputes.  Only the holder of the folder's lock (:mod:`workbench.study.lock`) writes, so
+:meth:`ResultStore.cleanup_temporaries` removes only what dead writers left.  The manifest is
 ``_manifest.json`` (not ``manifest.json``): Parquet dataset discovery skips names starting with
 ``_`` or ``.``, but fails on any other non-Parquet file in the folder.
 
@@ -23,17 +25,26 @@ per-row shapes (``-1`` = leading length varies) are in the schema metadata
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
+import signal
+import threading
 import time
+import uuid
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Iterable, Mapping
 
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-__all__ = ["ResultStore", "SchemaMismatch", "atomic_write_bytes", "read_table", "array_shapes", "MANIFEST",
-           "SCHEMA_FILE"]
+from .outcomes import failure_of_error
+
+__all__ = ["CorruptPart", "ResultStore", "SchemaMismatch", "StoredRow", "atomic_write_bytes", "check_parts",
+           "read_columns",
+           "read_table",
+           "array_shapes", "MANIFEST", "SCHEMA_FILE"]
 
 MANIFEST = "_manifest.json"
 SCHEMA_FILE = "part-0000000000000000000-schema.parquet"
@@ -42,7 +53,7 @@ _SHAPES_KEY = b"workbench.shapes"
 _F64, _LIST = pa.float64(), pa.list_(pa.float64())
 CORE_COLUMNS: tuple[tuple[str, pa.DataType], ...] = (
     ("case_id", pa.string()), ("model", pa.string()), ("status", pa.string()), ("error", pa.string()),
-    ("wall_time", _F64), ("robot_length", _F64), ("robot_gravity", _F64),
+    ("failure", pa.string()), ("wall_time", _F64), ("robot_length", _F64), ("robot_gravity", _F64),
     ("tip_x", _F64), ("tip_y", _F64), ("tip_z", _F64), ("tip_frame", _LIST),
     ("length_change", _F64), ("tip_twist", _F64), ("converged", pa.bool_()), ("iterations", pa.int64()),
     ("stations", _LIST), ("positions", _LIST), ("tendon_tensions", _LIST), ("joint_angles", _LIST),
@@ -60,15 +71,49 @@ def _fsync_dir(folder: Path) -> None:
 
 
 def atomic_write_bytes(path: Path, write) -> None:
-    """Write ``path`` via ``write(fileobj)`` to ``.<name>.tmp``, fsync, rename, fsync the folder."""
+    """Write ``path`` via ``write(fileobj)`` to a unique ``.<name>.<pid>-<random>.tmp``, fsync, rename, fsync the folder.
+
+    The temporary is removed if ``write`` fails (an interrupt included).
+    """
     path = Path(path)
-    tmp = path.with_name(f".{path.name}.tmp")
-    with open(tmp, "wb") as f:
-        write(f)
-        f.flush()
-        os.fsync(f.fileno())
-    os.replace(tmp, path)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}-{uuid.uuid4().hex[:8]}.tmp")
+    try:
+        with open(tmp, "wb") as f:
+            write(f)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
     _fsync_dir(path.parent)
+
+
+@contextlib.contextmanager
+def deferred_interrupts():
+    """Hold SIGINT / SIGTERM until the block is done, then act on them as if they came now.
+
+    A part written but not yet taken off the buffer would be written twice by the flush of an
+    interrupted run; writes happen inside this block.  Outside the main thread (the timer) it
+    does nothing: Python runs signal handlers in the main thread only.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    got: list[tuple[int, Any]] = []
+    sigs = (signal.SIGINT, signal.SIGTERM)
+    old = {s: signal.signal(s, lambda n, f: got.append((n, f))) for s in sigs}
+    try:
+        yield
+    finally:
+        for s, h in old.items():
+            signal.signal(s, h)
+        for n, f in got[:1]:
+            h = old[n]
+            if callable(h):
+                h(n, f)
+            elif h == signal.SIG_DFL:
+                os.kill(os.getpid(), n)
 
 
 def _param_type(values: Iterable[Any]) -> pa.DataType:
@@ -82,6 +127,25 @@ def _param_type(values: Iterable[Any]) -> pa.DataType:
     if kinds <= {int, float}:
         return pa.float64()
     return pa.string()
+
+
+class CorruptPart(ValueError):
+    """A Parquet part of the folder cannot be read (``path``, ``reason``)."""
+
+    def __init__(self, path: Path, reason: str):
+        self.path, self.reason = Path(path), reason
+        super().__init__(f"{path}: unreadable Parquet part ({reason})")
+
+
+@dataclass(frozen=True)
+class StoredRow:
+    """What :meth:`ResultStore.stored_rows` reads of one stored row (``part``: its file)."""
+
+    case_id: str
+    model: str
+    status: str
+    failure: str
+    part: str
 
 
 class SchemaMismatch(ValueError):
@@ -113,7 +177,8 @@ class ResultStore:
         types up front (mixed int/float -> float, anything else mixed -> string).
     flush_rows, flush_seconds : int, float
         Buffered rows are written as one part when either limit is reached (and on
-        :meth:`flush` / :meth:`close`).  Cases are never split across parts.
+        :meth:`flush` / :meth:`close`; a timer may call :meth:`flush_if_due` from another thread).
+        The rows of one unit (a case's models) are never split across parts.
     """
 
     def __init__(self, folder: str | Path, param_rows: Iterable[Mapping[str, Any]] = (),
@@ -122,6 +187,7 @@ class ResultStore:
         self.folder.mkdir(parents=True, exist_ok=True)
         self.flush_rows, self.flush_seconds = int(flush_rows), float(flush_seconds)
         self._buffer: list[dict[str, Any]] = []
+        self._lock = threading.RLock()
         self._last_flush = time.monotonic()
         self._seq = 0
         self._fields: dict[str, pa.DataType] = {n: t for n, t in CORE_COLUMNS}
@@ -153,18 +219,45 @@ class ResultStore:
     def part_files(self) -> list[Path]:
         return sorted(p for p in self.folder.glob("part-*.parquet") if p.name != SCHEMA_FILE)
 
+    def stored_rows(self) -> list[StoredRow]:
+        """Every stored row's ``(case_id, model, status, failure, part)`` (reads only those columns).
+
+        Rows of older folders without a ``failure`` cell get one from their error text
+        (:func:`~workbench.study.outcomes.failure_of_error`).
+
+        Raises
+        ------
+        CorruptPart
+            A part file is not readable Parquet (truncated, overwritten, not Parquet).
+        """
+        out = []
+        for p in self.part_files():
+            try:
+                names = set(pq.read_schema(p).names)
+                cols = [c for c in ("case_id", "model", "status", "failure", "error") if c in names]
+                t = pq.read_table(p, columns=cols).to_pydict()
+            except (OSError, pa.ArrowException) as e:
+                raise CorruptPart(p, str(e).splitlines()[0] if str(e) else type(e).__name__) from None
+            n = len(t.get("case_id", []))
+            if "case_id" not in t or "model" not in t:
+                raise CorruptPart(p, "no case_id/model columns")
+            for i in range(n):
+                status = (t.get("status") or [None] * n)[i] or "failed"
+                failure = (t.get("failure") or [None] * n)[i]
+                if status != "ok" and not failure:
+                    failure = failure_of_error((t.get("error") or [""] * n)[i] or "")
+                out.append(StoredRow(t["case_id"][i], t["model"][i], status, failure or "", p.name))
+        return out
+
     def finished_case_ids(self) -> set[str]:
         """Case ids with rows on disk (reads only the ``case_id`` column)."""
-        ids: set[str] = set()
-        for p in self.part_files():
-            ids.update(pq.read_table(p, columns=["case_id"]).column("case_id").to_pylist())
-        return ids
+        return {r.case_id for r in self.stored_rows()}
 
     def cleanup_temporaries(self) -> list[Path]:
-        """Remove ``.*.tmp`` files left by a killed writer; returns what was removed."""
+        """Remove ``.*.tmp`` files left by killed writers (call only while holding the folder's lock)."""
         removed = []
         for p in self.folder.glob(".*.tmp"):
-            p.unlink()
+            p.unlink(missing_ok=True)
             removed.append(p)
         return removed
 
@@ -182,34 +275,125 @@ class ResultStore:
         self._schema = schema
 
     def add(self, rows: list[dict[str, Any]]) -> None:
-        """Buffer the rows of one case (all models); flushes when a limit is reached."""
-        self._buffer.extend(rows)
-        if len(self._buffer) >= self.flush_rows or time.monotonic() - self._last_flush >= self.flush_seconds:
+        """Buffer the rows of one unit (a case's models); flushes when a limit is reached."""
+        with self._lock:
+            self._buffer.extend(rows)
+            due = len(self._buffer) >= self.flush_rows or time.monotonic() - self._last_flush >= self.flush_seconds
+        if due:
             self.flush()
 
+    def flush_if_due(self) -> Path | None:
+        """Flush when rows have waited ``flush_seconds`` (the run session's timer thread calls this)."""
+        with self._lock:
+            due = self._buffer and time.monotonic() - self._last_flush >= self.flush_seconds
+        return self.flush() if due else None
+
     def flush(self) -> Path | None:
-        """Write the buffered rows as one part file (atomic); returns its path."""
-        self._last_flush = time.monotonic()
-        if not self._buffer:
-            return None
-        rows, self._buffer = self._buffer, []
-        for r in rows:
-            for name, shape in (r.pop("_shapes", None) or {}).items():
-                self._shapes.setdefault(name, shape)
-            for k, v in r.items():
-                if k not in self._fields:
-                    self._fields[k] = (_LIST if isinstance(v, (list, tuple)) else
-                                       pa.string() if isinstance(v, str) else pa.float64())
-        self._write_schema_if_changed()
-        table = pa.Table.from_pylist(rows, schema=self._schema)
-        name = f"part-{time.time_ns():019d}-{os.getpid()}-{self._seq:06d}.parquet"
-        self._seq += 1
-        path = self.folder / name
-        atomic_write_bytes(path, lambda f: pq.write_table(table, f))
-        return path
+        """Write the buffered rows as one part file (atomic); returns its path.
+
+        The buffer is emptied only once the part is on disk, so an interrupt during the write
+        loses nothing that a later :meth:`flush` cannot still write.
+        """
+        with self._lock:
+            self._last_flush = time.monotonic()
+            if not self._buffer:
+                return None
+            rows = [dict(r) for r in self._buffer]
+            for r in rows:
+                for name, shape in (r.pop("_shapes", None) or {}).items():
+                    self._shapes.setdefault(name, shape)
+                for k, v in r.items():
+                    if k not in self._fields:
+                        self._fields[k] = (_LIST if isinstance(v, (list, tuple)) else
+                                           pa.string() if isinstance(v, str) else pa.float64())
+            self._write_schema_if_changed()
+            table = pa.Table.from_pylist(rows, schema=self._schema)
+            name = f"part-{time.time_ns():019d}-{os.getpid()}-{self._seq:06d}.parquet"
+            self._seq += 1
+            path = self.folder / name
+            with deferred_interrupts():  # the part on disk and the buffer emptied: both or neither
+                atomic_write_bytes(path, lambda f: pq.write_table(table, f))
+                del self._buffer[:len(rows)]
+            return path
+
+    def remove_rows(self, keys: Iterable[tuple[str, str]]) -> int:
+        """Delete the stored rows ``(case_id, model)`` in ``keys`` (rows to recompute); returns how many.
+
+        Each part holding such rows is rewritten without them (atomically, same name) or removed
+        when nothing is left.  Call only while holding the folder's lock.
+        """
+        keys = set(keys)
+        if not keys:
+            return 0
+        by_part: dict[str, int] = {}
+        for r in self.stored_rows():
+            if (r.case_id, r.model) in keys:
+                by_part[r.part] = by_part.get(r.part, 0) + 1
+        for part in by_part:
+            path = self.folder / part
+            t = pq.read_table(path)
+            ids, models = t.column("case_id").to_pylist(), t.column("model").to_pylist()
+            keep = [i for i, (c, m) in enumerate(zip(ids, models)) if (c, m) not in keys]
+            if keep:
+                kept = t.take(pa.array(keep, pa.int64()))
+                atomic_write_bytes(path, lambda f: pq.write_table(kept, f))
+            else:
+                path.unlink()
+                _fsync_dir(self.folder)
+        return sum(by_part.values())
 
     def close(self) -> None:
         self.flush()
+
+
+def read_columns(folder: str | Path, columns: list[str]):
+    """The columns of ``columns`` that the folder's table has, as a pandas DataFrame.
+
+    Columns the folder does not have (written by an older version) are filled with ``None``.
+
+    Raises
+    ------
+    FileNotFoundError
+        The folder holds no Parquet parts.
+    CorruptPart
+        A part file is not readable Parquet (its name is in the message).
+    """
+    import pandas as pd
+
+    folder = Path(folder)
+    if not any(folder.glob("part-*.parquet")):
+        raise FileNotFoundError(f"{folder}: no Parquet parts (no stored rows)")
+    try:
+        names = set(pq.read_schema(folder / SCHEMA_FILE).names) if (folder / SCHEMA_FILE).exists() else None
+    except (OSError, pa.ArrowException) as e:
+        raise CorruptPart(folder / SCHEMA_FILE, str(e).splitlines()[0] if str(e) else type(e).__name__) from None
+    want = [c for c in columns if names is None or c in names]
+    try:
+        df = pd.read_parquet(folder, columns=want)
+    except (OSError, pa.ArrowException, ValueError) as e:
+        _raise_corrupt_part(folder, e)
+    for c in columns:
+        if c not in df.columns:
+            df[c] = None
+    return df[columns]
+
+
+def check_parts(folder: str | Path) -> None:
+    """Raise :class:`CorruptPart` for the first part file of ``folder`` that is not readable Parquet."""
+    for p in sorted(Path(folder).glob("part-*.parquet")):
+        try:
+            pq.read_metadata(p)
+        except (OSError, pa.ArrowException) as err:
+            raise CorruptPart(p, str(err).splitlines()[0] if str(err) else type(err).__name__) from None
+
+
+def _raise_corrupt_part(folder: Path, e: Exception):
+    for p in sorted(folder.glob("part-*.parquet")):
+        try:
+            pq.read_metadata(p)
+        except (OSError, pa.ArrowException) as err:
+            raise CorruptPart(p, str(err).splitlines()[0] if str(err) else type(err).__name__) from None
+    raise CorruptPart(folder, str(e).splitlines()[0] if str(e) else type(e).__name__) from None
 
 
 def read_table(folder: str | Path):

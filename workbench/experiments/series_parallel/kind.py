@@ -4,7 +4,8 @@
 names for ``[study] kind = "series_parallel"``: it loads the file (:mod:`.spec`), expands the
 motions into cases (:mod:`.expand`) and evaluates one case per task (:mod:`.worker`; each case
 costs seconds, so batching would only unbalance the workers).  Each case writes the rows
-``target``, ``series_parallel`` and ``cc_fit``.  Everything else -- run session, manifest, store,
+``target``, ``series_parallel`` and ``cc_fit``, computed together (``separable_models = False``:
+the CC fit needs the FK result).  Everything else -- run session, manifest, store,
 executors, crash handling, CLI and report -- is the generic pipeline's
 (:func:`workbench.study.runner.run_cases`).
 
@@ -18,9 +19,10 @@ from typing import Any, Callable, Sequence
 
 from ...study.expand import Case
 from ...study.messages import StudyError
+from ...study.outcomes import CaseLimits
 from .expand import expand_motions
 from .spec import KIND_NAME, SeriesParallelStudy, load_series_parallel_study
-from .worker import MODELS, evaluate_motion_batch
+from .worker import MODELS, evaluate_motion_rows
 
 __all__ = ["KIND", "SeriesParallelKind"]
 
@@ -30,7 +32,8 @@ class SeriesParallelKind:
 
     name = KIND_NAME
     flush_rows = 64
-    task = staticmethod(evaluate_motion_batch)
+    separable_models = False
+    task = staticmethod(evaluate_motion_rows)
 
     def load(self, path: str | Path, max_cases: int | None = None) -> SeriesParallelStudy:
         return load_series_parallel_study(path, max_cases=max_cases)
@@ -55,8 +58,13 @@ class SeriesParallelKind:
     def batch_size(self, n_cases: int, slots: int) -> int:
         return 1
 
-    def payload(self, spec: SeriesParallelStudy, cases: Sequence[Case], options: Any) -> list[tuple[str, dict]]:
-        return [(c.case_id, c.params) for c in cases]
+    def payload(self, spec: SeriesParallelStudy, case: Case, models: Sequence[str], options: Any
+                ) -> tuple[str, dict]:
+        """``(case_id, params)``: a case is computed whole (every model), whatever ``models`` says."""
+        return case.case_id, case.params
+
+    def limits(self, spec: SeriesParallelStudy) -> CaseLimits:
+        return spec.limits
 
 
 #: The series-parallel study kind (``registry.KINDS["series_parallel"]``).

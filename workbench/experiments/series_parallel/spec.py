@@ -38,7 +38,8 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationIn
 from ...study.kinds import kind_of
 from ...study.messages import StudyError, pydantic_problems, read_toml, suggest
 from ...study.params import canonical_json
-from ...study.schema import ReportSection
+from ...study.outcomes import CaseLimits
+from ...study.schema import LIMIT_KEYS, CaseLimitFields, ReportSection
 
 __all__ = ["SeriesParallelStudy", "load_series_parallel_study", "is_series_parallel_study", "KIND_NAME",
            "GEOMETRY_KEYS"]
@@ -57,7 +58,7 @@ class _StudySection(BaseModel):
     max_cases: int = Field(default=500, gt=0)
 
 
-class _SolverSection(BaseModel):
+class _SolverSection(CaseLimitFields):
     model_config = _CFG
     n_elements: int = Field(default=8, ge=2, le=64)
     length_tolerance: float = Field(default=1e-10, gt=0.0)
@@ -143,9 +144,12 @@ class SeriesParallelStudy:
     geometry : dict
         All ModuleGeometry fields (defaults filled in; angle tuples as lists).
     solver : dict
+        The solver keys (without the limits).
     motions : dict
         ``{"module": [ {axis, amplitude, samples, symmetric, pivot}, ...], "stack": [...]}``.
     report : dict
+    limits : CaseLimits
+        ``[solver] max_case_seconds`` / ``max_case_memory``.
     """
 
     path: str
@@ -157,6 +161,7 @@ class SeriesParallelStudy:
     solver: dict[str, Any]
     motions: dict[str, list[dict[str, Any]]]
     report: dict[str, Any] = field(default_factory=dict)
+    limits: CaseLimits = field(default_factory=CaseLimits)
 
     @property
     def models(self) -> tuple[str, ...]:
@@ -167,8 +172,9 @@ class SeriesParallelStudy:
         return {
             "study": {"kind": KIND_NAME, "name": self.name, "description": self.description, "seed": self.seed,
                       "models": list(self.models), "max_cases": self.max_cases},
-            "geometry": dict(self.geometry), "solver": dict(self.solver), "motions": self.motions,
-            "report": self.report,
+            "geometry": dict(self.geometry),
+            "solver": {**self.solver, "max_case_seconds": self.limits.seconds, "max_case_memory": self.limits.memory},
+            "motions": self.motions, "report": self.report,
         }
 
     @property
@@ -290,7 +296,8 @@ def load_series_parallel_study(path: str | Path, *, max_cases: int | None = None
     return SeriesParallelStudy(
         path=str(p), name=model.study.name, description=model.study.description, seed=model.study.seed,
         max_cases=model.study.max_cases if max_cases is None else max_cases, geometry=geometry,
-        solver=model.solver.model_dump(),
+        solver=model.solver.model_dump(exclude=set(LIMIT_KEYS)),
+        limits=CaseLimits(model.solver.max_case_seconds, model.solver.max_case_memory),
         motions={"module": [m.model_dump(exclude_none=True) for m in model.motions.module],
                  "stack": [m.model_dump(exclude_none=True) for m in model.motions.stack]},
         report=model.report.model_dump(exclude_defaults=True),

@@ -42,7 +42,8 @@ from ...study.params import flatten_params
 from ...study.rows import fail_non_finite, failed_rows
 from .estimate import discretization_columns, stress_columns
 
-__all__ = ["stack_targets", "module_target", "evaluate_motion_case", "evaluate_motion_batch", "MODELS"]
+__all__ = ["stack_targets", "module_target", "evaluate_motion_case", "evaluate_motion_batch", "evaluate_motion_rows",
+           "MODELS"]
 
 MODELS = ("target", "series_parallel", "cc_fit")
 
@@ -332,5 +333,10 @@ def evaluate_motion_case(case_id: str, params: Mapping[str, Any]) -> list[dict[s
 
 
 def evaluate_motion_batch(batch: list[tuple[str, Mapping[str, Any]]]) -> list[list[dict[str, Any]]]:
-    """Executor entry point: a list of ``(case_id, params)`` -> one row list per case."""
+    """A list of ``(case_id, params)`` -> one row list per case."""
     return [evaluate_motion_case(cid, p) for cid, p in batch]
+
+
+def evaluate_motion_rows(payload: tuple[str, Mapping[str, Any]]) -> list[dict[str, Any]]:
+    """The kind's task: the three rows of one case ``payload = (case_id, params)``."""
+    return evaluate_motion_case(*payload)

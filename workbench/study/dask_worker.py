@@ -1,0 +1,63 @@
+"""The Dask worker side of :class:`~workbench.study.executors.DaskExecutor`: a sandbox per worker thread.
+
+:class:`SandboxPlugin` is registered on every worker of the cluster (now and later ones) when
+the executor is entered; :func:`run_units` is the task the executor submits: it runs a chunk of
+units one by one in the worker's :class:`~workbench.study.sandbox.Sandbox` (a child process of
+the worker), so a case that crashes, hangs or eats memory is stopped there and comes back as an
+ordinary :class:`~workbench.study.outcomes.Outcome` -- the Dask worker itself survives, and a
+lost worker (``KilledWorker``) means the machine or the cluster failed.  Imported only on
+workers and by the executor (it imports ``distributed``).
+
+Checked by ``tests/study/test_executors.py`` (the Dask cases).
+"""
+
+from __future__ import annotations
+
+import threading
+from typing import Any, Callable, Sequence
+
+from distributed import get_worker
+from distributed.diagnostics.plugin import WorkerPlugin
+
+from .outcomes import CaseLimits, Outcome
+from .sandbox import Sandbox
+
+__all__ = ["PLUGIN_NAME", "SandboxPlugin", "run_units"]
+
+PLUGIN_NAME = "workbench-sandbox"
+
+
+class SandboxPlugin(WorkerPlugin):
+    """One :class:`Sandbox` per worker thread, closed when the worker closes."""
+
+    name = PLUGIN_NAME
+
+    def setup(self, worker: Any) -> None:
+        # created on the worker (a lock cannot travel to it)
+        self._boxes: dict[int, Sandbox] = {}
+        self._lock = threading.Lock()
+
+    def teardown(self, worker: Any) -> None:
+        with self._lock:
+            boxes, self._boxes = list(self._boxes.values()), {}
+        for b in boxes:
+            b.close()
+
+    def sandbox(self, memory: float | None) -> Sandbox:
+        """The calling thread's sandbox (with cap ``memory``; replaced when the cap changes)."""
+        key = threading.get_ident()
+        with self._lock:
+            box = self._boxes.get(key)
+            want = Sandbox(memory)
+            if box is None or box.memory != want.memory:
+                if box is not None:
+                    box.close()
+                box = self._boxes[key] = want
+        return box
+
+
+def run_units(fn: Callable[[Any], Any], payloads: Sequence[Any], limits: CaseLimits) -> list[Outcome]:
+    """The Dask task: every unit of a chunk in this worker thread's sandbox, one outcome each."""
+    plugin = get_worker().plugins[PLUGIN_NAME]
+    box = plugin.sandbox(limits.memory)
+    return [box.run(fn, p, limits.seconds) for p in payloads]

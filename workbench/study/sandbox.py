@@ -1,0 +1,227 @@
+"""Run units of work in a child process with a per-case time limit and a memory cap.
+
+The isolation of every process executor (the default serial one and each Dask worker):
+a :class:`Sandbox` keeps one child Python process (``subprocess``, so it also works inside
+daemonic Dask workers) and sends it one unit at a time: ``(fn, payload)`` pickled with
+cloudpickle (functions of a ``__main__`` script travel by value).  The child iterates
+``fn(payload)`` and streams every item (a result row) back as soon as it exists, so a unit that
+crashes after its first models keeps their rows.  The parent enforces the time limit
+(:class:`~workbench.study.outcomes.CaseLimits`): after ``seconds`` it kills the child (SIGKILL:
+a C++ solver loop cannot be interrupted more gently) and reports a ``timeout``; the child caps
+its own address space (``RLIMIT_AS``) so a runaway case fails with ``MemoryError`` (``memory``)
+instead of taking the machine down.  A child that dies is restarted for the next unit; the dead
+unit gets a :class:`~workbench.study.outcomes.Crash` from its exit status
+(:func:`~workbench.study.outcomes.crash_from_exit`).
+
+The time limit counts from the moment the unit is sent to a child that is up (a new child's
+start-up is not charged to the case).  The child ignores SIGINT and SIGTERM (the parent decides when to stop it, so an interrupted run
+records no spurious crash) and exits by itself within a second when its parent disappears
+(``kill -9`` of the run).
+
+Checked by ``tests/study/test_sandbox.py`` (timeouts, memory cap, crashes, streaming).
+"""
+
+from __future__ import annotations
+
+import os
+import pickle
+import signal
+import subprocess
+import sys
+import threading
+import time
+from multiprocessing.connection import Connection
+from typing import Any, Callable
+
+from .outcomes import Crash, Outcome, crash_from_exit
+
+__all__ = ["Sandbox", "child_main", "default_memory_cap"]
+
+_STARTUP_SECONDS = 300.0
+
+
+class _StartFailed(RuntimeError):
+    """The child process could not be started (reported as a crash of the unit)."""
+
+
+def default_memory_cap() -> float | None:
+    """3/4 of this machine's physical memory [bytes] (``None`` where the platform does not say)."""
+    try:
+        return 0.75 * os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (ValueError, OSError, AttributeError):
+        return None
+
+
+def _child_env() -> dict[str, str]:
+    """This process's environment with its ``sys.path`` as ``PYTHONPATH`` (the child imports what we import)."""
+    env = dict(os.environ)
+    paths = [p or os.getcwd() for p in sys.path]
+    env["PYTHONPATH"] = os.pathsep.join(dict.fromkeys(paths))
+    return env
+
+
+class Sandbox:
+    """One child process that runs units; see the module docstring.
+
+    Parameters
+    ----------
+    memory : float, optional
+        Address-space cap of the child [bytes]; default :func:`default_memory_cap`; ``0``: none.
+    """
+
+    def __init__(self, memory: float | None = None) -> None:
+        self.memory = default_memory_cap() if memory is None else (memory or None)
+        self._proc: subprocess.Popen | None = None
+        self._tx: Connection | None = None
+        self._rx: Connection | None = None
+
+    # -- the child process -------------------------------------------------------------------
+    def _start(self) -> None:
+        r1, w1 = os.pipe()
+        r2, w2 = os.pipe()
+        mem = int(self.memory) if self.memory else 0
+        code = f"from workbench.study.sandbox import child_main; child_main({r1}, {w2}, {mem}, {os.getpid()})"
+        try:
+            self._proc = subprocess.Popen([sys.executable, "-c", code], pass_fds=(r1, w2), env=_child_env(),
+                                          stdin=subprocess.DEVNULL)
+        finally:
+            os.close(r1)
+            os.close(w2)
+        self._tx, self._rx = Connection(w1, readable=False), Connection(r2, writable=False)
+        # the case clock starts once the child is up (imports can take seconds on a busy machine)
+        if not self._rx.poll(_STARTUP_SECONDS):
+            self._discard()
+            raise _StartFailed(f"the worker process did not start within {_STARTUP_SECONDS:.0f} s")
+        try:
+            self._rx.recv_bytes()  # ("ready",)
+        except (EOFError, OSError):
+            code = self._discard(kill=False)
+            raise _StartFailed(f"the worker process died while starting ({crash_from_exit(code).reason})") from None
+
+    def _discard(self, kill: bool = True) -> int | None:
+        """Kill (``kill``) and reap the child; its exit status."""
+        code = None
+        if self._proc is not None:
+            if kill and self._proc.poll() is None:
+                self._proc.kill()
+            try:
+                code = self._proc.wait(timeout=30)
+            except subprocess.TimeoutExpired:  # pragma: no cover - a zombie that will not die
+                code = None
+        for c in (self._tx, self._rx):
+            if c is not None:
+                c.close()
+        self._proc = self._tx = self._rx = None
+        return code
+
+    def close(self) -> None:
+        """Stop the child (EOF first, so it exits by itself; killed if it does not within 5 s)."""
+        if self._proc is None:
+            return
+        try:
+            self._tx.close()
+            self._tx = None
+            self._proc.wait(timeout=5)
+        except (OSError, subprocess.TimeoutExpired):
+            pass
+        self._discard()
+
+    def __enter__(self) -> "Sandbox":
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        if exc and exc[0] is not None:
+            self._discard()  # interrupted: do not wait for the case to finish
+        else:
+            self.close()
+
+    # -- running a unit ----------------------------------------------------------------------
+    def run(self, fn: Callable[[Any], Any], payload: Any, seconds: float | None = None) -> Outcome:
+        """Run ``fn(payload)`` in the child; the rows it yielded and the crash that stopped it, if any."""
+        import cloudpickle
+
+        data = cloudpickle.dumps((fn, payload))
+        for attempt in (0, 1):
+            if self._proc is None or self._proc.poll() is not None:
+                if self._proc is not None:
+                    self._discard()
+                try:
+                    self._start()
+                except _StartFailed as e:
+                    return Outcome([], Crash("crash", str(e)))
+            try:
+                self._tx.send_bytes(data)
+                break
+            except (BrokenPipeError, OSError):  # the idle child had died: start another once
+                self._discard()
+                if attempt:
+                    return Outcome([], Crash("crash", "the case's worker process could not be started"))
+        return self._collect(seconds)
+
+    def _collect(self, seconds: float | None) -> Outcome:
+        rows: list[Any] = []
+        deadline = None if seconds is None else time.monotonic() + seconds
+        while True:
+            wait = 1.0 if deadline is None else max(0.0, min(1.0, deadline - time.monotonic()))
+            if self._rx.poll(wait):
+                try:
+                    msg = pickle.loads(self._rx.recv_bytes())
+                except (EOFError, OSError):
+                    return Outcome(rows, crash_from_exit(self._discard(kill=False)))
+                if msg[0] == "row":
+                    rows.append(msg[1])
+                    continue
+                if msg[0] == "done":
+                    return Outcome(rows)
+                return Outcome(rows, Crash(msg[1], msg[2]))  # ("crash", kind, reason) from the child
+            if deadline is not None and time.monotonic() >= deadline:
+                self._discard()
+                return Outcome(rows, Crash("timeout", f"stopped after max_case_seconds = {seconds:g} s "
+                                                      f"(the case was still running)"))
+
+
+# ------------------------------------------------------------------------------------------
+# the child side
+# ------------------------------------------------------------------------------------------
+def _watch_parent(parent: int) -> None:
+    while True:
+        time.sleep(1.0)
+        if os.getppid() != parent:
+            os._exit(70)
+
+
+def _cap_memory(memory: int) -> None:
+    if not memory:
+        return
+    import resource
+
+    soft, hard = resource.getrlimit(resource.RLIMIT_AS)
+    cap = memory if hard == resource.RLIM_INFINITY else min(memory, hard)
+    resource.setrlimit(resource.RLIMIT_AS, (cap, hard))
+
+
+def child_main(rfd: int, wfd: int, memory: int, parent: int) -> None:
+    """The child's loop: receive ``(fn, payload)``, stream ``("row", item)``, end with ``("done",)`` or ``("crash", kind, reason)``."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
+    threading.Thread(target=_watch_parent, args=(parent,), daemon=True).start()
+    _cap_memory(memory)
+    rx, tx = Connection(rfd, writable=False), Connection(wfd, readable=False)
+    tx.send_bytes(pickle.dumps(("ready",)))
+    while True:
+        try:
+            data = rx.recv_bytes()
+        except (EOFError, OSError):
+            return
+        try:
+            fn, payload = pickle.loads(data)
+            for item in fn(payload):
+                tx.send_bytes(pickle.dumps(("row", item)))
+            msg = ("done",)
+        except MemoryError as e:
+            cap = f"{memory / 2**30:.3g} GiB" if memory else "none"
+            msg = ("crash", "memory", f"MemoryError: the case exceeded the memory cap (max_case_memory: {cap}) {e}"
+                   .rstrip())
+        except BaseException as e:  # noqa: BLE001 - fn should not raise; report it, keep serving
+            msg = ("crash", "crash", f"task raised {type(e).__name__}: {str(e)[:500]}")
+        tx.send_bytes(pickle.dumps(msg))
