@@ -65,6 +65,9 @@ MODELS: Mapping[str, ModelInfo] = {
     "beam3d": ModelInfo("workbench.physics.beam3d:run", "GE beam", "#d62728", order=2.0),
     "ancf3d": ModelInfo("workbench.physics.ancf3d:run", "ANCF 3-D", "#9467bd", order=4.0),
     "spring_link": ModelInfo("workbench.physics.spring_link:run", "spring-link", "#2ca02c", order=2.0),
+    # planar ANCF with a rigid circle (without an object: equal to ancf with continuum tendons); no
+    # declared order (penalty contact: not measured), so its rows carry no estimate
+    "contact": ModelInfo("workbench.physics.contact:run", "ANCF + contact", "#ff7f0e"),
     # rows of the series-parallel study kind (not run(robot, load, options) models); its GE-beam
     # legs converge at order 2 (test_series_parallel.py, against the Cosserat shooting solver)
     "series_parallel": ModelInfo(None, "series-parallel", order=2.0),
@@ -81,12 +84,15 @@ PRESETS: Mapping[str, str] = {
 SCENARIOS: Mapping[str, str] = {
     "wire_delay": "workbench.experiments.wire_delay.scenario:wire_delay",
     "hannan_walker_line": "workbench.experiments.hannan_walker.scenario:hannan_walker_line",
+    "whole_arm_wrap": "workbench.experiments.whole_arm_grasp.scenario:whole_arm_wrap",
+    "harvester_scoop": "workbench.experiments.fruit_harvester.scoop:harvester_scoop",
 }
 
 #: ``[study] kind`` -> the :class:`~workbench.study.kinds.StudyKind` object that loads, expands and runs it.
 KINDS: Mapping[str, str] = {
     "sweep": "workbench.study.kinds:SWEEP",
     "series_parallel": "workbench.experiments.series_parallel.kind:KIND",
+    "grasp": "workbench.experiments.whole_arm_grasp.kind:KIND",
 }
 
 #: Study-specific figures, in report order (before the generic figures).
@@ -101,6 +107,10 @@ FIGURES: Mapping[str, FigureSet] = {
     "series_parallel": FigureSet("workbench.experiments.series_parallel.figures:matches",
                                  "workbench.experiments.series_parallel.figures:figures",
                                  "workbench.experiments.series_parallel.findings:findings"),
+    "whole_arm_grasp": FigureSet("workbench.experiments.whole_arm_grasp.figures:matches",
+                                 "workbench.experiments.whole_arm_grasp.figures:figures"),
+    "fruit_harvester_scoop": FigureSet("workbench.experiments.fruit_harvester.scoop_figures:matches",
+                                       "workbench.experiments.fruit_harvester.scoop_figures:figures"),
 }
 
 

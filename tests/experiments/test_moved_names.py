@@ -54,8 +54,8 @@ def test_scenarios_is_a_read_only_view_of_the_registry():
     from workbench.study.scenarios import SCENARIOS
 
     assert isinstance(SCENARIOS, Mapping)
-    assert list(SCENARIOS) == ["wire_delay", "hannan_walker_line"] == list(registry.SCENARIOS)
-    assert len(SCENARIOS) == 2 and "wire_delay" in SCENARIOS and "nope" not in SCENARIOS
+    assert list(SCENARIOS) == ["wire_delay", "hannan_walker_line", "whole_arm_wrap", "harvester_scoop"] == list(registry.SCENARIOS)
+    assert len(SCENARIOS) == 4 and "wire_delay" in SCENARIOS and "nope" not in SCENARIOS
     for name, fn in SCENARIOS.items():
         assert callable(fn) and fn is registry.resolve(registry.SCENARIOS[name])
     with pytest.raises(TypeError):
