@@ -2,18 +2,22 @@
 
 ::
 
-    workbench run STUDY.toml [--out DIR] [--workers N | --scheduler ADDR | --in-process]
-                             [--resume [--retry-failed]] [--no-report] [--max-cases N]
+    workbench run STUDY.toml [--out DIR] [--workers N | --scheduler ADDR | --in-process | --cluster KIND]
+                             [--resume [--retry-failed]] [--no-report] [--max-cases N] [--dry-run]
     workbench show DIR
     workbench validate STUDY.toml
     workbench report DIR [--out DIR] [--formats png,svg]
+    workbench list models|presets|scenarios|kinds
+    workbench --version
 
 Executors of ``run``: by default the cases run one after another in a child process that is
 restarted if a case crashes it or runs past ``[solver] max_case_seconds``; ``--workers N``
 starts a Dask ``LocalCluster`` with N worker processes inside the command; ``--scheduler
 tcp://host:8786`` uses a running Dask cluster (its workers must have the same workbench
 installed; the address is checked before anything is written); ``--in-process`` runs in this
-process: the debugging executor, without isolation.
+process: the debugging executor, without isolation; ``--cluster slurm|pbs|sge|lsf`` submits the
+workers as batch jobs through dask-jobqueue (job options: :mod:`workbench.study.cluster_command`;
+a job the batch system refuses is bad input, exit 2; a queue that starts no job, exit 3).
 
 The report of a run goes to ``reports/<name of the data folder>/`` (``--out data/x2`` ->
 ``reports/x2/``), so two runs never overwrite each other's report.
@@ -41,6 +45,7 @@ from pathlib import Path
 from typing import Sequence
 
 from .report.command import add_report_arguments, report_command
+from .study.cluster_command import add_cluster_arguments
 
 __all__ = ["EXIT_CODES", "main"]
 
@@ -63,15 +68,36 @@ def _epilog() -> str:
     return "exit codes:\n" + "\n".join(f"  {k:>3}  {v}" for k, v in EXIT_CODES.items())
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse without prefix matching (``--worker 2`` is an error) and with one-line errors."""
+
+    def __init__(self, *a, **kw) -> None:
+        kw.setdefault("allow_abbrev", False)
+        super().__init__(*a, **kw)
+
+    def error(self, message: str):  # noqa: D401 - argparse's hook
+        self.exit(2, f"{self.prog}: {message} (see {self.prog} --help)\n")
+
+
+def _version() -> str:
+    from . import __version__
+
+    return f"workbench {__version__} (trunk-workbench, Python {sys.version.split()[0]})"
+
+
 def _parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="workbench", description="Continuum-robot workbench: run and inspect studies.")
-    sub = p.add_subparsers(dest="command", required=True)
+    p = _Parser(prog="workbench", description="Continuum-robot workbench: run and inspect studies.")
+    p.add_argument("--version", action="version", version=_version())
+    sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
     r = sub.add_parser("run", help="run a study file (TOML)", epilog=_epilog(),
                        formatter_class=argparse.RawDescriptionHelpFormatter,
                        description="Run a study.  Default executor: one case after another in an isolated child "
                                    "process (a crash or a timeout fails only that case).")
-    r.add_argument("study", help="study file, e.g. studies/example.toml")
+    r.add_argument("study", help="study file, e.g. studies/example.toml (a bare name finds studies/<name>.toml)")
+    r.add_argument("overrides", nargs="*", metavar="KEY=VALUE",
+                   help="settings that override the file, validated like it (solver.n_elements=32, "
+                        "study.models='[\"cc\"]'); recorded in the manifest")
     r.add_argument("--out", help="output folder (default data/<study.name>); its report goes to reports/<folder name>")
     ex = r.add_mutually_exclusive_group()
     ex.add_argument("--workers", type=int, metavar="N", help="Dask LocalCluster with N worker processes")
@@ -79,11 +105,17 @@ def _parser() -> argparse.ArgumentParser:
     ex.add_argument("--in-process", action="store_true",
                     help="run cases in this process: the debugging executor, without isolation (a crashing "
                          "case ends the command)")
+    add_cluster_arguments(r, ex)
     r.add_argument("--resume", action="store_true",
                    help="continue a run: compute what is not stored; retries cases that failed for "
                         "infrastructure reasons (timeout, memory, killed, lost)")
     r.add_argument("--retry-failed", action="store_true", help="with --resume: also retry model failures and crashes")
+    r.add_argument("--force", action="store_true",
+                   help="discard the results stored in --out and run again (not with --resume)")
     r.add_argument("--no-report", action="store_true", help="do not build the HTML report afterwards")
+    r.add_argument("--no-cache", action="store_true",
+                   help="compute every case (default: reuse rows of the same case, model and model code version "
+                        "from <parent of --out>/_cache, and store new ones there)")
     r.add_argument("--max-cases", type=int, metavar="N", help="override study.max_cases")
     r.add_argument("--reports-dir", default="reports", help="where reports go (default reports/<data folder name>)")
     r.add_argument("--progress", choices=("auto", "on", "off"), default="auto",
@@ -99,8 +131,12 @@ def _parser() -> argparse.ArgumentParser:
     rp = sub.add_parser("report", help="write the HTML comparison report of a study result folder")
     add_report_arguments(rp)
 
+    ls = sub.add_parser("list", help="what the registry offers: models (with capabilities), presets, scenarios, kinds")
+    ls.add_argument("topic", choices=("models", "presets", "scenarios", "kinds"))
+
     v = sub.add_parser("validate", help="check a study file without running it")
-    v.add_argument("study")
+    v.add_argument("study", help="study file or bare name (studies/<name>.toml)")
+    v.add_argument("overrides", nargs="*", metavar="KEY=VALUE", help="settings that override the file")
     v.add_argument("--max-cases", type=int, metavar="N", help="override study.max_cases")
     return p
 
@@ -132,8 +168,10 @@ def _print_summary(summary, report_note: str | None = None, show_run: bool = Tru
     name = study_name(man, "?")
     runs = man.get("runs", [])
     study_file = (runs[-1].get("study_file") if runs else None) or man.get("study_file") or "STUDY.toml"
-    print(f"study {name!r}: {summary.folder}")
-    this_run = f" (this run: {summary.n_run} run, {summary.n_skipped} already stored)" if show_run else ""
+    source = (runs[-1].get("study_file") if runs else None) or man.get("study_file")
+    print(f"study {name!r}" + (f" ({source})" if source else "") + f": {summary.folder}")
+    cached = f", {summary.n_cached} model rows from the cache" if getattr(summary, "n_cached", 0) else ""
+    this_run = f" (this run: {summary.n_run} run{cached}, {summary.n_skipped} already stored)" if show_run else ""
     print(f"  cases {summary.n_cases}: ok {summary.n_ok}, failed {summary.n_failed}{this_run}")
     missing = summary.n_cases - summary.n_ok - summary.n_failed
     if missing > 0:
@@ -190,12 +228,39 @@ def _build_report(data_dir: Path, out_dir: Path) -> str:
     return str(out if out is not None else out_dir)
 
 
+def find_study(text: str) -> Path:
+    """The study file ``text`` names: the path itself, else ``studies/<text>`` or ``studies/<text>.toml``.
+
+    Raises
+    ------
+    StudyError
+        Nothing of that name exists (one line listing the studies of ``studies/``).
+    """
+    from .study import StudyError
+
+    p = Path(text)
+    if p.exists() or p.name != text:  # a path with a folder: the loader says what is wrong with it
+        return p
+    here = Path("studies")
+    for cand in (here / text, here / f"{text}.toml"):
+        if cand.is_file():
+            return cand
+    known = sorted(q.stem for q in here.glob("*.toml")) if here.is_dir() else []
+    tail = f"; studies in {here}/: {', '.join(known)}" if known else ""
+    raise StudyError([f"{text}: no such study file (nor {here / p.stem}.toml){tail}"])
+
+
 def _load(args):
     """``(kind, validated study)`` of ``args.study``: the one place the study kind is chosen."""
     from .study import get_kind, kind_of
 
-    kind = get_kind(kind_of(args.study))
-    return kind, kind.load(args.study, max_cases=args.max_cases)
+    path = find_study(args.study)
+    args.study = str(path)
+    kind = get_kind(kind_of(path))
+    overrides = tuple(getattr(args, "overrides", None) or ())
+    if overrides:
+        return kind, kind.load(path, max_cases=args.max_cases, overrides=overrides)
+    return kind, kind.load(path, max_cases=args.max_cases)
 
 
 def _cmd_validate(args) -> int:
@@ -208,10 +273,14 @@ def _cmd_validate(args) -> int:
         return 2
     n_cases = kind.count(study) if hasattr(kind, "count") else len(kind.expand(study))
     models = kind.models(study)
+    given = getattr(study, "overrides", ())
     print(f"{args.study}: ok: study {study.name!r}, {n_cases} cases x {len(models)} models "
-          f"({', '.join(models)}), config hash {study.config_hash}")
+          f"({', '.join(models)}), config hash {study.config_hash}"
+          + (f" (with {len(given)} override(s): {' '.join(given)})" if given else ""))
     for note in getattr(study, "notes", ()):
         print(f"  note: {note}")
+    for w in getattr(study, "warnings", ()):
+        print(f"  warning: {w}")
     return 0
 
 
@@ -235,11 +304,15 @@ def _check_out(folder: Path) -> str | None:
     return None
 
 
-def _executor(args):
+def _executor(args, cluster=None):
     """The executor the options ask for, or the one-line problem with them."""
     from .study import DaskExecutor, IsolatedExecutor, SerialExecutor
     from .study.executors import check_scheduler_address
 
+    if cluster is not None:
+        from .study.cluster import JobQueueExecutor
+
+        return JobQueueExecutor(cluster), None
     if args.workers is not None and args.workers < 1:
         return None, f"--workers: must be >= 1, got {args.workers}"
     if args.scheduler:
@@ -283,20 +356,45 @@ def _run(args) -> tuple[int, Path | None]:
     if args.retry_failed and not args.resume:
         _err(["--retry-failed: needs --resume (it retries the failed cases of a stored run)"])
         return 2, None
+    if args.force and args.resume:
+        _err(["--force: not with --resume (--force discards the stored results, --resume continues them)"])
+        return 2, None
     try:
         kind, study = _load(args)
     except StudyError as e:
         _err(e.problems)
         return 2, None
+    for w in getattr(study, "warnings", ()):
+        _err([f"warning: {w}"])
     if args.out is not None and not args.out.strip():
         _err(["--out: empty path (give a folder, e.g. --out data/my_run)"])
         return 2, None
     folder = Path(args.out) if args.out is not None else Path("data") / study.name
     problem = _check_out(folder)
-    executor, exec_problem = _executor(args)
+    from .study.cluster_command import cluster_from_args, dry_run_text
+
+    try:
+        cluster = cluster_from_args(args)
+    except StudyError as e:
+        _err(e.problems)
+        return 2, None
+    executor, exec_problem = _executor(args, cluster)
     if problem or exec_problem:
         _err([problem or exec_problem])
         return 2, None
+    if args.dry_run:
+        n = len(kind.expand(study))
+        name = getattr(executor, "name", type(executor).__name__)
+        print(dry_run_text(study.name, n, kind.models(study), folder, name, cluster,
+                           kind.limits(study) if hasattr(kind, "limits") else None,
+                           kind.batch_size(n, getattr(executor, "slots", 1))))
+        return 0, None
+    if cluster is not None:
+        try:
+            executor.preflight()  # a refused job fails here, before the result folder exists
+        except ExecutorStartError as e:
+            _err([str(e)])
+            return 2, None
     if args.in_process and sys.stderr.isatty():  # (the manifest and `show` name the executor too)
         _err(["--in-process: cases run in this process without isolation (the debugging executor): a case that "
               "crashes ends the command (the cases before it are stored), the time limit interrupts Python code only"])
@@ -304,7 +402,8 @@ def _run(args) -> tuple[int, Path | None]:
     arc = _resolve(args.arc_actuation) if args.arc_actuation else None
     progress = {"auto": None, "on": True, "off": False}[args.progress]
     try:
-        summary = run_cases(kind, study, folder, executor, resume=args.resume, retry_failed=args.retry_failed,
+        summary = run_cases(kind, study, folder, executor, resume=args.resume, retry_failed=args.retry_failed, force=args.force,
+                            cache=None if args.no_cache else folder.resolve().parent / "_cache",
                             progress=progress, flush_rows=args.flush_rows, model_lookup=lookup, arc_actuation=arc)
     except StudyError as e:
         _err(e.problems)
@@ -329,6 +428,21 @@ def _run(args) -> tuple[int, Path | None]:
     return summary.exit_code, folder
 
 
+def _not_a_result_folder(folder: Path) -> str:
+    """The one-line refusal of a folder without a manifest, with a hint where the results are."""
+    from .study.store import MANIFEST
+
+    line = f"{folder}: not a study result folder (no {MANIFEST})"
+    data = Path("data") / folder.name
+    if (data / MANIFEST).exists() and data.resolve() != folder.resolve():
+        return f"{line}; the results of {folder.name!r} are in {data}"
+    if (folder / "report.html").exists() or "reports" in folder.parts:
+        return f"{line}; this looks like a report folder: results are in data/<name>"
+    if not folder.exists():
+        return f"{line}: {folder} does not exist"
+    return line
+
+
 def _cmd_show(args) -> int:
     from .study import StudyError
     from .study.runner import read_manifest, summarize
@@ -336,7 +450,7 @@ def _cmd_show(args) -> int:
 
     folder = Path(args.folder)
     if not (folder / MANIFEST).exists():
-        _err([f"{folder}: not a study result folder (no {MANIFEST})"])
+        _err([_not_a_result_folder(folder)])
         return 2
     try:
         read_manifest(folder)
@@ -356,6 +470,9 @@ def _cmd_show(args) -> int:
     return summary.exit_code
 
 
+_FORMATS = ("png", "svg", "pdf")
+
+
 def _cmd_report(args) -> int:
     from .study import StudyError
     from .study.store import CorruptPart
@@ -366,6 +483,14 @@ def _cmd_report(args) -> int:
     folder = Path(args.folder)
     if args.out is None:
         args.out = str(_report_dir(folder))
+    bad = [f for f in args.formats.split(",") if f and f not in _FORMATS]
+    if bad or not [f for f in args.formats.split(",") if f]:
+        _err([f"--formats: unknown figure format {bad[0]!r}; choose from {', '.join(_FORMATS)} (comma separated)"
+              if bad else f"--formats: empty; choose from {', '.join(_FORMATS)}"])
+        return 2
+    if not (folder / MANIFEST).exists():
+        _err([_not_a_result_folder(folder)])
+        return 2
     try:
         if (folder / MANIFEST).exists():
             read_manifest(folder)
@@ -385,9 +510,21 @@ def _cmd_report(args) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point; returns the exit code."""
-    args = _parser().parse_args(argv)
-    commands = {"run": _cmd_run, "show": _cmd_show, "validate": _cmd_validate, "report": _cmd_report}
-    return commands[args.command](args)
+    try:
+        args = _parser().parse_args(argv)
+    except SystemExit as e:  # --help, --version (0) or a usage error (2, one line on stderr)
+        return e.code if isinstance(e.code, int) else 2
+    from .cli_list import list_command
+
+    commands = {"run": _cmd_run, "show": _cmd_show, "validate": _cmd_validate, "report": _cmd_report,
+                "list": list_command}
+    try:
+        code = commands[args.command](args)
+        sys.stdout.flush()
+    except BrokenPipeError:  # `workbench show data/x | head`: the reader left; no traceback
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        code = 0
+    return code
 
 
 if __name__ == "__main__":  # pragma: no cover

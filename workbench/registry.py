@@ -15,7 +15,55 @@ import importlib
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-__all__ = ["FIGURES", "FigureSet", "KINDS", "MODELS", "ModelInfo", "PRESETS", "SCENARIOS", "resolve"]
+__all__ = ["Capabilities", "FIGURES", "FigureSet", "KINDS", "MODELS", "ModelInfo", "PRESETS", "SCENARIOS", "resolve"]
+
+
+@dataclass(frozen=True)
+class Capabilities:
+    """What a ``run(robot, load, options)`` model supports; ``validate`` refuses anything else.
+
+    Checked against every case before a run (:mod:`workbench.study.capabilities`); that each
+    declared limit is real (the model itself refuses the combination) is checked by
+    ``tests/study/test_capabilities.py``.
+
+    Attributes
+    ----------
+    dimensions : tuple of str
+        ``"planar"`` (tendons at sigma in {0, pi}, tip force in the base x-z plane, tip torque
+        about base y) and/or ``"spatial"``.
+    actuation : tuple of str
+        Tendon command modes it can carry when the commands are non-zero (``()``: no tendon loads).
+    tendon_models : tuple of str
+        ``[solver] tendon_model`` values it supports for loaded tendons.
+    spatial_length_tendon_models : tuple of str
+        Tendon models it supports for length-controlled tendons in a non-planar case.
+    loads : tuple of str
+        Optional loads it carries: ``"tip_force"``, ``"tip_torque"``, ``"payload_offset"``.
+    analyses : tuple of str
+        ``"static"`` and/or ``"dynamic"``.
+    dynamic_damping, dynamic_payload_offset : bool
+        Whether ``[solver] damping > 0`` / a payload offset are supported in dynamic analysis.
+    planar_net_moment : bool
+        For a planar-only model: "planar" means the loads and every section's net tendon moment lie
+        in the base x-z plane (tendons at any angle, e.g. equal tensions at +-120 deg), not that
+        every tendon sits at sigma in {0, pi}.
+    torsion : bool
+        Whether it predicts the tip twist (informational: ``workbench list models``).
+    note : str
+        What else a user should know (one sentence).
+    """
+
+    dimensions: tuple[str, ...] = ("planar", "spatial")
+    actuation: tuple[str, ...] = ("tension", "length")
+    tendon_models: tuple[str, ...] = ("continuum", "eyelets")
+    spatial_length_tendon_models: tuple[str, ...] = ("continuum", "eyelets")
+    loads: tuple[str, ...] = ("tip_force", "tip_torque", "payload_offset")
+    analyses: tuple[str, ...] = ("static", "dynamic")
+    dynamic_damping: bool = True
+    dynamic_payload_offset: bool = True
+    planar_net_moment: bool = False
+    torsion: bool = True
+    note: str = ""
 
 
 @dataclass(frozen=True)
@@ -31,6 +79,8 @@ class ModelInfo:
         Name in figures and tables.
     color : str or None
         Line colour in figures (``None``: a fallback colour is picked per report).
+    capabilities : Capabilities or None
+        What the model supports (``None``: a label-only row, nothing to check).
     order : float or None
         Convergence order of the model's discretisation error in the element / link count
         (measured by its validation tests, ``docs/models.md``); the discretisation-error estimate
@@ -41,6 +91,7 @@ class ModelInfo:
     target: str | None
     label: str
     color: str | None = None
+    capabilities: Capabilities | None = None
     order: float | None = None
 
 
@@ -58,16 +109,33 @@ class FigureSet:
 
 
 MODELS: Mapping[str, ModelInfo] = {
-    "cc": ModelInfo("workbench.models.cc:run", "CC", "#222222"),
     # orders: measured on the tip-load elastica and the pure-moment arc (tests/models/test_discretization.py):
     # ancf and ancf3d (cubic Hermite cables) ~4, beam3d 2, spring_link 2
-    "ancf": ModelInfo("workbench.physics.ancf:run", "ANCF", "#1f77b4", order=4.0),
-    "beam3d": ModelInfo("workbench.physics.beam3d:run", "GE beam", "#d62728", order=2.0),
-    "ancf3d": ModelInfo("workbench.physics.ancf3d:run", "ANCF 3-D", "#9467bd", order=4.0),
-    "spring_link": ModelInfo("workbench.physics.spring_link:run", "spring-link", "#2ca02c", order=2.0),
+    "cc": ModelInfo("workbench.models.cc:run", "CC", "#222222", Capabilities(
+        torsion=False, note="constant curvature from the tendon commands: external loads, gravity and dynamics "
+                            "do not bend the arc (the assumption under test)")),
+    "ancf": ModelInfo("workbench.physics.ancf:run", "ANCF", "#1f77b4", order=4.0, capabilities=Capabilities(
+        dimensions=("planar",), loads=("tip_force", "tip_torque"), torsion=False,
+        note="planar ANCF cable in the base x-z plane; gravity out of that plane is dropped and recorded "
+             "(x.gravity_out_of_plane)")),
+    "beam3d": ModelInfo("workbench.physics.beam3d:run", "GE beam", "#d62728", order=2.0, capabilities=Capabilities(
+        tendon_models=("eyelets",), spatial_length_tendon_models=("eyelets",), dynamic_damping=False,
+        dynamic_payload_offset=False,
+        note="geometrically exact beam; tendons only as eyelet ropes; damping only through spectral_radius")),
+    "ancf3d": ModelInfo("workbench.physics.ancf3d:run", "ANCF 3-D", "#9467bd", order=4.0, capabilities=Capabilities(
+        actuation=(), loads=("tip_force",), torsion=False,
+        note="3-D ANCF cable without a cross-section frame: no tendons, tip torque or payload offset")),
+    "spring_link": ModelInfo("workbench.physics.spring_link:run", "spring-link", "#2ca02c", order=2.0, capabilities=Capabilities(
+        spatial_length_tendon_models=("eyelets",),
+        note="rigid links and joint springs; continuum tendons in length mode only in planar cases")),
     # planar ANCF with a rigid circle (without an object: equal to ancf with continuum tendons); no
     # declared order (penalty contact: not measured), so its rows carry no estimate
-    "contact": ModelInfo("workbench.physics.contact:run", "ANCF + contact", "#ff7f0e"),
+    "contact": ModelInfo("workbench.physics.contact:run", "ANCF + contact", "#ff7f0e", Capabilities(
+        dimensions=("planar",), actuation=("tension",), tendon_models=("continuum",),
+        spatial_length_tendon_models=(), loads=(), analyses=("static",), planar_net_moment=True,
+        torsion=False,
+        note="planar ANCF cable in contact with a rigid circle; continuum tendons of constant offset in "
+             "tension mode, static only, no tip force or torque")),
     # rows of the series-parallel study kind (not run(robot, load, options) models); its GE-beam
     # legs converge at order 2 (test_series_parallel.py, against the Cosserat shooting solver)
     "series_parallel": ModelInfo(None, "series-parallel", order=2.0),

@@ -140,3 +140,98 @@ def test_bad_study_files_are_one_line(tmp_path, capsys):
 
 def test_retry_failed_needs_resume(capsys):
     assert "--retry-failed: needs --resume" in _one_line(capsys, 2, ["run", EXAMPLE, "--retry-failed"])
+
+
+@pytest.mark.parametrize("argv,words", [
+    (["run"], "the following arguments are required: study"),
+    (["run", EXAMPLE, "--worker", "2"], "unrecognized arguments: --worker 2"),  # no prefix matching
+    (["run", EXAMPLE, "--workers", "two"], "invalid int value: 'two'"),
+    (["run", EXAMPLE, "--workers", "0", "--no-report"], "--workers: must be >= 1"),
+    (["run", EXAMPLE, "--force", "--resume"], "--force: not with --resume"),
+    (["run", "nosuchstudy"], "nosuchstudy: no such study file (nor studies/nosuchstudy.toml); studies in studies/"),
+    (["validate", "nosuchstudy"], "no such study file"),
+    (["validate"], "the following arguments are required: study"),
+    (["show"], "the following arguments are required: folder"),
+    (["show", "reports/nothing_here"], "this looks like a report folder: results are in data/<name>"),
+    (["report", "reports/nothing_here"], "this looks like a report folder"),
+    (["report", "data/nothing_here", "--formats", "jpg"], "--formats: unknown figure format 'jpg'; choose from png"),
+    (["validate", "example", "solver.n_elements"], "override 'solver.n_elements': expected <section>.<key>=<value>"),
+    (["validate", "example", "solver.n_elementz=3"], "solver.n_elementz: unknown key; did you mean 'n_elements'?"),
+    (["run", "example", "solver.n_elements=0", "--no-report"], "solver.n_elements: must be >= 1"),
+    (["list"], "the following arguments are required: topic"),
+    (["list", "modles"], "invalid choice: 'modles'"),
+    (["frobnicate"], "invalid choice: 'frobnicate'"),
+    ([], "the following arguments are required: command"),
+])
+def test_every_subcommand_on_bad_input_is_one_line_and_exit_2(capsys, monkeypatch, argv, words):
+    monkeypatch.chdir(ROOT)  # bare study names are looked up in ./studies
+    line = _one_line(capsys, 2, argv)
+    assert words in line, line
+
+
+def test_version_list_and_bare_study_names(capsys, monkeypatch, tmp_path):
+    from workbench import __version__
+
+    assert main(["--version"]) == 0 and capsys.readouterr().out.startswith(f"workbench {__version__}")
+    assert main(["list", "models"]) == 0
+    out = capsys.readouterr().out
+    assert "beam3d" in out and "tendons: tension/length via eyelets" in out and "ancf3d" in out
+    for topic, name in (("presets", "steel_rod: length=0.8"), ("scenarios", "wire_delay: theta="),
+                        ("kinds", "series_parallel: ")):
+        assert main(["list", topic]) == 0 and name in capsys.readouterr().out
+    monkeypatch.chdir(ROOT)
+    assert main(["validate", "example"]) == 0
+    assert capsys.readouterr().out.startswith("studies/example.toml: ok: study 'example'")
+    help_text = subprocess.run([sys.executable, "-m", "workbench", "run", "--help"], env=env(), cwd=ROOT,
+                               capture_output=True, text=True).stdout
+    assert "Default executor: one case after another in an isolated child process" in help_text
+    assert "exit codes:" in help_text and "143" in help_text
+
+
+def test_force_reruns_into_a_used_folder(tmp_path, capsys, good_folder):
+    study, good = good_folder
+    out = tmp_path / "o"
+    shutil.copytree(good, out)
+    run = ["run", study, "--out", out, "--in-process", "--no-report", "--progress", "off"]
+    assert "use --resume to continue it, --force to discard them" in _one_line(capsys, 2, run)
+    assert main([str(a) for a in run + ["--force"]]) == 0
+    from workbench.study import read_manifest
+
+    assert len(read_manifest(out)["runs"]) == 1  # the old run's record went with its results
+
+
+def test_overrides_are_validated_applied_and_recorded(tmp_path, capsys, good_folder):
+    import pandas as pd
+
+    from workbench.study import read_manifest
+
+    study, _ = good_folder
+    out = tmp_path / "o"
+    argv = ["run", study, "solver.n_stations=7", "study.max_cases=100", "--out", out, "--in-process", "--no-report",
+            "--progress", "off"]
+    assert main([str(a) for a in argv]) == 0
+    df = pd.read_parquet(out)
+    assert (df["p.solver.n_stations"] == 7).all() and df["positions"].map(len).eq(7 * 3).all()
+    assert read_manifest(out)["runs"][0]["overrides"] == ["solver.n_stations=7", "study.max_cases=100"]
+    # the override changes the config hash: resuming without it is refused (it would mix two studies)
+    line = _one_line(capsys, 2, ["run", study, "--out", out, "--resume", "--in-process", "--no-report"])
+    assert "--resume refused: the study's config hash" in line
+
+
+def test_show_names_the_study_file_and_the_report_path(capsys, good_folder):
+    study, good = good_folder
+    assert main(["show", str(good)]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out[0] == f"study 'killme' ({study}): {good}"
+    assert out[-1] == f"  report: none yet in reports/{good.name}"
+
+
+def test_a_closed_pipe_is_no_traceback():
+    """`workbench list presets | head -1`: the reader leaves early; no traceback on stderr."""
+    proc = subprocess.Popen([sys.executable, "-c", "from workbench.cli import main; "
+                             "[main(['list', 'presets']) for _ in range(300)]"],  # > the 64 KiB pipe buffer
+                            env=env(), stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc.stdout.readline()
+    proc.stdout.close()
+    err = proc.stderr.read().decode()
+    assert proc.wait(timeout=120) == 0 and "Traceback" not in err, err

@@ -86,7 +86,7 @@ def test_latin_hypercube_one_sample_per_stratum(write_study):
         assert strata == list(range(n)), key
 
 
-@pytest.mark.parametrize("block", ["random", "latin_hypercube"])
+@pytest.mark.parametrize("block", ["random", "latin_hypercube", "sobol"])
 def test_samples_reproducible(write_study, block):
     text = f"""
         [sweep]
@@ -104,4 +104,23 @@ def test_duplicate_cases_rejected(write_study):
         load_study(write_study("""
             [sweep]
             cases = [ { "robot.length" = 0.5 }, { "robot.length" = 0.5 } ]
+            """))
+
+
+def test_sobol_points_are_balanced_and_n_must_be_a_power_of_two(write_study):
+    """Scrambled Sobol (scipy.stats.qmc): 8 points put exactly one in each eighth of every axis."""
+    from workbench.study import StudyError
+
+    study = load_study(write_study("""
+        [sweep]
+        sobol = { n = 8, "load.bend_plane" = { low = 0.0, high = 1.0 }, "robot.length" = { low = 0.5, high = 1.5 } }
+        """))
+    cases = expand(study)
+    for key, lo in (("load.bend_plane", 0.0), ("robot.length", 0.5)):
+        assert sorted(int(np.floor((c.swept[key] - lo) * 8)) for c in cases) == list(range(8)), key
+    with pytest.raises(StudyError, match=r"sweep.sobol.n: a Sobol sequence is balanced only for a power of 2, "
+                                         r"got 6 \(use 4 or 8\)"):
+        load_study(write_study("""
+            [sweep]
+            sobol = { n = 6, "robot.length" = { low = 0.5, high = 1.5 } }
             """))

@@ -32,7 +32,6 @@ from __future__ import annotations
 import time
 
 import numpy as np
-from scipy.optimize import nnls
 
 from ..kinematics import (
     arc_from_tendon_lengths,
@@ -142,6 +141,8 @@ def actuation_from_arc(
         d = _section_offset(robot, j, j)
         sig = np.array([table[i][1] for i in idx])
         A = d * np.vstack([np.cos(sig), np.sin(sig)])
+        from scipy.optimize import nnls  # lazily: validate imports this module (2 s of scipy on a busy machine)
+
         T, resid = nnls(A, need)
         if resid > 1e-9 * max(1e-12, np.linalg.norm(need)) and resid > 1e-12:
             raise ValueError(

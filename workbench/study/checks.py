@@ -20,7 +20,7 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass, field
-from typing import Any, Mapping
+from typing import Any, Mapping, Sequence
 
 import numpy as np
 from pydantic import ValidationError
@@ -30,7 +30,7 @@ from .expand import count_cases, sweep_blocks
 from .messages import UNITS, StudyError, check_robot_value, join_key, num, pydantic_problems, suggest
 from .params import canonical_json
 from .scenarios import SCENARIOS, load_with_scenario, scenario_parameters
-from .schema import LIMIT_KEYS, SECTION_MODELS, SWEEP_SECTIONS, SweepSection
+from .schema import LIMIT_KEYS, SAMPLED_BLOCKS, SECTION_MODELS, SWEEP_SECTIONS, SweepSection
 
 __all__ = ["CHECK_SECONDS", "CaseCheck", "check_scenario", "load_rules", "case_rules", "check_cases",
            "check_override", "check_sweep", "known_paths"]
@@ -135,18 +135,38 @@ def _count_rules(load: Mapping[str, Any], robot) -> list[str]:
 MAX_TIME_STEPS = 10_000_000
 
 
-def case_rules(params: dict[str, Any], study: Any = None, min_time_step: float | None = None) -> list[str]:
+def case_rules(params: dict[str, Any], study: Any = None, min_time_step: float | None = None,
+               models: Sequence[str] = (), solvers: Sequence[Mapping[str, Any]] | None = None,
+               warnings_out: list[str] | None = None) -> list[str]:
     """Checks of one resolved case that need the robot (tendon counts, section counts, a dry build).
 
     ``study`` is not used (kept for the old signature ``_case_rules(params, study)``);
     ``min_time_step`` (default ``params["solver"]["time_step"]``) bounds the step count of a
-    dynamic case by :data:`MAX_TIME_STEPS`.
+    dynamic case by :data:`MAX_TIME_STEPS`.  ``models``: check each model's declared
+    capabilities (:mod:`workbench.study.capabilities`) against the built case, under each of
+    the ``solvers`` variants (default: the case's own ``[solver]``).  ``warnings_out`` collects
+    the plausibility warnings of a case without problems (:mod:`workbench.study.plausibility`).
     """
     import warnings
 
     with warnings.catch_warnings(), np.errstate(all="ignore"):  # a bad value is reported, not warned about
         warnings.simplefilter("ignore")
-        return _case_rules(params, min_time_step)
+        return _case_rules(params, min_time_step, models, solvers, warnings_out)
+
+
+def _capability_rules(robot, load_case, params, models, solvers) -> list[str]:
+    from .. import registry
+    from .capabilities import case_features, unsupported
+
+    out: list[str] = []
+    for solver in solvers or [params.get("solver", {})]:
+        f = case_features(robot, load_case, params, solver)
+        for m in models:
+            info = registry.MODELS.get(m)
+            for line in unsupported(m, info.capabilities if info else None, f):
+                if line not in out:
+                    out.append(line)
+    return out
 
 
 def _keyed(section: str, e: BaseException, names: Any) -> str:
@@ -164,7 +184,9 @@ def _keyed(section: str, e: BaseException, names: Any) -> str:
     return f"{section}.{hits[0]}: {msg}" if len(hits) == 1 else f"{section}: {msg}"
 
 
-def _case_rules(params: dict[str, Any], min_time_step: float | None) -> list[str]:
+def _case_rules(params: dict[str, Any], min_time_step: float | None, models: Sequence[str] = (),
+                solvers: Sequence[Mapping[str, Any]] | None = None, warnings_out: list[str] | None = None
+                ) -> list[str]:
     try:
         robot = build_robot(params["robot"], params["derived"])
     except Exception as e:  # noqa: BLE001 - every build failure is a user input problem here
@@ -186,12 +208,18 @@ def _case_rules(params: dict[str, Any], min_time_step: float | None) -> list[str
         # dry-build the load case (tendon commands from the CC arc command): infeasible
         # commands are input errors, reported before anything runs
         try:
-            build_load(robot, load)
+            load_case = build_load(robot, load)
         except ImportError:
-            pass  # workbench.models.cc not installed: checked when the case runs
+            return out  # workbench.models.cc not installed: checked when the case runs
         except Exception as e:  # noqa: BLE001
             key = "load.bend_plane" if load.get("bend_angle") is not None and "plane" in str(e) else None
             out.append(f"{key}: {e}" if key else _keyed("load", e, [k for k in load if load.get(k) is not None]))
+            return out
+        out.extend(_capability_rules(robot, load_case, {**params, "load": load}, models, solvers))
+        if not out and warnings_out is not None:
+            from .plausibility import plausibility_warnings
+
+            warnings_out.extend(plausibility_warnings(robot, load_case, {**params, "load": load}))
     return out
 
 
@@ -214,7 +242,7 @@ def _block_names(study) -> list[str]:
     sw = study.sweep
     names = [f'sweep.product["{p}"]' for p in sw.get("product", {})]
     names += ["sweep.zip"] * bool(sw.get("zip")) + ["sweep.cases"] * ("cases" in sw)
-    return names + [f"sweep.{b}" for b in ("random", "latin_hypercube") if sw.get(b)]
+    return names + [f"sweep.{b}" for b in SAMPLED_BLOCKS if sw.get(b)]
 
 
 def _projection(blocks, keep) -> list[list[tuple[int, dict[str, Any]]]]:
@@ -234,6 +262,7 @@ class CaseCheck:
     """What :func:`check_cases` found: problems (one line per distinct problem) and how much it built."""
 
     problems: list[str] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
     built: int = 0
     distinct: int = 0
 
@@ -279,13 +308,14 @@ def _group(found: dict[str, list[tuple[int, dict]]], total: int, unit: str = "ca
     return lines
 
 
-def check_cases(study, source: str, budget: float | None = None) -> CaseCheck:
+def check_cases(study, source: str, budget: float | None = None, *, run_models: bool = True) -> CaseCheck:
     """The size limit, duplicate cases and :func:`case_rules` of a complete study, bounded in time and memory.
 
     The cases are counted, not expanded; duplicates are found inside each sweep block; the dry
     builds run over the distinct combinations of robot / derived / scenario / load values
     (solver values are checked on their own), lazily, for at most ``budget`` seconds (default
-    :data:`CHECK_SECONDS`).  A problem that occurs in many cases is one line.
+    :data:`CHECK_SECONDS`).  ``run_models=False``: skip the models' capability checks (a kind
+    whose own tasks compute the rows).  A problem that occurs in many cases is one line.
 
     Raises
     ------
@@ -313,7 +343,11 @@ def check_cases(study, source: str, budget: float | None = None) -> CaseCheck:
     steps = [study.base["solver"].get("time_step")] + [sub["solver.time_step"] for b in sv for _, sub in b
                                                       if "solver.time_step" in sub]
     min_dt = min((x for x in steps if x), default=None)
+    solvers = list({canonical_json(s_): s_ for s_ in (
+        {**study.base["solver"], **{k.partition(".")[2]: v for _, sub in combo for k, v in sub.items()}}
+        for combo in itertools.islice(itertools.product(*sv), 64))}.values())
     found: dict[str, list[tuple[int, dict]]] = {}
+    warned: dict[str, list[tuple[int, dict]]] = {}
     t_end = time.monotonic() + (CHECK_SECONDS if budget is None else budget)
     for combo in itertools.product(*rl):
         if time.monotonic() > t_end:
@@ -321,8 +355,12 @@ def check_cases(study, source: str, budget: float | None = None) -> CaseCheck:
         params = _params(study.base, [sub for _, sub in combo])
         index = sum(i * st for (i, _), st in zip(combo, strides))
         swept = {k: v for b, (i, _) in zip(blocks, combo) for k, v in b[i].items()}
-        for m in case_rules(params, study, min_dt):
+        warns: list[str] = []
+        models = tuple(getattr(study, "models", ())) if run_models else ()
+        for m in case_rules(params, study, min_dt, models=models, solvers=solvers, warnings_out=warns):
             found.setdefault(m, []).append((index, swept))
+        for w in warns:
+            warned.setdefault(w, []).append((index, swept))
         check.built += 1
     for combo in itertools.product(*sv):
         try:
@@ -331,6 +369,7 @@ def check_cases(study, source: str, budget: float | None = None) -> CaseCheck:
             found.setdefault(f"solver: {e}", []).append((0, {k: v for _, sub in combo for k, v in sub.items()}))
     unit = "cases" if check.distinct == n else "robot/load combinations"
     check.problems = _group(found, check.distinct, unit)
+    check.warnings = _group(warned, check.distinct, unit)
     if check.problems:
         raise StudyError([f"{source}: {p}" for p in check.problems])
     return check
@@ -497,12 +536,15 @@ def _check_range(path: str, rng: Any, where: str, axes: _Axes) -> dict[str, Any]
 
 
 def _check_samples(spec: dict[str, Any], where: str, axes: _Axes) -> dict[str, Any]:
-    """A ``random`` or ``latin_hypercube`` block: ``n`` and the checked ranges."""
+    """A ``random``, ``latin_hypercube`` or ``sobol`` block: ``n`` and the checked ranges."""
     n = spec.get("n")
     if n is None:
         axes.problems.append(f"{where}.n: missing required key (number of samples)")
     elif isinstance(n, bool) or not isinstance(n, int) or n < 1:
         axes.problems.append(f"{where}.n: must be an integer >= 1, got {n!r}")
+    elif where.endswith("sobol") and n & (n - 1):
+        axes.problems.append(f"{where}.n: a Sobol sequence is balanced only for a power of 2, got {n} "
+                             f"(use {1 << (n - 1).bit_length() >> 1} or {1 << (n - 1).bit_length()})")
     ranges = {k: v for k, v in spec.items() if k != "n"}
     if not ranges:
         axes.problems.append(f"{where}: no axes (add e.g. \"robot.length\" = {{low = 0.5, high = 1.0}})")
@@ -531,7 +573,7 @@ def check_sweep(sw: SweepSection, base: dict[str, dict[str, Any]],
         out["zip"] = _check_grid(sw.zip, "sweep.zip", axes)
     if "cases" in sw.model_fields_set:
         out["cases"] = _check_cases(sw.cases, axes)
-    for block in ("random", "latin_hypercube"):
+    for block in SAMPLED_BLOCKS:
         spec = getattr(sw, block)
         if spec is not None:
             out[block] = _check_samples(spec, f"sweep.{block}", axes)

@@ -19,7 +19,8 @@ its own exceptions (:func:`~workbench.study.evaluate.evaluate_rows` does); execu
   :class:`~workbench.study.sandbox.Sandbox`) that is restarted after a crash or timeout: the
   CLI default.
 - :class:`DaskExecutor` -- Dask distributed: a ``LocalCluster`` started inside the command
-  (one thread per worker process) or an existing scheduler; every worker runs its units in its
+  (one thread per worker process), an existing scheduler, or a cluster made by a given function
+  (the batch-scheduler clusters of :mod:`workbench.study.cluster`); every worker runs its units in its
   own sandbox (:mod:`workbench.study.dask_worker`), so only a lost worker is a Dask failure.
   Cluster failures raise :class:`~workbench.study.outcomes.InfrastructureError` with one line.
 
@@ -177,17 +178,22 @@ class DaskExecutor:
         Give up (:class:`InfrastructureError`) when the cluster has had no worker for this long [s].
     connect_timeout : float
         Seconds to wait for the scheduler on entry.
+    cluster : callable, optional
+        ``cluster() -> distributed cluster``, called on entry inside the Dask settings above
+        (instead of a ``LocalCluster``); the cluster is closed on exit.
     """
 
     isolates_cases = True
 
     def __init__(self, n_workers: int | None = None, scheduler: str | None = None,
-                 allowed_failures: int = 1, lost_timeout: float = 120.0, connect_timeout: float = 10.0) -> None:
+                 allowed_failures: int = 1, lost_timeout: float = 120.0, connect_timeout: float = 10.0,
+                 cluster: Callable[[], Any] | None = None) -> None:
         if n_workers is not None and n_workers < 1:
             raise ValueError(f"n_workers must be >= 1, got {n_workers}")
         self.n_workers, self.scheduler = n_workers, scheduler
         self.allowed_failures = int(allowed_failures)
         self.lost_timeout, self.connect_timeout = float(lost_timeout), float(connect_timeout)
+        self.make_cluster = cluster
         self._cluster = self._client = self._cfg = None
         self.name = f"dask ({scheduler})" if scheduler else f"dask LocalCluster ({n_workers or 'auto'} workers)"
 
@@ -198,7 +204,7 @@ class DaskExecutor:
             self.__exit__(None, None, None)
             if isinstance(e, KeyboardInterrupt):
                 raise
-            where = self.scheduler or "a local cluster"
+            where = self.scheduler or ("a local cluster" if self.make_cluster is None else self.name)
             first = str(e).splitlines()[0] if str(e) else ""
             raise ExecutorStartError(f"cannot start Dask on {where}: {type(e).__name__}: {first}".rstrip(": ")) \
                 from None
@@ -224,6 +230,9 @@ class DaskExecutor:
                 self.allowed_failures = int(self._client.run_on_scheduler(_allowed_failures))
             except Exception:  # noqa: BLE001 - an old scheduler: keep the local setting
                 pass
+        elif self.make_cluster is not None:
+            self._cluster = self.make_cluster()
+            self._client = Client(self._cluster, timeout=self.connect_timeout)
         else:
             n = self.n_workers or os.cpu_count() or 1
             # no dashboard; the scheduler's HTTP routes on a free port (the default 8787 may be taken)

@@ -18,6 +18,7 @@ from typing import Any, Protocol
 import numpy as np
 
 from .params import case_id_for, flatten_params
+from .schema import SAMPLED_BLOCKS
 
 __all__ = ["Case", "expand", "count_cases", "case_id_for", "flatten_params", "sweep_blocks"]
 
@@ -65,25 +66,39 @@ def sweep_blocks(study: SweepSpec) -> list[list[dict[str, Any]]]:
         blocks.append([{p: vals[i] for p, vals in z.items()} for i in range(n)])
     if "cases" in sw:
         blocks.append([dict(c) for c in sw["cases"]])
-    for tag, block in ((0, "random"), (1, "latin_hypercube")):
+    for tag, block in enumerate(SAMPLED_BLOCKS):
         spec = sw.get(block)
         if spec:
-            blocks.append(_samples(spec, study.seed, tag, latin=(block == "latin_hypercube")))
+            blocks.append(_samples(spec, study.seed, tag, block))
     return blocks
 
 
-def _samples(spec: dict[str, Any], seed: int, tag: int, *, latin: bool) -> list[dict[str, Any]]:
-    """Uniform or Latin-hypercube samples, keys in sorted order, seeded by ``[seed, tag]``."""
+def _unit_samples(n: int, d: int, rng: np.random.Generator, kind: str) -> np.ndarray:
+    """``(n, d)`` points in [0, 1): independent uniform, Latin hypercube or scrambled Sobol (``scipy.stats.qmc``)."""
+    if kind == "random":
+        return np.column_stack([rng.uniform(0.0, 1.0, n) for _ in range(d)]) if d else np.zeros((n, 0))
+    from scipy.stats import qmc
+
+    engine = qmc.LatinHypercube(d, seed=rng) if kind == "latin_hypercube" else qmc.Sobol(d, scramble=True, seed=rng)
+    return engine.random(n)
+
+
+def _samples(spec: dict[str, Any], seed: int, tag: int, kind: str) -> list[dict[str, Any]]:
+    """``kind`` samples (:data:`SAMPLED_BLOCKS`), keys in sorted order, seeded by ``[seed, tag]``.
+
+    ``random``: independent uniform draws per key; ``latin_hypercube``: one sample per stratum
+    of every key (``scipy.stats.qmc.LatinHypercube``); ``sobol``: a scrambled Sobol sequence
+    (``scipy.stats.qmc.Sobol``; ``n`` a power of 2, checked in validation).
+    """
     n = int(spec["n"])
     rng = np.random.default_rng(np.random.SeedSequence([int(seed), tag]))
+    paths = sorted(k for k in spec if k != "n")
+    points = _unit_samples(n, len(paths), rng, kind)
     cols: dict[str, list[Any]] = {}
-    for path in sorted(k for k in spec if k != "n"):
+    for j, path in enumerate(paths):
         lo, hi = spec[path]["low"], spec[path]["high"]
         integer = isinstance(lo, int) and isinstance(hi, int)
-        if latin:
-            u = (rng.permutation(n) + rng.uniform(0.0, 1.0, n)) / n  # one sample per stratum
-        else:
-            u = rng.uniform(0.0, 1.0, n)
+        u = points[:, j]
         if integer:
             vals = [int(min(hi, lo + np.floor(x * (hi - lo + 1)))) for x in u]
         else:
@@ -102,7 +117,7 @@ def count_cases(study: SweepSpec) -> int:
         n *= len(next(iter(sw["zip"].values())))
     if "cases" in sw:
         n *= len(sw["cases"])
-    for block in ("random", "latin_hypercube"):
+    for block in SAMPLED_BLOCKS:
         if sw.get(block):
             n *= int(sw[block]["n"])
     return n

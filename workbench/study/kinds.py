@@ -64,8 +64,9 @@ class StudyKind(Protocol):
     task: Callable[[Any], Iterable[dict[str, Any]]]
     separable_models: bool
 
-    def load(self, path: str | Path, max_cases: int | None = None) -> Any:
-        """Read and validate a study file (:class:`~workbench.study.messages.StudyError` listing every problem)."""
+    def load(self, path: str | Path, max_cases: int | None = None, overrides: Sequence[str] = ()) -> Any:
+        """Read and validate a study file with command-line ``key=value`` ``overrides`` applied
+        (:class:`~workbench.study.messages.StudyError` listing every problem)."""
 
     def expand(self, spec: Any) -> list[Case]:
         """Every case of the study, in a deterministic order, with stable ``case_id``."""
@@ -102,8 +103,8 @@ class SweepKind:
     separable_models = True
     task = staticmethod(evaluate_rows)
 
-    def load(self, path: str | Path, max_cases: int | None = None) -> Study:
-        return load_study(path, max_cases=max_cases)
+    def load(self, path: str | Path, max_cases: int | None = None, overrides: Sequence[str] = ()) -> Study:
+        return load_study(path, max_cases=max_cases, overrides=overrides)
 
     def expand(self, spec: Study) -> list[Case]:
         return expand(spec)

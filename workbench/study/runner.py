@@ -57,7 +57,8 @@ class RunSummary:
     """Outcome of :func:`run_cases` (counts over the whole table, including earlier runs).
 
     ``failures`` counts failed rows per ``failure`` kind; ``n_duplicates`` the rows beyond the
-    first of a (case_id, model) pair (0 in a folder only locked runs wrote).
+    first of a (case_id, model) pair (0 in a folder only locked runs wrote); ``n_cached`` the
+    rows of this run taken from the result cache.
     """
 
     folder: Path
@@ -71,6 +72,7 @@ class RunSummary:
     failed_cases: list[str] = field(default_factory=list)
     failures: dict[str, int] = field(default_factory=dict)
     n_duplicates: int = 0
+    n_cached: int = 0
 
     @property
     def exit_code(self) -> int:
@@ -99,11 +101,28 @@ def _complete(unit: Unit, out: Outcome, params: dict[str, Any], separable: bool)
     return rows + failed_rows(cid, params, missing, crash.reason, failure=crash.kind), None
 
 
+def _cached(units: list[Unit], cache: Any, session: RunSession, separable: bool) -> list[Unit]:
+    """Record what ``cache`` holds of ``units``; the units (models) still to compute."""
+    out = []
+    for u in units:
+        rows = {m: cache.get(u.case.case_id, m) for m in u.models}
+        missing = tuple(m for m in u.models if rows[m] is None)
+        if missing and not separable:  # computed together: all or nothing
+            cache.hits -= len(u.models) - len(missing)
+            out.append(u)
+            continue
+        if len(missing) < len(u.models):
+            session.record(u.case.case_id, [rows[m] for m in u.models if rows[m] is not None], complete=not missing)
+        if missing:
+            out.append(Unit(u.case, missing))
+    return out
+
+
 def _execute(kind: StudyKind, spec: Any, session: RunSession, executor: Executor, chunk_size: int,
-             options: Any, recorded: dict[str, dict[str, Any]], limits: CaseLimits) -> None:
-    """Submit the session's units; store each outcome; rerun the models left after a crash."""
+             options: Any, recorded: dict[str, dict[str, Any]], limits: CaseLimits, cache: Any = None) -> None:
+    """Submit the session's units (those the cache does not hold); store each outcome; rerun the models left after a crash."""
     separable = getattr(kind, "separable_models", True)
-    pending = list(session.todo)
+    pending = list(session.todo) if cache is None else _cached(list(session.todo), cache, session, separable)
     while pending:
         payloads = [kind.payload(spec, u.case, u.models, options) for u in pending]
         requeue: list[Unit] = []
@@ -112,6 +131,9 @@ def _execute(kind: StudyKind, spec: Any, session: RunSession, executor: Executor
             rows, more = _complete(unit, out, recorded[unit.case.case_id], separable)
             if more is not None:
                 requeue.append(more)
+            if cache is not None and (separable or all(r.get("status") == "ok" for r in rows)):
+                for r in rows:
+                    cache.put(r)
             session.record(unit.case.case_id, rows, complete=more is None)
         pending = requeue
 
@@ -130,6 +152,7 @@ def run_cases(
     flush_seconds: float = 2.0,
     batch_size: int | None = None,
     limits: CaseLimits | None = None,
+    cache: Any = None,
     **options: Any,
 ) -> RunSummary:
     """Run every (remaining) case of ``spec``, a validated study of ``kind``, into ``folder``.
@@ -162,6 +185,10 @@ def run_cases(
     limits : CaseLimits, optional
         Per-case limits; default ``kind.limits(spec)`` (``[solver] max_case_seconds`` /
         ``max_case_memory``).
+    cache : ResultCache or path-like, optional
+        Reuse rows computed before for the same case, model and model code version, and store
+        the new ones (:mod:`workbench.study.cache`); ignored with a custom ``model_lookup`` /
+        ``arc_actuation``.
     **options
         Passed to ``kind.run_options`` (sweep: ``model_lookup``, ``arc_actuation``, see
         :func:`~workbench.study.evaluate.evaluate_case`; picklable for processes).
@@ -193,15 +220,28 @@ def run_cases(
             force=force, progress=progress, flush_rows=kind.flush_rows if flush_rows is None else flush_rows,
             flush_seconds=flush_seconds, lock=lock, flush_each=not getattr(executor, "isolates_cases", True),
             limits=limits)
+        if cache is not None and not any(options.get(k) for k in ("model_lookup", "arc_actuation")):
+            from .cache import ResultCache
+
+            cache = cache if isinstance(cache, ResultCache) else ResultCache(cache)
+        else:
+            cache = None
         with session:
             chunk = batch_size or kind.batch_size(len(session.todo), getattr(executor, "slots", 1))
-            _execute(kind, spec, session, executor, chunk, run_opts, recorded, limits)
+            try:
+                _execute(kind, spec, session, executor, chunk, run_opts, recorded, limits, cache)
+            finally:
+                if cache is not None:
+                    session.run_rec["cache"] = {"folder": str(cache.folder), "hits": cache.hits,
+                                                "writes": cache.writes}
     except BaseException as e:
         executor.__exit__(type(e), e, e.__traceback__)
         raise
     executor.__exit__(None, None, None)
-    return summarize(session.folder, n_cases=len(cases), n_run=len(session.todo),
-                     wall_time=time.perf_counter() - session.t0)
+    summary = summarize(session.folder, n_cases=len(cases), n_run=len(session.todo),
+                        wall_time=time.perf_counter() - session.t0)
+    summary.n_cached = cache.hits if cache is not None else 0
+    return summary
 
 
 def run_study(
@@ -219,6 +259,7 @@ def run_study(
     flush_seconds: float = 2.0,
     batch_size: int | None = None,
     limits: CaseLimits | None = None,
+    cache: Any = None,
 ) -> RunSummary:
     """Run every (remaining) case of the sweep study ``study`` into ``folder``: ``run_cases(SWEEP, ...)``.
 
@@ -227,7 +268,7 @@ def run_study(
     """
     return run_cases(SWEEP, study, folder, executor, resume=resume, retry_failed=retry_failed, force=force,
                      progress=progress, flush_rows=flush_rows, flush_seconds=flush_seconds, batch_size=batch_size,
-                     limits=limits, model_lookup=model_lookup, arc_actuation=arc_actuation)
+                     limits=limits, cache=cache, model_lookup=model_lookup, arc_actuation=arc_actuation)
 
 
 def summarize(folder: str | Path, *, n_cases: int | None = None, n_run: int = 0,

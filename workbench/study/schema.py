@@ -17,12 +17,14 @@ from typing import Any, Literal
 from pydantic import BaseModel, ConfigDict, Field
 
 __all__ = [
-    "DEFAULT_MAX_CASES", "DEFAULT_MAX_CASE_SECONDS", "LIMIT_KEYS", "MAX_RESOLUTION", "SWEEP_SECTIONS",
+    "DEFAULT_MAX_CASES", "DEFAULT_MAX_CASE_SECONDS", "SAMPLED_BLOCKS", "LIMIT_KEYS", "MAX_RESOLUTION", "SWEEP_SECTIONS",
     "SECTION_MODELS", "CaseLimitFields", "StudySection", "LoadSection", "SolverSection", "DerivedSection",
     "SweepSection", "ReportSection", "StudyFile",
 ]
 
 DEFAULT_MAX_CASES = 5000
+#: Sweep blocks of sampled values (``n`` samples of ``{low, high}`` ranges), in expansion order.
+SAMPLED_BLOCKS = ("random", "latin_hypercube", "sobol")
 #: Sections whose keys a ``[sweep]`` axis may name (``"<section>.<key>"``).
 SWEEP_SECTIONS = ("robot", "load", "solver", "derived", "scenario")
 
@@ -104,6 +106,7 @@ class SweepSection(BaseModel):
     cases: list[dict[str, Any]] = Field(default_factory=list)
     random: dict[str, Any] | None = None
     latin_hypercube: dict[str, Any] | None = None
+    sobol: dict[str, Any] | None = None
 
 
 class ReportSection(BaseModel):

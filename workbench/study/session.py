@@ -53,7 +53,7 @@ __all__ = ["RunSession", "Unit", "finish_run", "git_commit", "open_run_manifest"
            "presentation_changes", "read_manifest", "study_name"]
 
 _PACKAGES = ("trunk-workbench", "exudyn", "numpy", "scipy", "pandas", "pyarrow", "dask",
-             "distributed", "pydantic", "tqdm")
+             "distributed", "dask-jobqueue", "pydantic", "tqdm")
 
 
 def _now() -> str:
@@ -301,6 +301,8 @@ class RunSession:
                    "study_file": spec.path}
         if plan.retried:
             run_rec["retried"] = plan.retried
+        if getattr(spec, "overrides", ()):
+            run_rec["overrides"] = list(spec.overrides)
         if changes:
             run_rec["changed"] = changes
             manifest["study"] = {**manifest["study"], "study": {**manifest["study"].get("study", {}),

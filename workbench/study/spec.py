@@ -10,7 +10,7 @@ The format reference (an annotated example of every section, the sweep semantics
     [solver]    the fields of workbench.models.SolverOptions
     [scenario]  optional: name of a registered scenario + its keyword parameters
     [derived]   optional: gravity_parameter (gamma = q L^3 / EI sets the preset's gravity)
-    [sweep]     product / zip / cases / random / latin_hypercube blocks of dotted-key axes
+    [sweep]     product / zip / cases / random / latin_hypercube / sobol blocks of dotted-key axes
     [report]    optional presentation hints (not in the config hash)
 
 All quantities are SI.  :func:`load_study` collects *all* problems and raises one
@@ -35,12 +35,14 @@ Checked by ``tests/study/test_spec.py`` (every file of ``tests/study/bad_configs
 from __future__ import annotations
 
 import hashlib
+import re
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, Mapping, Sequence
 
 from pydantic import BaseModel, ValidationError
 
+from .report_keys import check_report
 from .checks import (
     _NONNEG_LIST_FIELDS,
     case_rules,
@@ -132,6 +134,10 @@ class Study:
         they do not change a result).
     notes : tuple of str
         What validation wants the user to know without refusing the file (one line each).
+    warnings : tuple of str
+        Plausibility warnings (:mod:`workbench.study.plausibility`), one line each.
+    overrides : tuple of str
+        The command-line ``key=value`` overrides applied to the file (recorded in the manifest).
     """
 
     path: str
@@ -145,6 +151,8 @@ class Study:
     report: dict[str, Any] = field(default_factory=dict)
     limits: CaseLimits = field(default_factory=CaseLimits)
     notes: tuple[str, ...] = ()
+    warnings: tuple[str, ...] = ()
+    overrides: tuple[str, ...] = ()
 
     def resolved(self) -> dict[str, Any]:
         """Plain-data resolved spec (what the manifest records; the limits under ``solver``)."""
@@ -171,7 +179,7 @@ class Study:
 # ---------------------------------------------------------------------------------------
 # loading
 # ---------------------------------------------------------------------------------------
-def load_study(path: str | Path, *, max_cases: int | None = None) -> Study:
+def load_study(path: str | Path, *, max_cases: int | None = None, overrides: Sequence[str] = ()) -> Study:
     """Read and validate a study file; raise :class:`StudyError` listing every problem.
 
     Parameters
@@ -180,9 +188,15 @@ def load_study(path: str | Path, *, max_cases: int | None = None) -> Study:
         The TOML file.
     max_cases : int, optional
         Overrides ``study.max_cases`` (the CLI's ``--max-cases``).
+    overrides : sequence of str
+        ``key=value`` settings from the command line (:mod:`workbench.study.overrides`), applied
+        before validation and recorded in :attr:`Study.overrides`.
     """
-    raw = read_toml(path)
-    return parse_study(raw, source=str(Path(path)), max_cases=max_cases)
+    from .overrides import apply_overrides
+
+    raw = apply_overrides(read_toml(path), overrides)
+    study = parse_study(raw, source=str(Path(path)), max_cases=max_cases)
+    return replace(study, overrides=tuple(overrides)) if overrides else study
 
 
 def _parse_sections(raw: Mapping[str, Any]) -> tuple[dict[str, BaseModel], list[str]]:
@@ -227,7 +241,7 @@ def _check_models(sections: Mapping[str, BaseModel]) -> list[str]:
     if len(set(known)) != len(known):
         problems.append("study.models: lists a model twice")
     rep = sections.get("report")
-    if rep is not None and rep.reference is not None and rep.reference not in st.models:
+    if rep is not None and rep.reference is not None and rep.reference not in st.models and len(known) == len(st.models):
         problems.append(f"report.reference: {rep.reference!r} is not one of study.models ({', '.join(st.models)})")
     sol = sections.get("solver")
     for i, m in enumerate(getattr(sol, "error_estimate_exempt", None) or []):
@@ -362,8 +376,15 @@ def _whole_file_problem(raw: Mapping[str, Any], source: str) -> None:
                           f"study: add kind = \"series_parallel\" to [study]"])
 
 
-def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: int | None = None) -> Study:
-    """Validate an already parsed study mapping (see :func:`load_study`)."""
+def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: int | None = None,
+                run_models: bool = True) -> Study:
+    """Validate an already parsed study mapping (see :func:`load_study`).
+
+    ``run_models=False``: the study kind computes its rows with its own tasks, not through the
+    models' ``run(robot, load, options)``, so their declared capabilities are not checked.
+    """
+    from ..models import MODEL_NAMES
+
     raw = dict(raw)
     _whole_file_problem(raw, source)
     _drop_kind(raw, source)
@@ -381,16 +402,36 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
         if raw.get("scenario") is not None and scenario_base is None:  # knock-on errors of a bad [scenario]
             sweep_problems = [p for p in sweep_problems if '["scenario.' not in p.partition(": ")[0]]
         problems += sweep_problems
+        sweep_ok = not sweep_problems
+    else:
+        sweep_ok = "sweep" not in raw or "sweep" in sections
     problems += _sensitivity_rules(sections.get("report"), base, sweep)
     st = sections.get("study")
-    if problems or st is None or base is None:
+    report = sections["report"].model_dump(exclude_defaults=True) if "report" in sections else None
+    scenario_ok = raw.get("scenario") is None or scenario_base is not None  # else its keys are unknown: knock-ons
+    if base is not None and report is not None and scenario_ok:
+        problems += check_report(report, known_paths(base))
+    # the cases are checked too when the other problems are only in [study] / [report] (no knock-on errors)
+    only_presentation = all(re.split(r"[.:\[ ]", p, maxsplit=1)[0] in ("study", "report") for p in problems)
+    if base is None or "solver" not in sections or not sweep_ok or not only_presentation:
         raise StudyError([f"{source}: {p}" for p in collapse_indexed(problems)] or [f"{source}: invalid study"])
     solver = sections["solver"]
+    models = tuple(st.models) if st is not None else ()
     study = Study(
-        path=source, name=st.name, description=st.description, seed=st.seed,
-        models=tuple(st.models), max_cases=int(max_cases if max_cases is not None else st.max_cases),
-        base=base, sweep=sweep, report=sections["report"].model_dump(exclude_defaults=True),
+        path=source, name=st.name if st else "?", description=st.description if st else "",
+        seed=st.seed if st else 0, models=tuple(m for m in models if m in MODEL_NAMES),
+        max_cases=int(max_cases if max_cases is not None else (st.max_cases if st else DEFAULT_MAX_CASES)),
+        base=base, sweep=sweep, report=report or {},
         limits=CaseLimits(solver.max_case_seconds, solver.max_case_memory),
     )
-    check = check_cases(study, source)  # size limit, duplicates, a dry build of every case (time-bounded)
-    return replace(study, notes=(check.note,)) if check.note else study
+    try:  # size limit, duplicates, a dry build and the models' capabilities of every case (time-bounded)
+        check = check_cases(study, source, run_models=run_models)
+    except StudyError as e:  # reported with the file's other problems, in one pass
+        if not problems:
+            raise
+        problems += [p[len(source) + 2:] if p.startswith(f"{source}: ") else p for p in e.problems]
+        check = None
+    if problems or st is None:
+        raise StudyError([f"{source}: {p}" for p in collapse_indexed(problems)] or [f"{source}: invalid study"])
+    return replace(study, models=models, notes=(check.note,) if check.note else (),
+                   warnings=tuple(f"{source}: {w}" for w in check.warnings))

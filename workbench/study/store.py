@@ -39,6 +39,7 @@ from typing import Any, Iterable, Mapping
 import pyarrow as pa
 import pyarrow.parquet as pq
 
+from .columns import field_metadata
 from .outcomes import failure_of_error
 
 __all__ = ["CorruptPart", "ResultStore", "SchemaMismatch", "StoredRow", "atomic_write_bytes", "check_parts",
@@ -265,7 +266,7 @@ class ResultStore:
     def _current_schema(self) -> pa.Schema:
         fields = _canonical_order(self._fields)
         meta = {_SHAPES_KEY: json.dumps(self._shapes, sort_keys=True).encode()}
-        return pa.schema([pa.field(n, t) for n, t in fields], metadata=meta)
+        return pa.schema([pa.field(n, t, metadata=field_metadata(n)) for n, t in fields], metadata=meta)
 
     def _write_schema_if_changed(self) -> None:
         schema = self._current_schema()

@@ -35,8 +35,12 @@ class SeriesParallelKind:
     separable_models = False
     task = staticmethod(evaluate_motion_rows)
 
-    def load(self, path: str | Path, max_cases: int | None = None) -> SeriesParallelStudy:
-        return load_series_parallel_study(path, max_cases=max_cases)
+    def load(self, path: str | Path, max_cases: int | None = None, overrides: tuple[str, ...] = ()
+             ) -> SeriesParallelStudy:
+        from dataclasses import replace
+
+        return replace(load_series_parallel_study(path, max_cases=max_cases, overrides=overrides),
+                       overrides=tuple(overrides))
 
     def expand(self, spec: SeriesParallelStudy) -> list[Case]:
         return expand_motions(spec)

@@ -37,6 +37,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationIn
 
 from ...study.kinds import kind_of
 from ...study.messages import StudyError, pydantic_problems, read_toml, suggest
+from ...study.overrides import apply_overrides
 from ...study.params import canonical_json
 from ...study.outcomes import CaseLimits
 from ...study.schema import LIMIT_KEYS, CaseLimitFields, ReportSection
@@ -162,6 +163,7 @@ class SeriesParallelStudy:
     motions: dict[str, list[dict[str, Any]]]
     report: dict[str, Any] = field(default_factory=dict)
     limits: CaseLimits = field(default_factory=CaseLimits)
+    overrides: tuple[str, ...] = ()
 
     @property
     def models(self) -> tuple[str, ...]:
@@ -259,13 +261,15 @@ def _validation_problems(exc: ValidationError) -> list[str]:
     return [ln for ln in out if not (ln.endswith(": missing required key") and ln.partition(": ")[0] in suggested)]
 
 
-def load_series_parallel_study(path: str | Path, *, max_cases: int | None = None) -> SeriesParallelStudy:
+def load_series_parallel_study(path: str | Path, *, max_cases: int | None = None,
+                               overrides: tuple[str, ...] = ()) -> SeriesParallelStudy:
     """Read and validate a series-parallel study file; raise :class:`StudyError` listing every problem.
 
-    Each problem is one line ``<file>: <key path>: <reason>``.
+    Each problem is one line ``<file>: <key path>: <reason>``.  ``overrides``: command-line
+    ``key=value`` settings (:mod:`workbench.study.overrides`), validated like the file.
     """
     p = Path(path)
-    data = _read_toml(p)
+    data = apply_overrides(_read_toml(p), overrides)
     problems: list[str] = []
     model = None
     raw_geometry = data.get("geometry", {})

@@ -56,7 +56,8 @@ def load_grasp_study(path: str | Path, max_cases: int | None = None) -> Study:
         problems.append("load.analysis: grasp studies are quasi-static (analysis = \"static\")")
     if problems:
         raise StudyError([f"{source}: {p}" for p in problems])
-    return parse_study(raw, source=source, max_cases=max_cases)
+    # the grasp tasks compute the rows (not the models' run()): their capability rows do not apply
+    return parse_study(raw, source=source, max_cases=max_cases, run_models=False)
 
 
 class GraspKind:

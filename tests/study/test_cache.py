@@ -1,0 +1,72 @@
+"""The per-case result cache: a study with an added sweep value or an added model computes only the new
+(case, model) pairs; cached rows are bit-identical; only results are cached; a code change invalidates."""
+
+from __future__ import annotations
+
+import pandas as pd
+
+from runs_util import same_table
+from study_fakes import GOOD
+from workbench.cli import main
+from workbench.study import SerialExecutor, load_study, read_manifest, run_study
+from workbench.study import cache as cache_mod
+from workbench.study.cache import ResultCache, code_version
+
+
+def _study(write_study, tensions, models='"cc"'):
+    axis = ", ".join(f"[{t}, 0.0]" for t in tensions)
+    return load_study(write_study(f'\n[sweep]\nproduct = {{ "load.tensions" = [{axis}] }}\n',
+                                  base=GOOD.replace('models = ["cc", "ancf"]', f"models = [{models}]")))
+
+
+def test_an_added_sweep_value_computes_only_the_new_case(tmp_path, write_study):
+    cache = tmp_path / "_cache"
+    first = run_study(_study(write_study, [1.0, 2.0]), tmp_path / "a", SerialExecutor(), progress=False, cache=cache)
+    assert first.n_cached == 0 and read_manifest(tmp_path / "a")["runs"][0]["cache"]["writes"] == 2
+    second = run_study(_study(write_study, [1.0, 2.0, 3.0]), tmp_path / "b", SerialExecutor(), progress=False,
+                       cache=cache)
+    rec = read_manifest(tmp_path / "b")["runs"][0]["cache"]
+    assert second.n_cached == 2 and rec == {"folder": str(cache), "hits": 2, "writes": 1}  # one case computed
+    a, b = pd.read_parquet(tmp_path / "a"), pd.read_parquet(tmp_path / "b")
+    old = b[b["case_id"].isin(a["case_id"])]
+    assert same_table(old, a) and old.sort_values("case_id")["wall_time"].tolist() == \
+        a.sort_values("case_id")["wall_time"].tolist()  # the very rows, wall time included
+    ref = run_study(_study(write_study, [1.0, 2.0, 3.0]), tmp_path / "ref", SerialExecutor(), progress=False)
+    assert ref.n_cached == 0 and same_table(b, pd.read_parquet(tmp_path / "ref"))  # same table as without cache
+
+
+def test_an_added_model_computes_only_that_model(tmp_path, write_study):
+    cache = tmp_path / "_cache"
+    run_study(_study(write_study, [1.0]), tmp_path / "a", SerialExecutor(), progress=False, cache=cache)
+    s = run_study(_study(write_study, [1.0], models='"cc", "ancf"'), tmp_path / "b", SerialExecutor(),
+                  progress=False, cache=cache)
+    assert s.n_cached == 1 and read_manifest(tmp_path / "b")["runs"][0]["cache"]["writes"] == 1
+    assert set(pd.read_parquet(tmp_path / "b")["model"]) == {"cc", "ancf"} and s.n_ok == 1
+
+
+def test_only_results_are_cached_and_a_code_change_invalidates(tmp_path, monkeypatch):
+    c = ResultCache(tmp_path)
+    base = {"case_id": "abc", "model": "cc", "status": "failed", "error": "x"}
+    for failure in ("crash", "timeout", "memory", "killed", "lost"):
+        c.put({**base, "failure": failure})
+    assert c.writes == 0 and c.get("abc", "cc") is None
+    c.put({**base, "failure": "model"})  # a model failure is a result
+    c.put({**base, "case_id": "ok1", "status": "ok", "failure": ""})
+    assert c.writes == 2 and c.get("ok1", "cc")["status"] == "ok" and c.get("abc", "cc")["failure"] == "model"
+    assert code_version("cc") != code_version("ancf")
+    assert any(p.name == "ancf.py" and p.parent.name == "physics" for p in cache_mod._sources("ancf"))
+    assert any(p.name == "cc.py" and p.parent.name == "models" for p in cache_mod._sources("cc"))
+    monkeypatch.setattr(cache_mod, "code_version", lambda model: "0" * 16)  # as after an edit of the model
+    assert c.get("ok1", "cc") is None
+
+
+def test_cli_caches_next_to_the_output_folder(tmp_path, write_study, capsys):
+    p = write_study('\n[sweep]\nproduct = { "load.tensions" = [[1.0, 0.0], [2.0, 0.0]] }\n',
+                    base=GOOD.replace('models = ["cc", "ancf"]', 'models = ["cc"]'))
+    run = ["run", str(p), "--in-process", "--no-report", "--progress", "off", "--out"]
+    assert main(run + [str(tmp_path / "a")]) == 0 and (tmp_path / "_cache" / "cc").is_dir()
+    capsys.readouterr()
+    assert main(run + [str(tmp_path / "b")]) == 0
+    assert "2 model rows from the cache" in capsys.readouterr().out
+    assert main(run + [str(tmp_path / "c"), "--no-cache"]) == 0
+    assert "cache" not in read_manifest(tmp_path / "c")["runs"][0]

@@ -1,0 +1,169 @@
+"""Capability and plausibility checks of ``validate`` (issue 16).
+
+1. The corpus: new users' typical mistakes -- a model asked for what it cannot do, a typo in
+   ``[report]``, values far outside the physical range -- each rejected (exit 2) or warned
+   (exit 0) with one line naming the key and the model, before anything runs.
+2. One pass: a file with mistakes in several sections reports all of them at once.
+3. Honest declarations: every limit declared in ``registry.MODELS`` is one the model itself
+   enforces (the real model, Exudyn included, refuses the probe case), so ``validate`` refuses
+   only what would fail at run time.
+"""
+
+from __future__ import annotations
+
+import textwrap
+
+import pytest
+
+from workbench.cli import main
+from workbench.study import StudyError, load_study
+
+
+def study(models='"cc"', robot="", load='mode = "tension"\ntensions = [1.0, 0.0]', solver="", report="",
+          sweep="", name='"caps"') -> str:
+    parts = [f"[study]\nname = {name}\nmodels = [{models}]\n", f'[robot]\npreset = "steel_rod"\n{robot}\n',
+             f"[load]\n{load}\n", f"[solver]\nn_elements = 8\nn_stations = 9\n{solver}\n"]
+    if report:
+        parts.append(f"[report]\n{report}\n")
+    if sweep:
+        parts.append(f"[sweep]\n{sweep}\n")
+    return "\n".join(textwrap.dedent(p) for p in parts)
+
+
+LENGTH = 'mode = "length"\nlength_changes = [-0.001, 0.0]'
+ARC = 'mode = "tension"\nbend_angle = 1.0'
+E, W = "error", "warning"
+
+#: (id, file text, error or warning, expected key, expected words of the line)
+CORPUS = [
+    ("beam3d_continuum_tension", study('"cc", "beam3d"'), E, "solver.tendon_model", "model 'beam3d' supports"),
+    ("beam3d_continuum_length", study('"beam3d"', load=LENGTH), E, "solver.tendon_model", "'eyelets'"),
+    ("beam3d_continuum_arc", study('"beam3d"', load=ARC), E, "solver.tendon_model", "(got 'continuum')"),
+    ("beam3d_swept_tendon_model", study('"beam3d"', sweep='product = { "solver.tendon_model" = ["eyelets", '
+                                                           '"continuum"] }'), E, "solver.tendon_model", "beam3d"),
+    ("beam3d_dynamic_damping", study('"beam3d"', load='analysis = "dynamic"\nduration = 0.1',
+                                     solver='tendon_model = "eyelets"\ndamping = 0.01'), E, "solver.damping",
+     "ignores damping in dynamic analysis"),
+    ("ancf3d_tension", study('"ancf3d"'), E, "load.tensions", "model 'ancf3d' cannot carry tendon loads"),
+    ("ancf3d_length", study('"ancf3d"', load=LENGTH), E, "load.length_changes", "cannot carry tendon loads"),
+    ("ancf3d_arc", study('"ancf3d"', load=ARC), E, "load.bend_angle", "cannot carry tendon loads"),
+    ("ancf3d_pretension", study('"ancf3d"', load='mode = "tension"\ntensions = [0.0, 0.0]\npretension = 2.0'), E,
+     "load.pretension", "cannot carry tendon loads"),
+    ("ancf3d_tip_torque", study('"ancf3d"', load='tip_torque = [0.0, 0.01, 0.0]'), E, "load.tip_torque",
+     "model 'ancf3d' cannot carry a tip torque"),
+    ("ancf3d_one_swept_case", study('"ancf3d"', load='mode = "tension"\ntensions = [0.0, 0.0]',
+                                    sweep='product = { "load.tensions" = [[0.0, 0.0], [1.0, 0.0]] }'), E,
+     "load.tensions", "(case 1: "),
+    ("ancf_tendon_angle", study('"cc", "ancf"', robot="first_tendon_angle = 0.3"), E, "robot.first_tendon_angle",
+     "model 'ancf' is planar only"),
+    ("ancf_three_tendons", study('"ancf"', robot="tendon_count = 3", load='mode = "tension"\ntensions = [1.0, 0.0, '
+                                                                           '0.0]'), E, "robot.tendon_count",
+     "not in the base x-z plane"),
+    ("ancf_tip_force_y", study('"ancf"', load='tip_force = [0.0, 0.1, 0.0]'), E, "load.tip_force", "has a y component"),
+    ("ancf_tip_torque_z", study('"ancf"', load='tip_torque = [0.0, 0.0, 0.01]'), E, "load.tip_torque",
+     "is not about base y"),
+    ("ancf_swept_angle", study('"ancf"', sweep='product = { "robot.first_tendon_angle" = [0.0, 3.141592653589793, '
+                                                '1.0] }'), E, "robot.first_tendon_angle", "(case 2: "),
+    ("spring_link_spatial_length_continuum", study('"spring_link"', robot="first_tendon_angle = 0.3", load=LENGTH),
+     E, "solver.tendon_model", "model 'spring_link' supports length-controlled tendons in a non-planar case"),
+    ("report_axis_typo", study(report='axes = ["kapaL"]'), E, "report.axes[0]", "did you mean 'kappaL'?"),
+    ("report_axis_parameter_typo", study(report='axes = ["p.robot.lenght"]'), E, "report.axes[0]",
+     "did you mean 'p.robot.length'?"),
+    ("report_axis_nonsense", study(report='axes = ["zzz"]'), E, "report.axes[0]", "use a case parameter"),
+    ("report_label_typo", study(report='labels = { gama = "g" }'), E, 'report.labels["gama"]',
+     "did you mean 'gamma'?"),
+    ("report_reference_not_a_model", study(report='reference = "ancf"'), E, "report.reference", "ancf"),
+    ("report_frame", study(report='frame = "side"'), E, "report.frame", "'world'"),
+    ("report_unknown_key", study(report='axis = ["kappaL"]'), E, "report.axis", "unknown key"),
+    ("fat_rod", study(robot="diameter = 6.0"), W, "robot.diameter", "is no slender rod"),
+    ("short_rod", study(robot="length = 0.02"), W, "robot.diameter", "length / diameter = 3.33"),
+    ("huge_tension", study(load='mode = "tension"\ntensions = [3340.0, 0.0]'), W, "load.tensions",
+     "beyond the elastic range of metals"),
+    ("more_than_a_turn", study(load='mode = "tension"\nbend_angle = 7.0'), W, "load.bend_angle", "full turns"),
+    ("one_huge_swept_tension", study(sweep='product = { "load.tensions" = [[1.0, 0.0], [3340.0, 0.0], '
+                                           '[2.0, 0.0]] }'), W, "load.tensions", "(case 1: "),
+    ("huge_length_change", study(load='mode = "length"\nlength_changes = [-0.15, 0.0]'), W, "load.length_changes",
+     "surface strain"),
+]
+
+#: supported combinations: accepted without a word (the checks do not over-reach)
+CONTROLS = [
+    ("cc_everything", study('"cc"', robot="first_tendon_angle = 0.3", load='mode = "tension"\ntensions = [1.0, 0.0]\n'
+                                                                           'tip_torque = [0.0, 0.0, 0.01]')),
+    ("beam3d_eyelets", study('"cc", "beam3d"', solver='tendon_model = "eyelets"')),
+    ("ancf3d_tip_force", study('"ancf3d"', load='tip_force = [0.01, 0.02, 0.0]')),
+    ("ancf_pi_tendon", study('"ancf"', robot="first_tendon_angle = 3.141592653589793")),
+    ("spring_link_spatial_length_eyelets", study('"spring_link"', robot="first_tendon_angle = 0.3", load=LENGTH,
+                                                 solver='tendon_model = "eyelets"')),
+    ("report_ok", study(report='axes = ["kappaL", "p.robot.length", "tip_x"]\nlabels = { kappaL = "k" }')),
+]
+
+
+def test_corpus_is_large_enough():
+    assert len(CORPUS) >= 30
+
+
+@pytest.mark.parametrize("name,text,kind,key,words", CORPUS, ids=[c[0] for c in CORPUS])
+def test_mistake_is_one_line_naming_the_key(tmp_path, capsys, name, text, kind, key, words):
+    p = tmp_path / f"{name}.toml"
+    p.write_text(text)
+    rc = main(["validate", str(p)])
+    out, err = capsys.readouterr()
+    if kind == E:
+        lines = err.strip().splitlines()
+        assert rc == 2 and len(lines) == 1, (rc, out, err)
+    else:
+        lines = [x.strip()[len("warning: "):] for x in out.splitlines() if x.strip().startswith("warning: ")]
+        assert rc == 0 and lines, (rc, out, err)
+        lines = [x for x in lines if words in x][:1] or lines
+    assert lines[0].startswith(f"{p}: {key}"), lines
+    assert words in lines[0], lines
+
+
+@pytest.mark.parametrize("name,text", CONTROLS, ids=[c[0] for c in CONTROLS])
+def test_supported_combinations_pass_without_warnings(tmp_path, name, text):
+    p = tmp_path / f"{name}.toml"
+    p.write_text(text)
+    s = load_study(p)
+    assert s.warnings == ()
+
+
+def test_every_problem_of_a_file_in_one_pass(tmp_path):
+    """A [study] mistake, a [report] typo and two models' capability problems: four lines at once."""
+    p = tmp_path / "many.toml"
+    p.write_text(study('"cc", "beam3d", "ancf3d", "nosuch"', report='axes = ["kapaL"]'))
+    with pytest.raises(StudyError) as ei:
+        load_study(p)
+    keys = [line[len(f"{p}: "):].split(" ")[0].rstrip(":") for line in ei.value.problems]
+    assert sorted(keys) == sorted(["study.models[3]", "report.axes[0]", "solver.tendon_model", "load.tensions"]), \
+        ei.value.problems
+
+
+# ---------------------------------------------------------------------------------------------
+# the declarations are honest: the models themselves refuse what validate refuses
+# ---------------------------------------------------------------------------------------------
+PROBES = [  # (model, corpus id): validate refuses it, so must the model
+    ("beam3d", "beam3d_continuum_tension"), ("beam3d", "beam3d_dynamic_damping"),
+    ("ancf3d", "ancf3d_tension"), ("ancf3d", "ancf3d_pretension"), ("ancf3d", "ancf3d_tip_torque"),
+    ("ancf", "ancf_tendon_angle"), ("ancf", "ancf_tip_force_y"), ("ancf", "ancf_tip_torque_z"),
+    ("spring_link", "spring_link_spatial_length_continuum"),
+]
+
+
+@pytest.mark.parametrize("model,cid", PROBES, ids=[f"{m}-{c}" for m, c in PROBES])
+def test_declared_limit_is_enforced_by_the_model(tmp_path, model, cid):
+    from workbench.models import get_model
+    from workbench.models.result import ModelFailure
+    from workbench.study.build import build_load, build_options, build_robot
+    from workbench.study.spec import parse_study
+    import tomllib
+
+    text = dict((c[0], c[1]) for c in CORPUS)[cid]
+    raw = tomllib.loads(text.replace(text.split("\n")[2], 'models = ["cc"]'))  # the same case, CC only: valid
+    s = parse_study(raw, source=cid)
+    base = s.base
+    robot = build_robot(base["robot"], base["derived"])
+    load = build_load(robot, base["load"])
+    options = build_options(base["solver"])
+    with pytest.raises((ModelFailure, ValueError)):
+        get_model(model)(robot, load, options)

@@ -1,0 +1,95 @@
+"""The results loader: every column type round-trips, arrays come back in their shapes (static and
+dynamic), list parameters as lists, units and frames in attrs and in the Parquet field metadata."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pandas as pd
+import pyarrow.parquet as pq
+import pytest
+
+import study_fakes as fakes
+from workbench import results
+from workbench.study import SerialExecutor, load_study, run_study
+from workbench.study.store import SCHEMA_FILE
+
+
+@pytest.fixture(scope="module")
+def static_folder(tmp_path_factory):
+    """A CC (real, numpy) + fake-ANCF sweep over a list parameter, with one failing case."""
+    tmp = tmp_path_factory.mktemp("static")
+    p = tmp / "s.toml"
+    p.write_text(fakes.GOOD + '\n[sweep]\nproduct = { "load.tensions" = [[1.0, 0.0], [2.0, 0.0], '
+                              f'[{fakes.RAISE}, 0.0]], "robot.length" = [0.5, 0.8] }}\n')
+    run_study(load_study(p), tmp / "o", SerialExecutor(), progress=False,
+              model_lookup=lambda name: fakes.arc if name == "ancf" else __import__("workbench.models", fromlist=["x"])
+              .get_model(name))
+    return tmp / "o"
+
+
+@pytest.fixture(scope="module")
+def dynamic_folder(tmp_path_factory):
+    """A dynamic CC case (tendon ramp): time series beside time."""
+    tmp = tmp_path_factory.mktemp("dyn")
+    p = tmp / "d.toml"
+    p.write_text(fakes.GOOD.replace('models = ["cc", "ancf"]', 'models = ["cc"]').replace(
+        'tensions = [1.0, 0.0]', 'tensions = [1.0, 0.0]\nanalysis = "dynamic"\nduration = 0.05\nramp_time = 0.02')
+        + "time_step = 0.005\n")
+    run_study(load_study(p), tmp / "o", SerialExecutor(), progress=False)
+    return tmp / "o"
+
+
+def test_every_column_round_trips(static_folder):
+    raw = pd.read_parquet(static_folder).sort_values(["case_id", "model"]).reset_index(drop=True)
+    df = results.load(static_folder).sort_values(["case_id", "model"]).reset_index(drop=True)
+    assert list(df.columns) == list(raw.columns) and len(df) == len(raw) == 12
+    for c in raw.columns:
+        for a, b in zip(raw[c], df[c]):
+            if isinstance(b, np.ndarray):  # arrays: the same numbers, reshaped
+                assert np.array_equal(np.ravel(b), np.asarray(a, float), equal_nan=True), c
+            elif c.startswith("p.") and isinstance(a, str) and a.startswith("["):
+                assert isinstance(b, list) and b == json.loads(a), c  # JSON string -> list
+            elif isinstance(a, float) and np.isnan(a):
+                assert isinstance(b, float) and np.isnan(b), c
+            else:
+                assert type(a) is type(b) and a == b, (c, a, b)  # str, bool, int, float, None unchanged
+
+
+def test_arrays_have_their_shapes_and_lists_are_lists(static_folder):
+    df = results.load(static_folder, ok_only=True)
+    assert (df["status"] == "ok").all() and len(df) == 10  # the fake ANCF raises at 13 N (2 rows), CC does not
+    row = df.iloc[0]
+    assert row["positions"].shape == (9, 3) and row["tip_frame"].shape == (4, 4)
+    assert np.allclose(row["positions"][-1], [row["tip_x"], row["tip_y"], row["tip_z"]])
+    assert np.allclose(row["tip_frame"][:3, 3], row["positions"][-1])  # base <- tip translation
+    assert row["stations"].shape == (9,)
+    assert isinstance(row["p.load.tensions"], list) and len(row["p.load.tensions"]) == 2
+    assert set(df.attrs["sweep_axes"]) == {"p.load.tensions", "p.robot.length"}
+
+
+def test_units_and_frames_in_attrs_and_in_the_parquet_field_metadata(static_folder):
+    df = results.load(static_folder)
+    u, f = df.attrs["units"], df.attrs["frames"]
+    assert u["tip_x"] == "m" and f["tip_x"] == "base" and u["positions"] == "m" and f["positions"] == "base"
+    assert u["p.load.tensions"] == "N" and u["p.robot.length"] == "m" and u["wall_time"] == "s"
+    assert "case_id" not in u and "p.robot.preset" not in u  # text and categories have no unit
+    assert df.attrs["manifest"]["study"]["study"]["name"] == "good"
+    schema = pq.read_schema(static_folder / SCHEMA_FILE)
+    assert schema.field("tip_x").metadata == {b"unit": b"m", b"frame": b"base"}
+    assert schema.field("p.load.tensions").metadata == {b"unit": b"N"}
+
+
+def test_dynamic_series_have_time_first(dynamic_folder):
+    df = results.load(dynamic_folder)
+    row = df.iloc[0]
+    n_t = row["time"].shape[0]
+    assert n_t > 2 and row["series.tip_position"].shape == (n_t, 3)
+    assert df.attrs["units"]["series.tip_position"] == "m" and df.attrs["frames"]["series.tip_position"] == "base"
+    assert df.attrs["units"]["time"] == "s"
+
+
+def test_not_a_result_folder(tmp_path):
+    with pytest.raises(FileNotFoundError, match="not a study result folder"):
+        results.load(tmp_path)
