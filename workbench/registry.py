@@ -43,10 +43,6 @@ class Capabilities:
         ``"static"`` and/or ``"dynamic"``.
     dynamic_damping, dynamic_payload_offset : bool
         Whether ``[solver] damping > 0`` / a payload offset are supported in dynamic analysis.
-    planar_net_moment : bool
-        For a planar-only model: "planar" means the loads and every section's net tendon moment lie
-        in the base x-z plane (tendons at any angle, e.g. equal tensions at +-120 deg), not that
-        every tendon sits at sigma in {0, pi}.
     torsion : bool
         Whether it predicts the tip twist (informational: ``workbench list models``).
     note : str
@@ -61,7 +57,6 @@ class Capabilities:
     analyses: tuple[str, ...] = ("static", "dynamic")
     dynamic_damping: bool = True
     dynamic_payload_offset: bool = True
-    planar_net_moment: bool = False
     torsion: bool = True
     note: str = ""
 
@@ -81,58 +76,73 @@ class ModelInfo:
         Line colour in figures (``None``: a fallback colour is picked per report).
     capabilities : Capabilities or None
         What the model supports (``None``: a label-only row, nothing to check).
+    order : float or None
+        Convergence order of the model's discretisation error in the element / link count
+        (measured by its validation tests, ``docs/models.md``); the discretisation-error estimate
+        of the study pipeline uses it (:mod:`workbench.models.discretization`).  ``None``: no
+        discretisation (CC) or not declared.
     """
 
     target: str | None
     label: str
     color: str | None = None
     capabilities: Capabilities | None = None
+    order: float | None = None
 
 
 @dataclass(frozen=True)
 class FigureSet:
-    """A study-specific set of report figures: ``matches(results) -> bool`` and ``figures(...)``."""
+    """A study-specific set of report figures: ``matches(results) -> bool`` and ``figures(...)``.
+
+    ``findings`` (optional): ``"module:function"`` of ``findings(results, cmp) -> [str]``, the
+    study-specific sentences of the report's Findings section (numbers from the data).
+    """
 
     matches: str
     figures: str
+    findings: str | None = None
 
 
 MODELS: Mapping[str, ModelInfo] = {
+    # orders: measured on the tip-load elastica and the pure-moment arc (tests/models/test_discretization.py):
+    # ancf and ancf3d (cubic Hermite cables) ~4, beam3d 2, spring_link 2
     "cc": ModelInfo("workbench.models.cc:run", "CC", "#222222", Capabilities(
         torsion=False, note="constant curvature from the tendon commands: external loads, gravity and dynamics "
                             "do not bend the arc (the assumption under test)")),
-    "ancf": ModelInfo("workbench.physics.ancf:run", "ANCF", "#1f77b4", Capabilities(
+    "ancf": ModelInfo("workbench.physics.ancf:run", "ANCF", "#1f77b4", order=4.0, capabilities=Capabilities(
         dimensions=("planar",), loads=("tip_force", "tip_torque"), torsion=False,
         note="planar ANCF cable in the base x-z plane; gravity out of that plane is dropped and recorded "
              "(x.gravity_out_of_plane)")),
-    "beam3d": ModelInfo("workbench.physics.beam3d:run", "GE beam", "#d62728", Capabilities(
+    "beam3d": ModelInfo("workbench.physics.beam3d:run", "GE beam", "#d62728", order=2.0, capabilities=Capabilities(
         tendon_models=("eyelets",), spatial_length_tendon_models=("eyelets",), dynamic_damping=False,
         dynamic_payload_offset=False,
         note="geometrically exact beam; tendons only as eyelet ropes; damping only through spectral_radius")),
-    "ancf3d": ModelInfo("workbench.physics.ancf3d:run", "ANCF 3-D", "#9467bd", Capabilities(
+    "ancf3d": ModelInfo("workbench.physics.ancf3d:run", "ANCF 3-D", "#9467bd", order=4.0, capabilities=Capabilities(
         actuation=(), loads=("tip_force",), torsion=False,
         note="3-D ANCF cable without a cross-section frame: no tendons, tip torque or payload offset")),
-    "spring_link": ModelInfo("workbench.physics.spring_link:run", "spring-link", "#2ca02c", Capabilities(
+    "spring_link": ModelInfo("workbench.physics.spring_link:run", "spring-link", "#2ca02c", order=2.0, capabilities=Capabilities(
         spatial_length_tendon_models=("eyelets",),
         note="rigid links and joint springs; continuum tendons in length mode only in planar cases")),
-    "cosserat": ModelInfo("workbench.physics.cosserat:run", "Cosserat rod", "#8c564b", Capabilities(
+    # no mesh (shooting to newton_tolerance): no declared order, so its rows carry no estimate
+    "cosserat": ModelInfo("workbench.physics.cosserat:run", "Cosserat rod", "#8c564b", capabilities=Capabilities(
         tendon_models=("continuum",), spatial_length_tendon_models=("continuum",), analyses=("static",),
         note="Cosserat rod with continuously routed tendons (Rucker & Webster 2011), shooting with scipy; "
              "static only; accuracy from newton_tolerance, n_elements unused")),
     "spring_link_cardan": ModelInfo("workbench.physics.spring_link.cardan:run", "spring-link, 2-DOF joints",
-                                    "#17becf", Capabilities(
+                                    "#17becf", order=2.0, capabilities=Capabilities(
         spatial_length_tendon_models=("eyelets",),
         note="3-D chain of Cardan (two-DOF, torsion-locked) joints, Hannan & Walker's robot; refuses states "
              "with cable strain > 2 % (folded branches)")),
-    # planar ANCF with a rigid circle (without an object: equal to ancf with continuum tendons)
-    "contact": ModelInfo("workbench.physics.contact:run", "ANCF + contact", "#ff7f0e", Capabilities(
+    # planar ANCF with a rigid circle (without an object: equal to ancf with continuum tendons); no
+    # declared order (penalty contact: not measured), so its rows carry no estimate
+    "contact": ModelInfo("workbench.physics.contact:run", "ANCF + contact", "#ff7f0e", capabilities=Capabilities(
         dimensions=("planar",), actuation=("tension",), tendon_models=("continuum",),
-        spatial_length_tendon_models=(), loads=(), analyses=("static",), planar_net_moment=True,
-        torsion=False,
+        spatial_length_tendon_models=(), loads=(), analyses=("static",), torsion=False,
         note="planar ANCF cable in contact with a rigid circle; continuum tendons of constant offset in "
              "tension mode, static only, no tip force or torque")),
-    # rows of the series-parallel study kind (not run(robot, load, options) models)
-    "series_parallel": ModelInfo(None, "series-parallel"),
+    # rows of the series-parallel study kind (not run(robot, load, options) models); its GE-beam
+    # legs converge at order 2 (test_series_parallel.py, against the Cosserat shooting solver)
+    "series_parallel": ModelInfo(None, "series-parallel", order=2.0),
     # rows of the closed-loop study kind: the controller's CC plan, the closed loop on a plant
     "plan": ModelInfo(None, "CC plan (open loop)", "#7f7f7f"),
     "spring_link_closed_loop": ModelInfo(None, "spring-link, closed loop", "#98df8a"),
@@ -172,7 +182,8 @@ FIGURES: Mapping[str, FigureSet] = {
     "wire_delay_arm": FigureSet("workbench.experiments.wire_delay.figures_arm:matches",
                                 "workbench.experiments.wire_delay.figures_arm:figures"),
     "wire_delay": FigureSet("workbench.experiments.wire_delay.figures:matches",
-                            "workbench.experiments.wire_delay.figures:figures"),
+                            "workbench.experiments.wire_delay.figures:figures",
+                            "workbench.experiments.wire_delay.findings:findings"),
     "hannan_walker": FigureSet("workbench.experiments.hannan_walker.figures:matches",
                                "workbench.experiments.hannan_walker.figures:figures"),
     "hannan_walker_3d": FigureSet("workbench.experiments.hannan_walker.figures_3d:matches",
@@ -184,7 +195,8 @@ FIGURES: Mapping[str, FigureSet] = {
     "series_parallel_s_shape": FigureSet("workbench.experiments.series_parallel.figures_s_shape:matches",
                                          "workbench.experiments.series_parallel.figures_s_shape:figures"),
     "series_parallel": FigureSet("workbench.experiments.series_parallel.figures:matches",
-                                 "workbench.experiments.series_parallel.figures:figures"),
+                                 "workbench.experiments.series_parallel.figures:figures",
+                                 "workbench.experiments.series_parallel.findings:findings"),
     "whole_arm_grasp": FigureSet("workbench.experiments.whole_arm_grasp.figures:matches",
                                  "workbench.experiments.whole_arm_grasp.figures:figures"),
     "fruit_harvester_scoop": FigureSet("workbench.experiments.fruit_harvester.scoop_figures:matches",

@@ -53,7 +53,7 @@ def test_study_figure_sets_each_matches_its_own_study(cols, sets):
 
 def test_generic_figures_in_report_order():
     assert [f.__name__ for f in GENERIC_FIGURES] == [
-        "shape_overlay_figures", "error_vs_parameter_figures", "validity_map_figures",
+        "error_bar_figures", "shape_overlay_figures", "error_vs_parameter_figures", "validity_map_figures",
         "compression_split_figures", "time_series_figures"]
 
 

@@ -38,4 +38,4 @@ def test_the_series_parallel_example_is_a_valid_study(tmp_path):
     p.write_text(BLOCKS[1])
     kind = get_kind(kind_of(p))
     assert kind.name == "series_parallel"
-    assert len(kind.expand(kind.load(p))) == 13  # 5 + 5 module samples + 3 stack samples
+    assert len(kind.expand(kind.load(p))) == 14  # 5 + 5 + 1 module samples (the last one: 8 mm rods) + 3 stack

@@ -33,6 +33,7 @@ import numpy as np
 import pandas as pd
 
 from ..study.params import section_params
+from .convergence import convergence_metrics
 from .metrics import (
     compression_split,
     orientation_error_deg,
@@ -342,7 +343,9 @@ def compare_table(
         [m] (see :func:`~workbench.compare.metrics.compression_split`; only for CC-reference
         pairs with a known tendon stretch and, if ``p.load.mode`` exists, length-mode
         actuation; else NaN), ``wall_time_ref``/``wall_time`` [s],
-        ``tip_error_max_over_time`` [m] (dynamic cases with ``series.tip_position``).
+        ``tip_error_max_over_time`` [m] (dynamic cases with ``series.tip_position``),
+        ``judged_error``, ``disc_error`` [m], ``disc_error_pct``, ``disc_fraction``,
+        ``not_converged`` (:mod:`workbench.compare.convergence`).
         Empty (with the identifying columns) when nothing can be compared.
     """
     if pairs not in ("all", "reference"):
@@ -366,6 +369,7 @@ def compare_table(
                 rec[c] = ra.get(c)
             rec["robot_length"] = ra.get("robot_length", np.nan)
             rec.update(_pair_metrics(ra, rb, section_ends, cc_reference=(a == reference == "cc")))
+            rec.update(convergence_metrics(ra, rb, rec))  # error bars and the not-converged mark
             rows.append(rec)
     if not rows:
         return pd.DataFrame(columns=["case_id", "reference", "model", *pcols, "robot_length"])

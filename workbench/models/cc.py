@@ -40,7 +40,7 @@ from ..kinematics import (
 )
 from ..robot import LoadCase, Robot, TendonActuation
 from .inputs import check_model_inputs
-from .result import PhysicsResult, SolverInfo, SolverOptions
+from .result import PhysicsResult, SolverInfo, SolverOptions, series_times
 
 __all__ = ["actuation_from_arc", "arc_from_actuation", "run"]
 
@@ -229,14 +229,15 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
 
     Gravity, payload and tip loads are ignored by construction.  For a dynamic load case
     the final commands are used and, in addition, the CC tip and virtual length are
-    reported as time series at ``options.time_step`` resolution.
+    reported as time series on the grid every dynamic model stores (:func:`series_times`).
 
     Returns
     -------
     PhysicsResult
         ``tendon_tensions`` are the commanded tensions (tension mode) or NaN (length mode:
         CC kinematics predicts no forces); ``length_change`` is the virtual length change
-        ``sum(ell) - L``; ``tip_twist`` is 0.
+        ``sum(ell) - L``; ``tip_twist`` is 0; extras ``kappa_j``, ``phi_j`` and the stresses
+        CC implies (:func:`_stress`).
     """
     check_model_inputs(robot, load, options)
     t0 = time.perf_counter()
@@ -255,7 +256,7 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     series: dict[str, np.ndarray] = {}
     time_axis = None
     if load.analysis == "dynamic" and act is not None:
-        time_axis = np.arange(0.0, load.duration + 0.5 * options.time_step, options.time_step)
+        time_axis = series_times(load.duration, options.time_step)  # the physics models' output grid
         cmds = act.command_at(time_axis, load.ramp_time)
         tips = np.empty((time_axis.size, 3))
         dl = np.empty(time_axis.size)
@@ -277,5 +278,24 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
         time=time_axis,
         series=series,
         extras={**{f"kappa_{j}": float(kappa[j]) for j in range(robot.n_sections)},
-                **{f"phi_{j}": float(phi[j]) for j in range(robot.n_sections)}},
+                **{f"phi_{j}": float(phi[j]) for j in range(robot.n_sections)},
+                **_stress(robot, kappa, tensions)},
     )
+
+
+def _stress(robot: Robot, kappa: np.ndarray, tensions: np.ndarray) -> dict[str, float]:
+    """What CC can say about stresses (:mod:`workbench.models.stress`): the bending stress
+    ``EI kappa / W`` of every section's arc, plus in tension mode the axial ``sum T / A`` of the
+    tendons passing the section and the tendon stresses; length mode predicts no forces, so the
+    backbone stress is the bending part alone and there is no tendon stress."""
+    from .stress import combined_stress, section_arrays, stress_extras
+
+    cs = [robot.sections[j].cross_section_at(0.5) for j in range(robot.n_sections)]
+    arrs = section_arrays(cs)
+    if arrs is None:
+        return stress_extras(None, None, robot, tensions)
+    T = np.nan_to_num(np.asarray(tensions, dtype=float))
+    N = np.array([sum(T[i] for i, (sec, _, _) in enumerate(robot.tendon_table()) if sec >= j)
+                  for j in range(robot.n_sections)], dtype=float)
+    M = np.array([c.EI for c in cs]) * np.abs(kappa)
+    return stress_extras(combined_stress(N, M, arrs[0], arrs[1]), arrs[2], robot, tensions)

@@ -11,7 +11,20 @@ from typing import Literal, Mapping
 
 import numpy as np
 
-__all__ = ["SolverInfo", "PhysicsResult", "SolverOptions", "ModelFailure"]
+__all__ = ["SolverInfo", "PhysicsResult", "SolverOptions", "ModelFailure", "series_times"]
+
+
+def series_times(duration: float, time_step: float) -> np.ndarray:
+    """Output times [s] of a dynamic analysis: every model's stored series use this grid.
+
+    ``n = max(1, round(duration / time_step))`` steps of ``h = duration / n``, recorded every
+    ``max(h, duration / 1000)`` rounded to a whole number of steps, from 0 to ``duration``
+    (at most ~1000 samples, so one study's series share one time resolution).
+    """
+    n = max(1, int(round(float(duration) / float(time_step))))
+    h = float(duration) / n
+    k = max(1, int(round(max(h, float(duration) / 1000.0) / h)))
+    return np.append(np.arange(0, n, k) * h, float(duration)) if n % k else np.arange(0, n + 1, k) * h
 
 
 class ModelFailure(RuntimeError):
@@ -51,6 +64,14 @@ class SolverOptions:
         ``"auto"`` (default): the kinematic tree (minimal coordinates) for every inextensible
         chain; ``"bodies"``: rigid bodies and joints, whose static Newton converges only linearly
         under large joint reactions (dead loads, rope forces; ``docs/models.md``, "Spring-link").
+    error_estimate : {"richardson", "none"}
+        Study pipeline only (models ignore it): ``"richardson"`` re-solves every physics case at
+        1/2 and 1/4 of the resolution and records its discretisation-error estimate
+        (:mod:`workbench.models.discretization`); ``"none"`` turns that off.
+    error_estimate_exempt : tuple of str
+        Study pipeline only: models whose discretisation *is* the hardware (e.g. a spring-link
+        chain with one link per physical joint), so that coarsening them would change the robot,
+        not the mesh; they get no estimate.
     """
 
     n_elements: int = 16
@@ -62,6 +83,8 @@ class SolverOptions:
     damping: float = 0.0
     spectral_radius: float = 0.8
     spring_link_backend: Literal["auto", "tree", "bodies"] = "auto"
+    error_estimate: Literal["richardson", "none"] = "richardson"
+    error_estimate_exempt: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         for name in ("n_elements", "n_stations", "max_load_steps"):
@@ -83,6 +106,9 @@ class SolverOptions:
         if self.spring_link_backend not in ("auto", "tree", "bodies"):
             raise ValueError("SolverOptions.spring_link_backend must be 'auto', 'tree' or 'bodies', "
                              f"got {self.spring_link_backend!r}")
+        if self.error_estimate not in ("richardson", "none"):
+            raise ValueError(f"SolverOptions.error_estimate must be 'richardson' or 'none', got {self.error_estimate!r}")
+        object.__setattr__(self, "error_estimate_exempt", tuple(str(m) for m in self.error_estimate_exempt))
 
 
 @dataclass(frozen=True)

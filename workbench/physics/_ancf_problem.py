@@ -66,6 +66,7 @@ class _Problem:
     payload: float
     tendons: tuple[_Tendon, ...]
     g_out: float
+    cross_sections: tuple = ()  # (n,) CrossSection of every element (its midpoint), for stresses
 
 
 def _tendon_sign(sigma: float, index: int) -> float:
@@ -106,12 +107,13 @@ def _problem(robot: Robot, load: LoadCase, options: SolverOptions) -> _Problem:
         k = np.argmax(np.where(counts > 1, counts - raw, -np.inf))
         counts[k] -= 1
     s_nodes = [0.0]
-    EI, EA, mu = [], [], []
+    EI, EA, mu, sections = [], [], [], []
     s0 = 0.0
     for sec, n in zip(robot.sections, counts):
         for k in range(n):
             frac = (k + 0.5) / n
             cs = sec.cross_section_at(frac)
+            sections.append(cs)
             EI.append(cs.EI)
             EA.append(cs.EA)
             mu.append(cs.mass_per_length + sec.n_disks * sec.disk_mass / sec.length)
@@ -132,5 +134,5 @@ def _problem(robot: Robot, load: LoadCase, options: SolverOptions) -> _Problem:
     return _Problem(
         L=L, s_nodes=s_nodes, EI=np.array(EI), EA=np.array(EA), mu=np.array(mu),
         gravity=np.array([g[2], g[0]]), tip_force=np.array([F[2], F[0]]), tip_torque=float(M[1]),
-        payload=robot.payload.mass, tendons=tuple(tendons), g_out=float(g[1]),
+        payload=robot.payload.mass, tendons=tuple(tendons), g_out=float(g[1]), cross_sections=tuple(sections),
     )

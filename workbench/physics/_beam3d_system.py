@@ -77,6 +77,7 @@ class _System:
 
     def __init__(self, robot: Robot, load: LoadCase, options: SolverOptions, tendon_mode: str,
                  node_type: str = "EP"):
+        self.robot = robot
         self.SC = exu.SystemContainer()
         self.mbs = self.SC.AddSystem()
         self.node_s, elem_sec = element_layout(robot, options.n_elements)
@@ -106,11 +107,13 @@ class _System:
             clamped = (0, 1, 2, 3, 4, 5)
         starts = np.concatenate([[0.0], robot.section_ends[:-1]])
         self.elements = []
+        self.elem_cs = []  # CrossSection of every element (its midpoint), for stresses
         for e in range(elem_sec.size):
             j = int(elem_sec[e])
             sec = robot.sections[j]
             frac = (0.5 * (node_s[e] + node_s[e + 1]) - starts[j]) / sec.length
-            bs = beam_section(sec.cross_section_at(frac), damping)
+            self.elem_cs.append(sec.cross_section_at(frac))
+            bs = beam_section(self.elem_cs[-1], damping)
             self.elements.append(mbs.AddObject(ObjectBeamGeometricallyExact(
                 nodeNumbers=[self.nodes[e], self.nodes[e + 1]], length=float(self.elem_len[e]), sectionData=bs,
             )))
@@ -234,18 +237,37 @@ class _System:
                 T[i] = max(0.0, EA * stretch[i] / rest)
         return T, stretch
 
-    def shape_scalars(self) -> tuple[float, float]:
-        """(length change [m], tip twist [rad]) from element strains and torsional curvature."""
+    def element_strains(self) -> tuple[np.ndarray, np.ndarray]:
+        """Strain ``(eps, gamma_y, gamma_z)`` and curvature ``(kappa_1 torsion, kappa_2, kappa_3)`` of every element, ``(n_el, 3)`` each."""
         mbs = self.mbs
-        dl = 0.0
-        tw = 0.0
-        for e, Le in zip(self.elements, self.elem_len):
-            g = np.asarray(mbs.GetObjectOutputBody(e, exu.OutputVariableType.StrainLocal, localPosition=[0, 0, 0]))
-            k = np.asarray(mbs.GetObjectOutputBody(e, exu.OutputVariableType.CurvatureLocal, localPosition=[0, 0, 0]))
-            Gam = np.array([1.0 + g[0], g[1], g[2]])
-            dl += Le * (np.linalg.norm(Gam) - 1.0)
-            tw += Le * k[0]
-        return float(dl), float(tw)
+        # StrainLocal holds 6 entries: the first three are (eps, gamma_y, gamma_z)
+        g = np.array([np.asarray(mbs.GetObjectOutputBody(e, exu.OutputVariableType.StrainLocal,
+                                                         localPosition=[0, 0, 0]))[:3] for e in self.elements], dtype=float)
+        k = np.array([np.asarray(mbs.GetObjectOutputBody(e, exu.OutputVariableType.CurvatureLocal,
+                                                         localPosition=[0, 0, 0]))[:3] for e in self.elements], dtype=float)
+        return g, k
+
+    def shape_scalars(self, strains: tuple[np.ndarray, np.ndarray] | None = None) -> tuple[float, float]:
+        """(length change [m], tip twist [rad]) from element strains and torsional curvature."""
+        g, k = self.element_strains() if strains is None else strains
+        Gam = np.column_stack([1.0 + g[:, 0], g[:, 1], g[:, 2]])
+        dl = float(np.sum(self.elem_len * (np.linalg.norm(Gam, axis=1) - 1.0)))
+        tw = float(np.sum(self.elem_len * k[:, 0]))
+        return dl, tw
+
+    def backbone_stress(self, strains: tuple[np.ndarray, np.ndarray] | None = None):
+        """Largest normal stress of every element (:mod:`workbench.models.stress`: ``EA eps`` and
+        ``EI |(kappa_2, kappa_3)|``) and its strength: ``(sigma (n_el,), strength (n_el,))``, or
+        ``None`` without stress geometry."""
+        from ..models.stress import combined_stress, section_arrays
+
+        arrs = section_arrays(self.elem_cs)
+        if arrs is None:
+            return None
+        g, k = self.element_strains() if strains is None else strains
+        EA = np.array([cs.EA for cs in self.elem_cs])
+        EI = np.array([cs.EI for cs in self.elem_cs])
+        return combined_stress(EA * g[:, 0], EI * np.hypot(k[:, 1], k[:, 2]), arrs[0], arrs[1]), arrs[2]
 
     def tip_position(self) -> np.ndarray:
         """Tip node position, base frame, ``(3,)`` [m]."""

@@ -34,10 +34,10 @@ and :func:`_dynamic`.
 * Outputs: positions at ``options.n_stations`` stations (Hermite centreline), tip frame (rotation
   about base y), ``length_change = int |r'| ds - L``, tensions, ``tip_twist = 0``; series
   ``tip_position`` (k, 3), ``tendon_tensions`` (k, n), ``length_change`` (k,); extras
-  ``static_steps``, ``failed_steps``, ``tendon_iterations``, ``gravity_out_of_plane``.
-
+  ``static_steps``, ``failed_steps``, ``tendon_iterations``, ``gravity_out_of_plane``, stresses
+  (:func:`_backbone_stress`, :mod:`workbench.models.stress`; dynamics: the largest over time).
 Checked by ``tests/physics/test_ancf.py``, ``test_ancf_reeving.py`` (eyelet chain = reeving rope),
-``test_ancf_geometry.py``; measured accuracy in ``docs/models.md`` ("Planar ANCF").
+``test_ancf_geometry.py``, ``tests/models/test_stress.py``; accuracy: ``docs/models.md``.
 """
 
 from __future__ import annotations
@@ -353,6 +353,36 @@ def _frame_and_positions(sysm: _System, qn: np.ndarray, stations: np.ndarray):
     return pos, t
 
 
+def _backbone_stress(pb: _Problem, qn: np.ndarray):
+    """Backbone stress at five points per element of the states ``qn`` (..., n+1, 4) and the strengths there.
+
+    Axial strain ``|r'| - 1`` and bending ``theta' = (r' x r'') / |r'|^2`` of the material (the
+    continuum tendon's reference curvature / strain are the load, not the backbone's strain).
+    Returns ``(sigma (..., 5 n), strength (5 n,))`` or ``None`` without stress geometry.
+    """
+    from ..models.stress import combined_stress, section_arrays
+
+    arrs = section_arrays(pb.cross_sections) if pb.cross_sections else None
+    if arrs is None:
+        return None
+    n = pb.s_nodes.size - 1
+    elem = np.repeat(np.arange(n), 5)
+    x = np.tile(np.linspace(0.0, 1.0, 5), n) * np.diff(pb.s_nodes)[elem]
+    _, dr, ddr = geo.hermite(qn, pb.s_nodes, elem, x)
+    nrm2 = np.sum(dr * dr, axis=-1)
+    eps = np.sqrt(nrm2) - 1.0
+    kap = (dr[..., 0] * ddr[..., 1] - dr[..., 1] * ddr[..., 0]) / nrm2
+    A, W, Y = (a[elem] for a in arrs)
+    return combined_stress(pb.EA[elem] * eps, pb.EI[elem] * kap, A, W), Y
+
+
+def _stress(pb: _Problem, robot: Robot, qn: np.ndarray, tensions: np.ndarray) -> dict[str, float]:
+    from ..models.stress import stress_extras
+
+    bs = _backbone_stress(pb, qn)
+    return stress_extras(None if bs is None else bs[0], None if bs is None else bs[1], robot, tensions)
+
+
 def _tip_frame(tip: np.ndarray, t_tip: np.ndarray) -> np.ndarray:
     th = math.atan2(float(t_tip[1]), float(t_tip[0]))
     c, s = math.cos(th), math.sin(th)
@@ -414,8 +444,9 @@ def run(
             T, tendon_it = _static_tensions(sysm, drv, act, cmd)
             q = sysm.coords()
             series, times = {}, None
+            stress = _stress(pb, robot, sysm.node_coords(q), T)
         else:
-            T, tendon_it, q, times, series = _dynamic(sysm, drv, load, options, initial_state)
+            T, tendon_it, q, times, series, stress = _dynamic(sysm, drv, load, options, initial_state, robot)
     qn = sysm.node_coords(q)
     pos, tang = _frame_and_positions(sysm, qn, stations)
     length_change = float(geo.arc_length(qn, pb.s_nodes, quad=sysm.quad)) - pb.L
@@ -433,7 +464,7 @@ def run(
         time=times,
         series=series,
         extras={"static_steps": float(drv.steps), "failed_steps": float(drv.failed),
-                "tendon_iterations": float(tendon_it), "gravity_out_of_plane": pb.g_out},
+                "tendon_iterations": float(tendon_it), "gravity_out_of_plane": pb.g_out, **stress},
     )
 
 
@@ -513,8 +544,9 @@ def _dynamic_series(sysm: _System, cmd: _Commands, Q: np.ndarray, times: np.ndar
     return T_final, series
 
 
-def _dynamic(sysm: _System, drv: _StaticDriver, load: LoadCase, options: SolverOptions, initial_state: str):
-    """Generalised-alpha run; returns (final tensions, tendon iterations, final ODE2 state, times, series)."""
+def _dynamic(sysm: _System, drv: _StaticDriver, load: LoadCase, options: SolverOptions, initial_state: str,
+             robot: Robot | None = None):
+    """Generalised-alpha run; returns (final tensions, tendon iterations, final ODE2 state, times, series, stress extras)."""
     from ._exudyn import dynamic_settings
 
     exu, mbs = sysm.exu, sysm.mbs
@@ -554,6 +586,14 @@ def _dynamic(sysm: _System, drv: _StaticDriver, load: LoadCase, options: SolverO
     rec_t.append(float(load.duration))
     rec_q.append(q_end.copy())
     times = np.array(rec_t)
-    T_final, series = _dynamic_series(sysm, cmd, np.array(rec_q), times, h,
-                                      np.linspace(0.0, sysm.pb.L, options.n_stations))
-    return T_final, tendon_it, q_end, times, series
+    Q = np.array(rec_q)
+    T_final, series = _dynamic_series(sysm, cmd, Q, times, h, np.linspace(0.0, sysm.pb.L, options.n_stations))
+    stress = _stress(sysm.pb, robot, sysm.node_coords(Q), series["tendon_tensions"]) if robot is not None else {}
+    # stored on the shared output grid (workbench.models.result.series_times), every step checked above;
+    # the backbone frames keep their own (decimated) time axis
+    from ..models.result import series_times
+
+    keep = np.searchsorted(times, series_times(load.duration, h) - 1e-9 * h)
+    keep = np.unique(np.clip(keep, 0, times.size - 1))
+    stored = {k: (v if k.startswith("backbone") else v[keep]) for k, v in series.items()}
+    return T_final, tendon_it, q_end, times[keep], stored, stress

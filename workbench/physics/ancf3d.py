@@ -32,7 +32,8 @@ damping ``options.damping`` = beta [s]: ``bendingDamping = beta EI``, ``axialDam
 Outputs: positions from the element's own (cubic Hermite) interpolation at the stations;
 ``tip_frame`` z axis = the unit tip tangent, x/y axes = the base x/y axes parallel-transported
 along the node tangents (the cable has no material frame); ``tip_twist`` = 0; ``length_change`` =
-integral of ``|r'| - 1`` (3-point Gauss per element); ``tendon_tensions`` = zeros.
+integral of ``|r'| - 1`` (3-point Gauss per element); ``tendon_tensions`` = zeros; extras
+``max_stress_backbone`` / ``stress_ratio`` of the final state (:meth:`_System.backbone_stress`).
 Checked by ``tests/physics/test_ancf3d.py`` and the ``ancf3d`` comparisons in ``test_beam3d.py``.
 """
 
@@ -114,9 +115,11 @@ class _System:
         starts = np.concatenate([[0.0], robot.section_ends[:-1]])
         self.nodes = [mbs.AddNode(NodePointSlope1(referenceCoordinates=[0, 0, float(s), 0, 0, 1])) for s in node_s]
         self.elements = []
+        self.elem_cs = []  # CrossSection of every element (its midpoint), for stresses
         for e, j in enumerate(elem_sec):
             sec = robot.sections[int(j)]
             cs = sec.cross_section_at((0.5 * (node_s[e] + node_s[e + 1]) - starts[j]) / sec.length)
+            self.elem_cs.append(cs)
             self.elements.append(mbs.AddObject(ObjectANCFCable(
                 nodeNumbers=[self.nodes[e], self.nodes[e + 1]], length=float(self.elem_len[e]),
                 massPerLength=cs.mass_per_length, bendingStiffness=cs.EI, axialStiffness=cs.EA,
@@ -160,6 +163,36 @@ class _System:
                                                   localPosition=[0.5 * Le * (1 + x), 0, 0])
                 dl += 0.5 * Le * w * (np.linalg.norm(d1) - 1.0)
         return float(dl)
+
+    def backbone_stress(self):
+        """Largest normal stress at five points per element (:mod:`workbench.models.stress`) and the strength there.
+
+        Cubic Hermite centreline from the node positions and slopes: axial strain ``|r'| - 1``,
+        bending ``|r' x r''| / |r'|^2``.  ``(sigma (5 n,), strength (5 n,))`` or ``None``.
+        """
+        from ..models.stress import combined_stress, section_arrays
+
+        arrs = section_arrays(self.elem_cs)
+        if arrs is None:
+            return None
+        coords = self.exu.OutputVariableType.Coordinates
+        q = np.array([self.mbs.GetNodeOutput(n, coords) for n in self.nodes], dtype=float)
+        q = q + np.column_stack([np.zeros((len(self.nodes), 2)), self.node_s, np.zeros((len(self.nodes), 2)),
+                                 np.ones(len(self.nodes))])
+        xi = np.linspace(0.0, 1.0, 5)
+        sig, strength = [], []
+        for e, Le in enumerate(self.elem_len):
+            r0, t0, r1, t1 = q[e, :3], q[e, 3:], q[e + 1, :3], q[e + 1, 3:]
+            dr = (np.outer((-6 * xi + 6 * xi**2) / Le, r0) + np.outer(1 - 4 * xi + 3 * xi**2, t0)
+                  + np.outer((6 * xi - 6 * xi**2) / Le, r1) + np.outer(-2 * xi + 3 * xi**2, t1))
+            ddr = (np.outer((-6 + 12 * xi) / Le**2, r0) + np.outer((-4 + 6 * xi) / Le, t0)
+                   + np.outer((6 - 12 * xi) / Le**2, r1) + np.outer((-2 + 6 * xi) / Le, t1))
+            n2 = np.sum(dr * dr, axis=1)
+            cs = self.elem_cs[e]
+            sig.append(combined_stress(cs.EA * (np.sqrt(n2) - 1.0),
+                                       cs.EI * np.linalg.norm(np.cross(dr, ddr), axis=1) / n2, arrs[0][e], arrs[1][e]))
+            strength.append(np.full(xi.size, arrs[2][e]))
+        return np.concatenate(sig), np.concatenate(strength)
 
     def tip_frame(self) -> np.ndarray:
         """Base <- tip ``(4, 4)``: z = unit tip tangent, x/y parallel-transported along the node tangents."""
@@ -279,6 +312,10 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
         positions = system.positions(stations)
         dl = system.length_change()
         tip = system.tip_frame()
+        from ..models.stress import stress_extras
+
+        bs = system.backbone_stress()  # final state (also in dynamics)
+        extras.update(stress_extras(None if bs is None else bs[0], None if bs is None else bs[1]))
     if not (np.all(np.isfinite(positions)) and np.all(np.isfinite(tip))):
         raise ModelFailure("ancf3d: non-finite state after the solve")
     return PhysicsResult(

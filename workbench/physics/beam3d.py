@@ -25,8 +25,8 @@ Model ``"beam3d"``: ``run(robot, load, options) -> PhysicsResult``.
 * Dynamic analysis: generalised-alpha from the static equilibrium at t = 0; commands
   ``TendonActuation.command_at(t, load.ramp_time)`` set in a ``preStepUserFunction`` (called with
   the *end* time of the coming step); no material damping (``options.damping > 0`` is rejected:
-  Exudyn ignores the section damping matrix); undamped tendons; series every
-  ``max(time_step, duration / 1000)``.
+  Exudyn ignores the section damping matrix); undamped tendons; series on the grid of
+  :func:`workbench.models.result.series_times` (every ``max(time_step, duration / 1000)``).
 * Outputs: ``positions`` by the element's own interpolation at ``options.n_stations`` stations;
   ``tip_frame`` = tip cross-section axes (z along the backbone); ``length_change`` = sum of
   ``L_e (|Gamma_e| - 1)``; ``tip_twist`` = sum of ``L_e kappa_1`` (relative to the base frame
@@ -139,13 +139,18 @@ class _Recorder:
         self.system = system
         self.n_t = n_tendons
         self.stations, self.stride = stations, stride  # backbone frames: every stride-th sample
-        self.rec: dict[str, list] = {"t": [], "tip": [], "T": [], "dl": [], "tw": [], "st": [], "bb": []}
+        self.rec: dict[str, list] = {"t": [], "tip": [], "T": [], "dl": [], "tw": [], "st": [], "sb": [], "bb": []}
+        self.strength = None  # backbone strength per element (stress_extras)
 
     def record(self, t: float, final: bool = False) -> None:
         T, st = self.system.tendon_state()
         if T.size != self.n_t:  # no tendon objects built (unloaded tendons)
             T, st = np.zeros(self.n_t), np.zeros(self.n_t)
-        dl, tw = self.system.shape_scalars()
+        strains = self.system.element_strains()
+        dl, tw = self.system.shape_scalars(strains)
+        bs = self.system.backbone_stress(strains)
+        if bs is not None:
+            self.strength = bs[1]
         tip = self.system.tip_position()
         rec = self.rec
         # a step retried with a smaller step size calls pre_step again at the same t
@@ -158,8 +163,18 @@ class _Recorder:
         rec["st"].append(st)
         rec["dl"].append(dl)
         rec["tw"].append(tw)
+        rec["sb"].append(None if bs is None else bs[0])
         keep = self.stations is not None and (final or (len(rec["t"]) - 1) % self.stride == 0)
         rec["bb"].append(self.system.positions(self.stations) if keep else None)
+
+    def stress(self, robot: Robot) -> dict[str, float]:
+        """Stress extras (:func:`workbench.models.stress.stress_extras`) over every recorded state."""
+        from ..models.stress import stress_extras
+
+        sb = self.rec["sb"]
+        sigma = None if not sb or any(x is None for x in sb) else np.concatenate(sb)
+        T = np.asarray(self.rec["T"]).reshape(len(self.rec["t"]), self.n_t)
+        return stress_extras(sigma, None if sigma is None else np.tile(self.strength, len(sb)), robot, T)
 
     def series(self) -> tuple[np.ndarray, dict[str, np.ndarray]]:
         rec, n_t = self.rec, self.n_t
@@ -183,7 +198,8 @@ def _kept_frames(times: np.ndarray, frames: list) -> dict[str, np.ndarray]:
 
 
 def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bool, stations: np.ndarray):
-    """Static equilibrium at t = 0, then generalised-alpha; returns (accepted, attempts, n_steps, times, series).
+    """Static equilibrium at t = 0, then generalised-alpha; returns (accepted, attempts, n_steps, times, series,
+    stress extras over the recorded states).
 
     ``series`` includes decimated backbone frames at ``stations`` (:mod:`workbench.models.backbone_frames`)."""
     import exudyn as exu
@@ -228,7 +244,7 @@ def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bo
         system.set_tendons(act.command_at(load.duration, load.ramp_time), 1.0)
     rec.record(float(load.duration), final=True)
     times, series = rec.series()
-    return acc, att, n_steps, times, series
+    return acc, att, n_steps, times, series, rec.stress(system.robot)
 
 
 def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
@@ -279,13 +295,21 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
             extras["load_steps"] = float(acc)
             times, series = None, {}
         else:
-            acc, att, n_steps, times, series = _dynamic(system, load, options, n_t, act is not None and mode != "none",
-                                                        stations)
+            acc, att, n_steps, times, series, stress = _dynamic(system, load, options, n_t,
+                                                                act is not None and mode != "none", stations)
             extras.update(load_steps=float(acc), n_steps=float(n_steps))
         positions = system.positions(stations)
         tip = system.tip_frame()
         T, _ = system.tendon_state()
-        dl, tw = system.shape_scalars()
+        strains = system.element_strains()
+        dl, tw = system.shape_scalars(strains)
+        if load.analysis == "static":
+            from ..models.stress import stress_extras
+
+            bs = system.backbone_stress(strains)
+            Tn = T if T.size == n_t else np.zeros(n_t)
+            stress = stress_extras(None if bs is None else bs[0], None if bs is None else bs[1], robot, Tn)
+        extras.update(stress)
     if not (np.all(np.isfinite(positions)) and np.all(np.isfinite(tip))):
         raise ModelFailure("beam3d: non-finite state after the solve")
     if n_t and T.size != n_t:

@@ -29,6 +29,8 @@ from ..compare.table import compare_table
 from ..study.store import MANIFEST, array_shapes
 from .casetable import case_table
 from .figures import GENERIC_FIGURES, STYLE, ReportFigure, code_categories, pair_label
+from .findings import opening_sections
+from .headline import baseline_cases, summary_columns
 from .load import ResultSet, load_results, numeric
 from .context import PageContext
 from .page import render_page
@@ -106,9 +108,10 @@ def _point_links_html(f: ReportFigure) -> str:
     return "".join(out)
 
 
-def _summary_table(cmp: pd.DataFrame) -> pd.DataFrame:
+def _summary_table(cmp: pd.DataFrame, study: ResultSet | None = None) -> pd.DataFrame:
     rows = []
     for (ref, m), g in cmp.groupby(["reference", "model"], sort=False):
+        err_bars = summary_columns(baseline_cases(study, g) if study is not None else g)  # findings.py's numbers
         e = numeric(g["tip_error_pct"])
         some = bool(np.isfinite(e).any())
 
@@ -126,6 +129,7 @@ def _summary_table(cmp: pd.DataFrame) -> pd.DataFrame:
             "max RMS shape error [% L]": worst("shape_error_rms_pct"),
             "median wall-time ratio (model / reference)": float(np.nanmedian(numeric(g["wall_time"]) / numeric(g["wall_time_ref"])))
             if g["wall_time_ref"].notna().any() else np.nan,
+            **err_bars,
         })
     return pd.DataFrame(rows)
 
@@ -140,7 +144,7 @@ def _data_uri(raw: bytes, mime: str) -> str:
 
 def _tables(study: ResultSet, cmp: pd.DataFrame, out: Path) -> tuple[pd.DataFrame, pd.DataFrame, list[str], list]:
     """Write the CSV and Parquet tables into ``out``; return (summary, failed, failed columns, downloads)."""
-    summary = _summary_table(cmp) if not cmp.empty else pd.DataFrame()
+    summary = _summary_table(cmp, study) if not cmp.empty else pd.DataFrame()
     res = study.results
     failed = study.failed
     fcols = [c for c in ["case_id", "model", "error", *study.axes] if c in failed.columns]
@@ -244,6 +248,8 @@ def build_report(data_dir: str | Path, out_dir: str | Path | None = None, *, for
         cmp = compare_table(study.results, reference=study.reference, derived=study.derived)
         summary, failed, fcols, downloads = _tables(study, cmp, tmp)
         with matplotlib.rc_context(STYLE):
+            # Question / Findings / Assumptions / Sensitivity (findings.py), then the figures
+            opening = opening_sections(study, cmp, lambda f: _write_figures([f], tmp / "figures", formats)[0])
             figs = _all_figures(study, code_categories(study, cmp))
             figure_html = _write_figures(figs, tmp / "figures", formats)
         scenes = viewer_scenes(study, _leg_nodes(study))
@@ -251,7 +257,7 @@ def build_report(data_dir: str | Path, out_dir: str | Path | None = None, *, for
         ctx = PageContext(study=study, cmp=cmp, summary=summary, failed=failed, failed_columns=tuple(fcols),
                           figures_html=tuple(figure_html), figure_names=tuple(f.name for f in figs),
                           downloads=tuple(downloads), viewer_cases=len(scenes["cases"]),
-                          viewer_left_out=scenes["left_out"])
+                          viewer_left_out=scenes["left_out"], extra={"opening": opening})
         page = render_page(ctx, _banners(study), {"wb-cases": table, "wb-scenes": scenes})
         (tmp / "report.html").write_text(page, encoding="utf-8")
         _swap_in(tmp, out)

@@ -14,6 +14,7 @@ This module also re-exports the shared style and label helpers of :mod:`.style`,
 from __future__ import annotations
 
 from .dynamics import compression_split_figures, time_series_figures
+from .errorbars import error_bar_figures
 from .shapes import shape_overlay_figures
 from .style import (
     STYLE,
@@ -46,10 +47,12 @@ __all__ = [
     "validity_map_figures",
     "time_series_figures",
     "compression_split_figures",
+    "error_bar_figures",
 ]
 
 #: The generic figure builders, in report order.
 GENERIC_FIGURES = (
+    error_bar_figures,
     shape_overlay_figures,
     error_vs_parameter_figures,
     validity_map_figures,

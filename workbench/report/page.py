@@ -26,6 +26,8 @@ __all__ = ["PageContext", "SECTIONS", "Section", "asset_text", "json_block", "re
 
 #: The page's sections, in order: names of builders in :mod:`.sections` (``module:function`` for others).
 SECTIONS: tuple[str, ...] = (
+    "workbench.report.findings:question_section", "workbench.report.findings:findings_section",
+    "workbench.report.findings:assumptions_section", "workbench.report.findings:sensitivity_section",
     "provenance", "failed", "summary", "cases", "viewer", "figures", "spec",
 )
 

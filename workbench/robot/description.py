@@ -117,6 +117,15 @@ class CrossSection:
         large value" (shear-rigid, Euler-Bernoulli limit) and is left to the model.
     diameter : float, optional
         Outer diameter [m], informational (used for drawing and for link inertia).
+    area : float, optional
+        Cross-section area [m^2] for stresses (``N / A``); ``None``: no stress geometry (e.g. an
+        equivalent rod of springs), the models then report no backbone stress.
+    section_modulus : float, optional
+        Elastic section modulus ``W = I / c`` [m^3] for bending stresses (``M / W``, ``c`` the
+        outer-fibre distance); ``None`` as for ``area``.
+    yield_strength : float, optional
+        Allowable normal stress of the backbone material [Pa] (its 0.2 % proof stress for the
+        presets' steels); ``None``: unknown, stresses are reported but not judged.
     """
 
     EI: float
@@ -125,6 +134,9 @@ class CrossSection:
     mass_per_length: float
     GA: float | None = None
     diameter: float | None = None
+    area: float | None = None
+    section_modulus: float | None = None
+    yield_strength: float | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "EI", _positive("CrossSection.EI", self.EI))
@@ -137,8 +149,9 @@ class CrossSection:
         )
         if self.GA is not None:
             object.__setattr__(self, "GA", _positive("CrossSection.GA", self.GA))
-        if self.diameter is not None:
-            object.__setattr__(self, "diameter", _positive("CrossSection.diameter", self.diameter))
+        for name in ("diameter", "area", "section_modulus", "yield_strength"):
+            if getattr(self, name) is not None:
+                object.__setattr__(self, name, _positive(f"CrossSection.{name}", getattr(self, name)))
 
     @classmethod
     def circular(
@@ -147,12 +160,14 @@ class CrossSection:
         youngs_modulus: float = 210e9,
         density: float = 7850.0,
         poisson_ratio: float = 0.3,
+        yield_strength: float | None = None,
     ) -> "CrossSection":
-        """Solid circular rod (defaults: structural steel).
+        """Solid circular rod (defaults: steel; strength unknown unless given).
 
         ``EI = E pi d^4 / 64``, ``EA = E pi d^2 / 4``, ``GJ = G pi d^4 / 32`` with
         ``G = E / (2 (1 + nu))``, shear stiffness ``GA = kappa_s G A`` with the circular
-        shear coefficient ``kappa_s = 6 (1 + nu) / (7 + 6 nu)``.
+        shear coefficient ``kappa_s = 6 (1 + nu) / (7 + 6 nu)``; stress geometry ``A = pi d^2 / 4``,
+        ``W = pi d^3 / 32``.
         """
         d = _positive("diameter", diameter)
         E = _positive("youngs_modulus", youngs_modulus)
@@ -170,6 +185,9 @@ class CrossSection:
             mass_per_length=rho * area,
             GA=kappa_s * G * area,
             diameter=d,
+            area=area,
+            section_modulus=inertia / (0.5 * d),
+            yield_strength=yield_strength,
         )
 
     def scaled(self, factor: float) -> "CrossSection":
@@ -205,12 +223,20 @@ class TendonGroup:
         whole routed length, from the base plate (s = 0) to the end of its section.
     axial_stiffness : float
         Tendon axial stiffness ``EA_t`` [N] (e.g. steel wire of 0.5 mm: ~4e4 N).
+    area : float, optional
+        Load-bearing cross-section area of one tendon [m^2] (tendon stress ``T / area``);
+        ``None``: no tendon stress (e.g. equivalent tendons standing in for other actuators).
+    strength : float, optional
+        Allowable tensile stress of the tendon [Pa] (the presets' steel wires: the minimum
+        tensile strength, so a ratio above 1 means the wire breaks); ``None``: unknown.
     """
 
     angles: tuple[float, ...]
     offset: float
     axial_stiffness: float = 4.0e4
     offset_tip: float | None = None
+    area: float | None = None
+    strength: float | None = None
 
     def __post_init__(self) -> None:
         ang = np.asarray(self.angles, dtype=float).reshape(-1)
@@ -223,10 +249,9 @@ class TendonGroup:
         object.__setattr__(
             self, "axial_stiffness", _positive("TendonGroup.axial_stiffness", self.axial_stiffness)
         )
-        if self.offset_tip is not None:
-            object.__setattr__(
-                self, "offset_tip", _positive("TendonGroup.offset_tip", self.offset_tip)
-            )
+        for name in ("offset_tip", "area", "strength"):
+            if getattr(self, name) is not None:
+                object.__setattr__(self, name, _positive(f"TendonGroup.{name}", getattr(self, name)))
 
     @property
     def count(self) -> int:
@@ -236,13 +261,14 @@ class TendonGroup:
     @classmethod
     def evenly_spaced(
         cls, count: int, offset: float, axial_stiffness: float = 4.0e4, first_angle: float = 0.0,
-        offset_tip: float | None = None,
+        offset_tip: float | None = None, area: float | None = None, strength: float | None = None,
     ) -> "TendonGroup":
         """``count`` tendons at ``first_angle + 2 pi k / count``."""
         if int(count) != count or count < 1:
             raise RobotDescriptionError(f"tendon count must be a positive integer, got {count!r}")
         angles = tuple(first_angle + 2.0 * math.pi * k / count for k in range(int(count)))
-        return cls(angles=angles, offset=offset, axial_stiffness=axial_stiffness, offset_tip=offset_tip)
+        return cls(angles=angles, offset=offset, axial_stiffness=axial_stiffness, offset_tip=offset_tip,
+                   area=area, strength=strength)
 
     def offset_at(self, fraction: float) -> float:
         """Tendon offset [m] at ``fraction`` in [0, 1] of the tendon's routed length.
@@ -315,6 +341,8 @@ class Section:
             EI=lerp(a.EI, b.EI), EA=lerp(a.EA, b.EA), GJ=lerp(a.GJ, b.GJ),
             mass_per_length=lerp(a.mass_per_length, b.mass_per_length),
             GA=lerp(a.GA, b.GA), diameter=lerp(a.diameter, b.diameter),
+            area=lerp(a.area, b.area), section_modulus=lerp(a.section_modulus, b.section_modulus),
+            yield_strength=lerp(a.yield_strength, b.yield_strength),
         )
 
 

@@ -26,6 +26,7 @@ import traceback
 from typing import Any, Callable, Iterator, Mapping, Sequence
 
 from .build import build_load, build_options, build_robot, gravity_from_parameter, resolve_case
+from .estimate import CCReference, discretization_columns
 from .params import flatten_params
 from .rows import failed_rows, row_from_result
 
@@ -84,7 +85,9 @@ def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str]
     Returns
     -------
     list of dict
-        One row per model (:mod:`workbench.study.rows`).  Its ``p.*`` cells are the parameters
+        One row per model (:mod:`workbench.study.rows`); ok physics rows carry the
+        discretisation-error estimate (``x.disc_*``, :mod:`workbench.study.estimate`; its coarse
+        solves are not in ``wall_time``).  Its ``p.*`` cells are the parameters
         the case ran with (:func:`~workbench.study.build.resolve_case`): ``p.robot.*`` rebuild
         the robot that ran (``p.robot.gravity`` derived from ``derived.gravity_parameter``),
         ``p.load.*`` the load (a scenario's fields applied); ``case_id`` stays the hash of the
@@ -130,6 +133,7 @@ def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str
         yield from failed_rows(case_id, params, models, f"building the case failed: {_reason(e)}")
         return
     flat = flatten_params(ran)
+    cc_reference = CCReference(model_lookup, robot, load, options)
     for name in models:
         t0 = time.perf_counter()
         try:
@@ -138,6 +142,11 @@ def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str
                 res = fn(robot, load, options)
             wall = time.perf_counter() - t0
             row = row_from_result(res, case_id, name, ran, robot, wall, flat)
+            if name == "cc":
+                cc_reference.set(res)
+            if row["status"] == "ok":  # the discretisation-error estimate (study/estimate.py)
+                with quiet_if_loaded():
+                    row.update(discretization_columns(name, fn, robot, load, options, res, cc_reference))
         except Exception as e:  # noqa: BLE001 - ModelFailure, exudyn.SolverError, bugs: all recorded
             kind = "memory" if isinstance(e, MemoryError) else "model"
             row = failed_rows(case_id, ran, [name], _reason(e), time.perf_counter() - t0, flat, failure=kind)[0]

@@ -7,6 +7,8 @@ when ok), ``wall_time`` and the results.  The same rule marks a row failed for
 both kinds (:func:`fail_non_finite`): a non-finite number in ``positions``, ``tip_frame``,
 ``length_change``, ``tip_twist``, a ``series.*`` or an ``x.*`` cell, or tendon tensions that are
 partly NaN (all-NaN means "this model predicts no forces", e.g. CC kinematics in length mode).
+The discretisation-error estimate's cells (``x.disc_*``) are exempt: NaN there means "no
+estimate" and ``disc_status`` says why (:mod:`workbench.study.estimate`).
 
 Checked by ``tests/study/test_evaluate.py`` (NaN results -> failed rows), ``tests/study/test_rows.py``
 and ``tests/motion/test_motion_run.py`` (failed IK rows).
@@ -74,7 +76,8 @@ def non_finite_cells(row: Mapping[str, Any]) -> list[str]:
             bad.append("tendon_tensions")
     bad += [k for k in ("length_change", "tip_twist") if k in row and not math.isfinite(row[k])]
     bad += [k for k in row if str(k).startswith("series.") and _not_finite(row[k])]
-    bad += [k for k in row if str(k).startswith("x.") and not math.isfinite(float(row[k]))]
+    bad += [k for k in row if str(k).startswith("x.") and not str(k).startswith("x.disc_")
+            and not math.isfinite(float(row[k]))]
     return bad
 
 

@@ -91,6 +91,8 @@ class SolverSection(CaseLimitFields):
     damping: float = Field(default=0.0, ge=0.0)
     spectral_radius: float = Field(default=0.8, ge=0.0, le=1.0)
     spring_link_backend: Literal["auto", "tree", "bodies"] = "auto"
+    error_estimate: Literal["richardson", "none"] = "richardson"
+    error_estimate_exempt: list[str] = Field(default_factory=list)
 
 
 class DerivedSection(BaseModel):
@@ -109,13 +111,24 @@ class SweepSection(BaseModel):
 
 
 class ReportSection(BaseModel):
-    """Presentation hints for ``workbench.report`` (not part of the config hash)."""
+    """Presentation hints for ``workbench.report`` (not part of the config hash).
+
+    ``question``, ``assumptions`` (``"section.key"`` -> where the value comes from),
+    ``sensitivity`` (the sweep keys that vary an assumption; their value in the base section is the
+    baseline) and ``sensitivity_note`` (why an assumption is not swept) feed the report's Question /
+    Assumptions / Sensitivity sections
+    (:mod:`workbench.report.findings`).
+    """
 
     model_config = _CFG
     axes: list[str] = Field(default_factory=list)
     derived: dict[str, str] = Field(default_factory=dict)
     labels: dict[str, str] = Field(default_factory=dict)
     reference: str | None = None
+    question: str = ""
+    assumptions: dict[str, str] = Field(default_factory=dict)
+    sensitivity: list[str] = Field(default_factory=list)
+    sensitivity_note: str = ""
     frame: Literal["world", "base"] = "world"  # frame of the report's shape figures and 3-D view
 
 

@@ -243,6 +243,10 @@ def _check_models(sections: Mapping[str, BaseModel]) -> list[str]:
     rep = sections.get("report")
     if rep is not None and rep.reference is not None and rep.reference not in st.models and len(known) == len(st.models):
         problems.append(f"report.reference: {rep.reference!r} is not one of study.models ({', '.join(st.models)})")
+    sol = sections.get("solver")
+    for i, m in enumerate(getattr(sol, "error_estimate_exempt", None) or []):
+        if m not in st.models:
+            problems.append(f"solver.error_estimate_exempt[{i}]: {m!r} is not one of study.models ({', '.join(st.models)})")
     return problems
 
 
@@ -326,6 +330,28 @@ def _resolve_base(sections: Mapping[str, BaseModel], robot_base: dict[str, Any] 
     return base
 
 
+def _sensitivity_rules(rep: Any, base: dict[str, Any] | None, sweep: Mapping[str, Any]) -> list[str]:
+    """``report.sensitivity`` keys are swept and set in their base section (the baseline value)."""
+    if rep is None or base is None or not getattr(rep, "sensitivity", None):
+        return []
+    swept: set[str] = set()
+    for block in sweep.values():
+        if isinstance(block, Mapping):
+            swept.update(k for k in block if "." in str(k))
+        elif isinstance(block, list):
+            for item in block:
+                if isinstance(item, Mapping):
+                    swept.update(item)
+    problems = []
+    for i, key in enumerate(rep.sensitivity):
+        section, _, name = str(key).partition(".")
+        if key not in swept:
+            problems.append(f"report.sensitivity[{i}]: {key!r} is not a [sweep] key")
+        elif name not in (base.get(section) or {}):
+            problems.append(f"report.sensitivity[{i}]: {key!r} needs its baseline value in [{section}]")
+    return problems
+
+
 def _drop_kind(raw: dict[str, Any], source: str) -> None:
     """``[study] kind``: ``"sweep"`` is this kind (dropped); any other value is the one problem of the file."""
     st = raw.get("study")
@@ -379,6 +405,7 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
         sweep_ok = not sweep_problems
     else:
         sweep_ok = "sweep" not in raw or "sweep" in sections
+    problems += _sensitivity_rules(sections.get("report"), base, sweep)
     st = sections.get("study")
     report = sections["report"].model_dump(exclude_defaults=True) if "report" in sections else None
     scenario_ok = raw.get("scenario") is None or scenario_base is not None  # else its keys are unknown: knock-ons

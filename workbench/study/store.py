@@ -305,7 +305,8 @@ class ResultStore:
                     self._shapes.setdefault(name, shape)
                 for k, v in r.items():
                     if k not in self._fields:
-                        self._fields[k] = _LIST if isinstance(v, (list, tuple)) else pa.float64()
+                        self._fields[k] = (_LIST if isinstance(v, (list, tuple)) else
+                                           pa.string() if isinstance(v, str) else pa.float64())
             self._write_schema_if_changed()
             table = pa.Table.from_pylist(rows, schema=self._schema)
             name = f"part-{time.time_ns():019d}-{os.getpid()}-{self._seq:06d}.parquet"

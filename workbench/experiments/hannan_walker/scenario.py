@@ -17,7 +17,21 @@ import numpy as np
 
 from .replay import cc_cable_plan
 
-__all__ = ["hannan_walker_line", "hannan_walker_spatial"]
+__all__ = ["hannan_walker_line", "hannan_walker_spatial", "GIVEN", "ASSUMED"]
+
+#: Scenario parameters the paper gives (Hannan & Walker Sec. 5, Figs 7-12).
+GIVEN: dict[str, str] = {
+    "shape": "paper Sec. 5: the straight-line example without (line) and with the null-space task (grasp)",
+    "n_samples": "paper Figs 7-12: six snapshots",
+}
+#: Scenario parameters the paper does not give (its photos carry no numbers).
+ASSUMED: dict[str, str] = {
+    "start_x": "line start (0.25, 0.70) m, read off the paper's figures (no numbers given)",
+    "start_z": "see start_x",
+    "end_x": "line end (0.35, 0.60) m (no numbers given)",
+    "end_z": "see end_x",
+    "grasp_bend_angles": "q_d = (-0.3, 0.3, 1.0, 1.6) rad per section, a curled tip (not given)",
+}
 
 
 def hannan_walker_line(

@@ -2,7 +2,8 @@
 
 A case's ``params`` are plain data ``{"motion": {...}, "geometry": {...}, "solver": {...}}``
 (``p.motion.kind`` = ``module`` | ``stack``, ``shape``, ``value``, ``n_modules``, ``plane``, and
-``pivot`` only where a file gives one); its ``case_id`` is
+``pivot`` only where a file gives one; ``geometry`` = the study's ``[geometry]`` with the motion's
+own ``geometry`` overrides, a sensitivity sweep of the assumed module); its ``case_id`` is
 :func:`workbench.study.params.case_id_for` of those params, so it depends only on the values, not
 on the order of the motions or the study name.  Was ``workbench/motion/expand.py``.
 
@@ -36,8 +37,8 @@ def expand_motions(study: SeriesParallelStudy) -> list[Case]:
     cases: list[Case] = []
     seen: set[str] = set()
 
-    def add(motion: dict[str, Any]) -> None:
-        params = {"motion": motion, "geometry": dict(study.geometry), "solver": dict(study.solver)}
+    def add(motion: dict[str, Any], geometry: dict[str, Any] | None = None) -> None:
+        params = {"motion": motion, "geometry": {**study.geometry, **(geometry or {})}, "solver": dict(study.solver)}
         cid = case_id_for(params)
         if cid in seen:
             return
@@ -50,8 +51,9 @@ def expand_motions(study: SeriesParallelStudy) -> list[Case]:
             motion = {"kind": "module", "shape": m["axis"], "value": v, "n_modules": 1, "plane": 0.0}
             if m.get("pivot") is not None:  # rx / ry about a centre on the module axis (absent: platform centre)
                 motion["pivot"] = float(m["pivot"])
-            add(motion)
+            add(motion, m.get("geometry"))
     for m in study.motions.get("stack", []):
         for v in motion_values(m["amplitude"], m["samples"], m["symmetric"]):
-            add({"kind": "stack", "shape": m["shape"], "value": v, "n_modules": m["n_modules"], "plane": m["plane"]})
+            add({"kind": "stack", "shape": m["shape"], "value": v, "n_modules": m["n_modules"], "plane": m["plane"]},
+                m.get("geometry"))
     return cases

@@ -12,7 +12,7 @@ Sections (the annotated reference is ``docs/study-format.md``, "Series-parallel 
 
     [study]     kind = "series_parallel", name, description, seed, max_cases
     [geometry]  ModuleGeometry overrides (SI units; deg for the angle lists)
-    [solver]    n_elements, length_tolerance, max_iterations, fk_tolerance
+    [solver]    n_elements, length_tolerance, max_iterations, fk_tolerance, error_estimate
     [motions]   module = [{axis, amplitude, samples, symmetric, pivot}, ...]   (Fig 6)
                 stack = [{shape, amplitude, samples, n_modules, plane, symmetric}, ...]   (Fig 10)
     [report]    presentation hints (the sweep studies' ReportSection; not in the config hash)
@@ -65,6 +65,7 @@ class _SolverSection(CaseLimitFields):
     length_tolerance: float = Field(default=1e-10, gt=0.0)
     max_iterations: int = Field(default=20, ge=1)
     fk_tolerance: float = Field(default=1e-10, gt=0.0)
+    error_estimate: Literal["richardson", "none"] = "richardson"
 
 
 class _ModuleMotion(BaseModel):
@@ -75,6 +76,8 @@ class _ModuleMotion(BaseModel):
     symmetric: bool = True
     # rx / ry only: rotation centre on the module axis at pivot * height (1 = platform centre)
     pivot: float | None = Field(default=None, ge=0.0, le=2.0)
+    # ModuleGeometry overrides for these cases only (a sensitivity sweep of the assumed module)
+    geometry: dict[str, Any] | None = None
 
     @field_validator("pivot")
     @classmethod
@@ -94,6 +97,7 @@ class _StackMotion(BaseModel):
     n_modules: int = Field(default=3, ge=1, le=10)
     plane: float = 0.0
     symmetric: bool = False
+    geometry: dict[str, Any] | None = None
 
 
 class _MotionsSection(BaseModel):
@@ -126,6 +130,7 @@ def _geometry_defaults() -> dict[str, Any]:
 GEOMETRY_KEYS = (
     "base_radius", "platform_radius", "base_angles_deg", "platform_angles_deg", "height", "rod_diameter",
     "youngs_modulus", "poisson_ratio", "density", "platform_mass", "mount_offset", "mount_twist_deg",
+    "yield_strength",
 )
 
 
@@ -276,6 +281,12 @@ def load_series_parallel_study(path: str | Path, *, max_cases: int | None = None
     if isinstance(raw_geometry, dict):
         geometry, gp = _check_geometry(raw_geometry, _geometry_defaults())
         problems += gp
+    if model is not None and not problems:
+        for group in ("module", "stack"):
+            for i, m in enumerate(getattr(model.motions, group)):
+                if m.geometry:
+                    _, gp = _check_geometry({**raw_geometry, **m.geometry}, _geometry_defaults())
+                    problems += [f"motions.{group}[{i}].{q}" for q in gp]
     if model is not None and not model.motions.module and not model.motions.stack:
         problems.append("motions: no motions given (need at least one entry in motions.module or motions.stack)")
     if model is not None and not problems:
@@ -292,6 +303,6 @@ def load_series_parallel_study(path: str | Path, *, max_cases: int | None = None
         solver=model.solver.model_dump(exclude=set(LIMIT_KEYS)),
         limits=CaseLimits(model.solver.max_case_seconds, model.solver.max_case_memory),
         motions={"module": [m.model_dump(exclude_none=True) for m in model.motions.module],
-                 "stack": [m.model_dump() for m in model.motions.stack]},
+                 "stack": [m.model_dump(exclude_none=True) for m in model.motions.stack]},
         report=model.report.model_dump(exclude_defaults=True),
     )

@@ -11,9 +11,11 @@ Models (one row each, the row schema of ``docs/architecture.md``):
     FK platform poses, ``x.L<k>_<i>`` the insertion lengths [m] of leg i of module k, the IK
     residual, the FK-vs-target errors, the largest leg compression (``x.max_leg_compression`` [N],
     ``x.buckling_ratio``) and ``x.min_leg_gap``, the smallest surface gap between two legs of a
-    module in the FK state [m] (negative: the rods would intersect; contact is not modelled); for
-    ``bending`` / ``s_shape`` stacks ``x.backbone_max_error``, ``x.backbone_rms_error`` and
-    ``x.polygon_max_error`` (:mod:`.backbone`).  A failed IK or FK is a failed row with the reason.
+    module in the FK state [m] (negative: the rods would intersect; contact is not modelled), the
+    largest leg stress and the discretisation-error estimate (:mod:`.estimate`: ``x.max_stress_backbone``,
+    ``x.stress_ratio``, ``x.disc_*``); for ``bending`` / ``s_shape`` stacks ``x.backbone_max_error``,
+    ``x.backbone_rms_error`` and ``x.polygon_max_error`` (:mod:`.backbone`).  A failed IK or FK is a failed
+    row with the reason.
 ``cc_fit``
     The constant-curvature arc from the base, fitted through the FK platform origins
     (:func:`fit_constant_curvature`); ``x.cc_*`` its curvature, plane and fit errors.
@@ -41,6 +43,7 @@ import numpy as np
 from ...study.params import flatten_params
 from ...study.rows import fail_non_finite, failed_rows
 from .backbone import CURVE_SHAPES, backbone_errors
+from .estimate import discretization_columns, stress_columns
 
 __all__ = ["stack_targets", "module_target", "evaluate_motion_case", "evaluate_motion_batch", "evaluate_motion_rows",
            "MODELS"]
@@ -253,6 +256,9 @@ def _physics_row(row: dict[str, Any], state: dict[str, Any], geo, targets: np.nd
         m = state["motion"]
         extras.update(backbone_errors(stack_targets, m["shape"], m["value"], n, h, m["plane"], fk.leg_positions,
                                       fk.poses[:, :3, 3]))
+    extras.update(stress_columns(geo, modules))
+    if sol.get("error_estimate", "richardson") != "none":  # discretisation error (estimate.py)
+        extras.update(discretization_columns(geo, targets, sol, n, L, fk.poses, _inverse))
     legs = np.asarray(fk.leg_positions, dtype=float)  # (n, 6, N+1, 3): the report draws Huang's Figs 6 and 10
     row.update(status="ok", error="", wall_time=time.perf_counter() - t0, converged=True,
                iterations=ik_its + int(fk.iterations), **extras, **_shape_row(fk.poses, h),

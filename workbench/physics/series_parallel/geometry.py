@@ -64,6 +64,9 @@ class ModuleGeometry:
         frame [m] (default 0.0, the constant matrix of Eq 29-32).
     mount_twist_deg : float
         Rotation of module k+1's base about that z axis [deg] (default 0.0).
+    yield_strength : float
+        Rod 0.2 % proof stress [Pa] for the leg stress ratio (default 1.2e9: hardened and tempered
+        spring steel 52CrMoV4, EN 10089, Rp0.2 >= 1200 MPa, Saarstahl data sheet).
     """
 
     base_radius: float = 0.12
@@ -78,9 +81,11 @@ class ModuleGeometry:
     platform_mass: float = 0.5
     mount_offset: float = 0.0
     mount_twist_deg: float = 0.0
+    yield_strength: float = 1.2e9
 
     def __post_init__(self) -> None:
-        for name in ("base_radius", "platform_radius", "height", "rod_diameter", "youngs_modulus", "density"):
+        for name in ("base_radius", "platform_radius", "height", "rod_diameter", "youngs_modulus", "density",
+                     "yield_strength"):
             v = float(getattr(self, name))
             if not (math.isfinite(v) and v > 0):
                 raise ValueError(f"ModuleGeometry.{name} must be finite and > 0, got {getattr(self, name)!r}")

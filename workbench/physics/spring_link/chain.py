@@ -271,13 +271,62 @@ class _Chain:
             pos, T, joint, axes = planar_shape(geo, stations, P, beta)
             change = self._length_change(axes, lambda p: np.array([p[0], p[1]]))
             twist, dim = 0.0, 2.0
+            link_axes = np.stack([np.sin(beta), np.zeros_like(beta), np.cos(beta)], axis=1)
         else:
             P, R = self.link_frames()
             pos, T, joint = spatial_shape(geo, stations, P, R, self.torsion)
             change = self._length_change(R[:, :, 2], lambda p: np.asarray(p, dtype=float))
             twist, dim = twist_vs_parallel_transport(R), 3.0
+            link_axes = R[:, :, 2]
+        tensions = self.tensions()
         return PhysicsResult(
             model="spring_link", stations=stations, positions=pos, tip_frame=T, length_change=change,
-            tendon_tensions=self.tensions(), tip_twist=twist, solver=solver, joint_angles=joint,
-            time=time_, series=series or {}, extras={"n_links": float(geo.n_links), "dimension": dim},
+            tendon_tensions=tensions, tip_twist=twist, solver=solver, joint_angles=joint,
+            time=time_, series=series or {},
+            extras={"n_links": float(geo.n_links), "dimension": dim,
+                    **self._stress(joint, tensions, link_axes)},
         )
+
+    def _distal_weight(self) -> np.ndarray:
+        """Weight of everything beyond each joint (backbone, disks, payload), base frame, ``(N, 3)`` [N]."""
+        robot, s = self.robot, self.geo.joints
+        starts = np.concatenate([[0.0], robot.section_ends[:-1]])
+        disks = robot.disk_stations()
+        disk_m = np.concatenate([np.full(sec.n_disks, sec.disk_mass) for sec in robot.sections])
+        mass = np.zeros(s.size)
+        for a, sec in zip(starts, robot.sections):
+            b = a + sec.length
+            u = np.linspace(0.0, 1.0, 9)
+            mu = np.array([sec.cross_section_at(float(x)).mass_per_length for x in u])
+            for k, sk in enumerate(s):
+                lo = min(max(sk, a), b)
+                x = np.linspace((lo - a) / sec.length, 1.0, 9)
+                mass[k] += (b - lo) * float(np.mean(np.interp(x, u, mu)))
+        mass += np.array([disk_m[disks > sk].sum() for sk in s]) + robot.payload.mass
+        return mass[:, None] * robot.gravity_in_base()[None, :]
+
+    def _stress(self, joint: np.ndarray, tensions: np.ndarray, link_axes: np.ndarray) -> dict[str, float]:
+        """Stress extras (:mod:`workbench.models.stress`) of the equivalent rod at every joint.
+
+        Bending moment ``k_j |theta_j|`` of the joint spring (planar angle; 3-D: the bending part
+        of the relative rotation, torsion excluded); axial force along the distal link: the tip
+        force plus the distal weight, minus the summed tensions of the tendons passing the joint.
+        """
+        from ...models.stress import combined_stress, section_arrays, stress_extras
+        from .geometry import _section_of
+
+        robot, geo = self.robot, self.geo
+        idx, frac = _section_of(robot, geo.joints)
+        arrs = section_arrays([robot.sections[int(i)].cross_section_at(float(f)) for i, f in zip(idx, frac)])
+        sigma = strength = None
+        if arrs is not None:
+            j = np.asarray(joint, dtype=float)
+            bend = np.abs(j[:, 0]) if j.shape[1] == 1 else np.hypot(j[:, 0], j[:, 1])
+            ends = robot.section_ends
+            passing = np.array([[geo.joints[k] < ends[sec] for sec, _, _ in robot.tendon_table()]
+                                for k in range(geo.n_links)], dtype=float).reshape(geo.n_links, -1)
+            N = -(passing @ np.asarray(tensions, dtype=float)) if passing.size else np.zeros(geo.n_links)
+            F_ext = np.asarray(self.load.tip_force, dtype=float)[None, :] + self._distal_weight()
+            N = N + np.sum(F_ext * link_axes, axis=1)
+            sigma, strength = combined_stress(N, geo.stiffness * bend, arrs[0], arrs[1]), arrs[2]
+        return stress_extras(sigma, strength, robot, tensions)

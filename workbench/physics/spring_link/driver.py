@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import replace
 from typing import Callable
 
 import numpy as np
@@ -160,6 +161,7 @@ def _solve_dynamic(model: _Chain, params: SpringLinkParams, t0: float) -> Physic
     start = np.zeros(len(model.tendons)) if act is None else act.command_at(0.0, load.ramp_time)
     _ramp_to(model, params, start)
     rec_t, rec_tip, rec_T, bb_t, bb_p = [], [], [], [], []
+    peak: dict[str, float] = {}  # largest stress extras over the recorded states
     h = model.options.time_step if model.options.time_step > 0 else load.duration
     stride = frame_stride(math.ceil(load.duration / h))
 
@@ -176,6 +178,9 @@ def _solve_dynamic(model: _Chain, params: SpringLinkParams, t0: float) -> Physic
         rec_t.append(t)
         rec_tip.append(r.tip_position.copy())
         rec_T.append(r.tendon_tensions.copy())
+        for k in ("max_stress_backbone", "max_stress_tendon", "stress_ratio"):
+            if k in r.extras:
+                peak[k] = max(peak.get(k, 0.0), float(r.extras[k]))
 
     def command(t: float) -> None:
         cmd = start if act is None else act.command_at(t, load.ramp_time)
@@ -203,11 +208,12 @@ def _solve_dynamic(model: _Chain, params: SpringLinkParams, t0: float) -> Physic
     record(load.duration, model.result(SolverInfo(True)), final=True)
     info = SolverInfo(converged=True, iterations=int(solver.it.newtonStepsCount),
                       wall_time=time.perf_counter() - t0, message=f"{len(rec_t) - 1} time steps")
-    return model.result(
+    res = model.result(
         info, time_=np.asarray(rec_t),
         series={"tip_position": np.asarray(rec_tip), "tendon_tensions": np.asarray(rec_T),
                 **backbone_series(bb_t, bb_p)},
     )
+    return replace(res, extras={**res.extras, **peak})
 
 
 def solve(robot: Robot, load: LoadCase, options: SolverOptions,

@@ -3,6 +3,12 @@
 Each preset is a plain function of keyword parameters (SI units) with documented defaults,
 so a study file can name a preset and override any of its parameters.  Presets are
 imported lazily by name.
+
+Every preset module declares where each parameter comes from, as data (the report's
+"Assumptions" section reads it, :func:`preset_sources`): ``GIVEN`` (parameters the source paper
+gives: name -> where), ``ASSUMED`` (not given: name -> the value's source or reason) and
+``SETTINGS`` (chosen by each study).  ``tests/robot/test_presets_sources.py`` checks that every
+parameter of every preset is in exactly one of them.
 """
 
 from __future__ import annotations
@@ -13,7 +19,7 @@ from typing import Any, Callable
 from ... import registry
 from ..description import Robot
 
-__all__ = ["PRESET_NAMES", "get_preset", "preset_parameters", "build_preset"]
+__all__ = ["PRESET_NAMES", "get_preset", "preset_parameters", "build_preset", "preset_sources"]
 
 _PRESET_PATHS: dict[str, str] = dict(registry.PRESETS)  # name -> "module:function"
 
@@ -45,3 +51,12 @@ def build_preset(name: str, **params: Any) -> Robot:
             f"preset {name!r} has no parameter(s) {', '.join(unknown)}; known: {', '.join(sorted(known))}"
         )
     return fn(**params)
+
+
+def preset_sources(name: str) -> dict[str, dict[str, str]]:
+    """``{"given": ..., "assumed": ..., "settings": ...}`` of preset ``name`` (its module's ``GIVEN``,
+    ``ASSUMED``, ``SETTINGS``; empty dicts where a module declares none)."""
+    import sys
+
+    mod = sys.modules[get_preset(name).__module__]
+    return {k: dict(getattr(mod, k.upper(), {}) or {}) for k in ("given", "assumed", "settings")}

@@ -4,7 +4,8 @@ Source: Cojocaru, Boccolato, Dinulescu, Predescu, Manta, Dumitru, "3D Kinematics
 a Hyper Redundant Robot" (``/work/shared/papers/001_*``).  The paper gives the structure
 (elastic steel-rod backbone, three truncated-cone segments, total length > 1 m, three
 wires per segment at 120 degrees, end-disk diameters D1 > D2 per segment) but not the
-dimensions; every number below is a plausible default, documented as such.
+dimensions; every number below is a plausible default, documented as such (as data in
+:data:`ASSUMED`, the paper's facts in :data:`GIVEN`).
 """
 
 from __future__ import annotations
@@ -13,8 +14,35 @@ import math
 
 from ..description import CrossSection, Payload, Robot, Section, TendonGroup
 from ..orientation import base_rotation_for
+from .steel_rod import SPRING_STEEL_YIELD
 
-__all__ = ["cojocaru_tronconic"]
+__all__ = ["cojocaru_tronconic", "GIVEN", "ASSUMED", "SETTINGS", "WIRE_STRENGTH_1MM"]
+
+#: Minimum tensile strength of 1.0 mm (0.040 in) music wire, ASTM A228 Table 1: 315 ksi = 2172 MPa [Pa].
+WIRE_STRENGTH_1MM = 2.17e9
+
+GIVEN: dict[str, str] = {
+    "n_sections": "paper Sec. 2: three segments",
+    "first_wire_angle": "paper Eq 10: three wires at 120 deg (wire 1 at 0)",
+}
+ASSUMED: dict[str, str] = {
+    "section_length": "0.35 m: the paper says only 'more than one meter' for three segments",
+    "rod_diameter": "4 mm steel rod (the paper: an elastic steel rod, no size): EI = 2.64 N m^2",
+    "youngs_modulus": "steel, 210 GPa",
+    "density": "steel, 7850 kg/m^3",
+    "poisson_ratio": "steel, 0.3",
+    "yield_strength": "hardened and tempered spring steel 52CrMoV4 (EN 10089): Rp0.2 >= 1200 MPa (Saarstahl "
+                      "data sheet)",
+    "base_disk_diameter": "100 mm (the paper: D1 > D2, no values)",
+    "disk_diameter_step": "20 mm per section (disks 100 -> 80 -> 60 -> 40 mm)",
+    "wire_diameter": "1 mm steel wire (the paper: control wires, no size): EA_t = 1.65e5 N",
+    "wire_youngs_modulus": "steel, 210 GPa",
+    "wire_strength": "music wire ASTM A228, 1.0 mm: minimum tensile strength 2172 MPa (315 ksi); a ratio above "
+                     "1 means the wire breaks (no safety factor)",
+    "disks_per_section": "5 spacer disks per section (not given)",
+    "disk_mass": "0 (disks massless; gravity is off in the paper's kinematic experiment)",
+}
+SETTINGS: dict[str, str] = {k: "study choice" for k in ("gravity", "base_orientation", "payload_mass")}
 
 
 def cojocaru_tronconic(
@@ -29,6 +57,8 @@ def cojocaru_tronconic(
     disk_diameter_step: float = 0.02,
     wire_diameter: float = 1.0e-3,
     wire_youngs_modulus: float = 210e9,
+    wire_strength: float = WIRE_STRENGTH_1MM,
+    yield_strength: float = SPRING_STEEL_YIELD,
     first_wire_angle: float = 0.0,
     disks_per_section: int = 5,
     disk_mass: float = 0.0,
@@ -64,6 +94,8 @@ def cojocaru_tronconic(
     wire_diameter, wire_youngs_modulus : float
         Steel control wire [m], [Pa]: ``EA_t = E pi d_w^2 / 4`` (default 1 mm steel wire,
         EA_t = 1.65e5 N; plausible, not given).
+    wire_strength, yield_strength : float
+        Wire tensile strength and backbone 0.2 % proof stress [Pa] (see :data:`ASSUMED`).
     first_wire_angle : float
         Angle sigma of wire 1 [rad]; the others follow at +120 and +240 degrees (paper Eq 10).
     disks_per_section : int
@@ -96,8 +128,9 @@ def cojocaru_tronconic(
         )
     if disk_diameter_step < 0:
         raise ValueError(f"disk_diameter_step must be >= 0 (tronconic: D2 <= D1), got {disk_diameter_step}")
-    rod = CrossSection.circular(rod_diameter, youngs_modulus, density, poisson_ratio)
-    ea_wire = wire_youngs_modulus * math.pi * wire_diameter**2 / 4.0
+    rod = CrossSection.circular(rod_diameter, youngs_modulus, density, poisson_ratio, yield_strength=yield_strength)
+    wire_area = math.pi * wire_diameter**2 / 4.0
+    ea_wire = wire_youngs_modulus * math.pi * wire_diameter**2 / 4.0  # same rounding as before the stress fields
     sections = []
     for k in range(n):
         # every wire runs on the cone's rim from the base plate to its terminating disk:
@@ -106,6 +139,7 @@ def cojocaru_tronconic(
         group = TendonGroup.evenly_spaced(
             3, base_disk_diameter / 2.0, ea_wire, first_wire_angle,
             offset_tip=d_end / 2.0 if d_end != base_disk_diameter else None,
+            area=wire_area, strength=wire_strength,
         )
         sections.append(
             Section(

@@ -33,8 +33,10 @@ from typing import Sequence
 
 from ..description import CrossSection, Payload, Robot, Section, TendonGroup
 from ..orientation import base_rotation_for
+from .cojocaru import WIRE_STRENGTH_1MM
 
-__all__ = ["hannan_walker", "HW_TOTAL_LENGTH", "HW_DIAMETERS", "HW_JOINTS_PER_SECTION"]
+__all__ = ["hannan_walker", "HW_TOTAL_LENGTH", "HW_DIAMETERS", "HW_JOINTS_PER_SECTION", "GIVEN", "ASSUMED",
+           "SETTINGS"]
 
 #: Total backbone length [m] (paper, Sec. 3).
 HW_TOTAL_LENGTH = 0.8382
@@ -42,6 +44,26 @@ HW_TOTAL_LENGTH = 0.8382
 HW_DIAMETERS = (0.1016, 0.0889, 0.0762, 0.0635)
 #: Joints per section (paper, Sec. 3: 16 joints, 4 sections).
 HW_JOINTS_PER_SECTION = 4
+
+#: Parameters the paper gives (Sec. 3).
+GIVEN: dict[str, str] = {
+    "total_length": "paper Sec. 3: 83.82 cm",
+    "diameters": "paper Sec. 3: 10.16 / 8.89 / 7.62 / 6.35 cm",
+    "planar": "paper Sec. 5: the planar experiments use one antagonistic cable pair per section",
+}
+#: Parameters the paper does not give, with where the value comes from.
+ASSUMED: dict[str, str] = {
+    "joint_stiffness": "120 / 80 / 50 / 25 N m/rad per joint (plausible: under self-weight the horizontal trunk's "
+                       "joints turn by 0-3.1 deg); the paper: springs between segments, no values",
+    "section_masses": "0.8 / 0.6 / 0.45 / 0.3 kg (hollow conduit segments, springs, plates; not given)",
+    "tendon_stiffness": "cable E A_t = 1.6e5 N, a 1 mm steel wire (not given): CC's accuracy under gravity depends "
+                        "on it (see the hannan_walker study's sensitivity sweep)",
+    "tendon_area": "1 mm cable, 0.785 mm^2 (not given)",
+    "tendon_strength": "music wire ASTM A228, 1.0 mm: minimum tensile strength 2172 MPa (315 ksi)",
+    "axial_stiffness": "1e7 N: the segments do not compress (not given)",
+}
+#: Parameters each study chooses.
+SETTINGS: dict[str, str] = {k: "study choice" for k in ("gravity", "base_orientation", "payload_mass")}
 
 
 def _four(name: str, values: Sequence[float]) -> tuple[float, ...]:
@@ -60,6 +82,8 @@ def hannan_walker(
     joint_stiffness: Sequence[float] = (120.0, 80.0, 50.0, 25.0),
     section_masses: Sequence[float] = (0.8, 0.6, 0.45, 0.3),
     tendon_stiffness: float = 1.6e5,
+    tendon_area: float = 7.85e-7,
+    tendon_strength: float = WIRE_STRENGTH_1MM,
     planar: bool = True,
     gravity: float = 9.81,
     base_orientation: str = "vertical",
@@ -80,6 +104,9 @@ def hannan_walker(
         Mass of each section [kg] (assumed), uniform along the section.
     tendon_stiffness : float
         Cable axial stiffness ``EA_t`` [N].
+    tendon_area, tendon_strength : float
+        Cable cross-section [m^2] and tensile strength [Pa] for the tendon stress (see :data:`ASSUMED`);
+        the backbone (springs between segments) has no stress geometry: no backbone stress.
     planar : bool
         ``True``: only the antagonistic pair in the base x-z plane (sigma = 0, pi) per section
         (the paper's planar experiments; 8 cables).  ``False``: both pairs (sigma = 0, pi/2, pi,
@@ -115,7 +142,8 @@ def hannan_walker(
             Section(
                 length=l,
                 cross_section=cs,
-                tendons=TendonGroup(angles=angles, offset=diam[j] / 2.0, axial_stiffness=tendon_stiffness),
+                tendons=TendonGroup(angles=angles, offset=diam[j] / 2.0, axial_stiffness=tendon_stiffness,
+                                    area=tendon_area, strength=tendon_strength),
                 n_disks=HW_JOINTS_PER_SECTION,
             )
         )

@@ -5,7 +5,26 @@ from __future__ import annotations
 from ..description import CrossSection, Payload, Robot, Section, TendonGroup
 from ..orientation import base_rotation_for
 
-__all__ = ["shao_harvester"]
+__all__ = ["shao_harvester", "GIVEN", "ASSUMED", "SETTINGS"]
+
+#: Parameters the paper gives (Sec. 4).
+GIVEN: dict[str, str] = {
+    "length": "paper Sec. 4: section II is 400 mm long",
+    "total_mass": "paper Sec. 4: 230 g",
+    "n_plates": "paper Sec. 4: actuator groups between five plates (4 intervals)",
+}
+#: Parameters the paper does not give, with where the value comes from.
+ASSUMED: dict[str, str] = {
+    "bending_stiffness": "EI = 0.3 N m^2 (plausible for a silicone/FPA section: gamma = q L^3 / EI = 1.2, visible "
+                         "sag as in the photos); the fruit_harvester study's sensitivity sweep varies it",
+    "axial_stiffness": "EA = 2 kN (not given)",
+    "torsional_stiffness": "GJ = 0.2 N m^2 (not given)",
+    "outer_diameter": "60 mm (drawing only; not given)",
+    "actuator_offset": "22 mm: the equivalent tendons stand in for the pneumatic actuator groups (not given)",
+    "actuator_stiffness": "2 kN equivalent tendon stiffness (not given)",
+}
+#: Parameters each study chooses.
+SETTINGS: dict[str, str] = {k: "study choice" for k in ("gravity", "base_orientation", "payload_mass")}
 
 
 def shao_harvester(
@@ -40,7 +59,9 @@ def shao_harvester(
     actuator offset 22 mm, equivalent actuator stiffness 2 kN, 4 plate intervals.
 
     The default mounting is ``"upside_down"`` (the harvester hangs from its base and scoops
-    fruit below it).
+    fruit below it).  No stresses: the rod and its tendons are equivalents of pneumatic
+    actuators (no stress geometry, no strengths; the admissible load is an actuator pressure the
+    paper does not give).
     """
     m_per_l = float(total_mass) / float(length)
     cs = CrossSection(

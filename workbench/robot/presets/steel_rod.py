@@ -1,4 +1,10 @@
-"""A uniform steel rod with evenly spaced tendons: the reference robot of the validation tests."""
+"""A uniform steel rod with evenly spaced tendons: the reference robot of the validation tests.
+
+No paper describes it: the studies that use it (quickstart, bending, sag_validity) choose its
+dimensions; its material data are declared in :data:`ASSUMED` (with their sources), the study's
+choices in :data:`SETTINGS` (the report's "Assumptions" section reads both,
+:mod:`workbench.robot.presets` documents the convention).
+"""
 
 from __future__ import annotations
 
@@ -6,7 +12,32 @@ from __future__ import annotations
 from ..description import CrossSection, Payload, Robot, Section, TendonGroup
 from ..orientation import base_rotation_for
 
-__all__ = ["steel_rod"]
+__all__ = ["steel_rod", "GIVEN", "ASSUMED", "SETTINGS", "SPRING_STEEL_YIELD", "WIRE_STRENGTH_05MM"]
+
+#: 0.2 % proof stress of hardened and tempered spring steel 52CrMoV4 (1.7701, DIN 17221 / EN 10089),
+#: Rp0.2 >= 1200 MPa (Saarstahl material data sheet 52CrMoV4) [Pa].
+SPRING_STEEL_YIELD = 1.2e9
+#: Minimum tensile strength of 0.5 mm (0.020 in) music wire, ASTM A228 Table 1: 350 ksi = 2413 MPa [Pa].
+WIRE_STRENGTH_05MM = 2.41e9
+
+#: Parameters a source paper gives (none: no paper describes this rod).
+GIVEN: dict[str, str] = {}
+#: Parameters assumed, with where the value comes from.
+ASSUMED: dict[str, str] = {
+    "youngs_modulus": "steel, 210 GPa",
+    "density": "steel, 7850 kg/m^3",
+    "poisson_ratio": "steel, 0.3",
+    "yield_strength": "hardened and tempered spring steel 52CrMoV4 (EN 10089): Rp0.2 >= 1200 MPa "
+                      "(Saarstahl data sheet); a backbone stress ratio above 1 means the rod yields",
+    "tendon_stiffness": "steel wire of 0.5 mm (E A = 210 GPa x 0.196 mm^2 = 4.1e4 N)",
+    "tendon_youngs_modulus": "steel, 210 GPa (tendon area = tendon_stiffness / tendon_youngs_modulus)",
+    "tendon_strength": "music wire ASTM A228, 0.5 mm: minimum tensile strength 2413 MPa (350 ksi); a tendon "
+                       "stress ratio above 1 means the wire breaks (no safety factor)",
+}
+#: Parameters each study chooses (its configuration, shown with the study).
+SETTINGS: dict[str, str] = {k: "study choice" for k in (
+    "length", "diameter", "n_sections", "tendon_count", "tendon_offset", "first_tendon_angle",
+    "disks_per_section", "disk_mass", "gravity", "base_orientation", "payload_mass")}
 
 
 def steel_rod(
@@ -20,6 +51,9 @@ def steel_rod(
     tendon_count: int = 2,
     tendon_offset: float = 0.02,
     tendon_stiffness: float = 4.0e4,
+    tendon_youngs_modulus: float = 210e9,
+    tendon_strength: float = WIRE_STRENGTH_05MM,
+    yield_strength: float = SPRING_STEEL_YIELD,
     first_tendon_angle: float = 0.0,
     disks_per_section: int = 8,
     disk_mass: float = 0.0,
@@ -46,6 +80,12 @@ def steel_rod(
         Tendon offset d from the centreline [m].
     tendon_stiffness : float
         Tendon axial stiffness EA_t [N].
+    tendon_youngs_modulus : float
+        Tendon material modulus [Pa]: the tendon area is ``tendon_stiffness / tendon_youngs_modulus``.
+    tendon_strength : float
+        Tendon tensile strength [Pa] (default :data:`WIRE_STRENGTH_05MM`).
+    yield_strength : float
+        Backbone 0.2 % proof stress [Pa] (default :data:`SPRING_STEEL_YIELD`).
     disks_per_section : int
         Spacer disks (eyelets) per section.
     disk_mass : float
@@ -59,12 +99,14 @@ def steel_rod(
     """
     if int(n_sections) != n_sections or n_sections < 1:
         raise ValueError(f"n_sections must be a positive integer, got {n_sections!r}")
-    rod = CrossSection.circular(diameter, youngs_modulus, density, poisson_ratio)
+    rod = CrossSection.circular(diameter, youngs_modulus, density, poisson_ratio, yield_strength=yield_strength)
     sections = tuple(
         Section(
             length=length / n_sections,
             cross_section=rod,
-            tendons=TendonGroup.evenly_spaced(tendon_count, tendon_offset, tendon_stiffness, first_tendon_angle),
+            tendons=TendonGroup.evenly_spaced(tendon_count, tendon_offset, tendon_stiffness, first_tendon_angle,
+                                              area=tendon_stiffness / tendon_youngs_modulus,
+                                              strength=tendon_strength),
             n_disks=disks_per_section,
             disk_mass=disk_mass,
         )

@@ -1,0 +1,76 @@
+"""Regression tier: every committed study's headlines are converged and its report states question,
+findings, assumptions and sensitivity (issue 13).
+
+Runs on the small copies of the studies (the session's shared run, :func:`tests.conftest.small_study_run`);
+their resolutions follow the committed studies' (see each small study's header).  The four sections
+are built as the page builds them (:func:`workbench.report.findings.opening_sections`; figures are
+not rasterised here).
+"""
+
+from __future__ import annotations
+
+import re
+
+import matplotlib
+import pytest
+
+from tests.regression.golden import small_study_paths
+from workbench.compare.table import compare_table
+from workbench.report.findings import opening_sections
+from workbench.report.headline import headlines
+from workbench.report.load import load_results
+from workbench.report.style import STYLE
+
+pytestmark = pytest.mark.regression
+
+
+#: Studies whose headline is known not to converge at a size the default suite can afford (strict:
+#: an unexpected pass fails, so the mark is removed when it is fixed).
+KNOWN_NOT_CONVERGED = {
+    "wire_delay": "the dynamic estimate of 4 beam3d elements at 10 ms needs 2 / 1 elements at 20 / 40 ms, "
+                  "outside the asymptotic range (error bar 0.12 m on a 3.7 mm peak); the committed 40-element "
+                  "study's snapped 3 s peak is itself not converged (docs/models.md, 'Wire delay')",
+    # the grasp kind (issue 17) landed after issue 13's estimator: its 'contact' model has no declared
+    # order, so its rows carry no estimate and the rule cannot certify them (open item)
+    "whole_arm_grasp": "the contact model (penalty contact on ANCF) has no declared order: no discretisation estimate",
+    "fruit_harvester_fluidic": "the contact model (penalty contact on ANCF) has no declared order: no discretisation "
+                               "estimate",
+}
+
+
+def _params():
+    for p in small_study_paths():
+        reason = KNOWN_NOT_CONVERGED.get(p.stem)
+        yield pytest.param(p, id=p.stem, marks=[pytest.mark.xfail(strict=True, reason=reason)] if reason else [])
+
+
+def test_wire_delay_sections_even_when_not_converged(small_study_run):
+    """The report of a not-converged study still says so, in the four sections."""
+    path = next(p for p in small_study_paths() if p.stem == "wire_delay")
+    study = load_results(small_study_run(path))
+    cmp = compare_table(study.results, reference=study.reference, derived=study.derived)
+    with matplotlib.rc_context(STYLE):
+        parts = opening_sections(study, cmp, lambda f: "")
+    assert "NOT CONVERGED" in parts["findings"] and "peak tip error over time" in parts["findings"]
+    assert "at the end of that case" in parts["findings"]  # dynamics: peak and final value
+    assert "move_time" in parts["assumptions"]
+
+
+@pytest.mark.parametrize("path", list(_params()))
+def test_headlines_converged_and_four_sections(path, small_study_run):
+    study = load_results(small_study_run(path))
+    cmp = compare_table(study.results, reference=study.reference, derived=study.derived)
+    heads = headlines(study, cmp)
+    assert heads, f"{path.stem}: no headline"
+    bad = [f"{h.reference} vs {h.model}: {h.error_pct:.3g} % L ± {h.disc_pct:.3g} % L" for h in heads
+           if h.cc_pair and not h.converged]
+    assert not bad, f"{path.stem}: headline(s) not converged: {bad}"
+    assert all(h.n_not_converged == 0 for h in heads if h.cc_pair), [
+        (h.model, h.n_not_converged, h.n_cases) for h in heads]
+    with matplotlib.rc_context(STYLE):
+        parts = opening_sections(study, cmp, lambda f: f"<figure data-figure='{f.name}'></figure>")
+    assert set(parts) == {"question", "findings", "assumptions", "sensitivity"}
+    for key, html in parts.items():
+        text = re.sub(r"<[^>]+>", " ", html).strip()
+        assert len(text) > 20, f"{path.stem}: section {key} is empty: {html!r}"
+    assert "no error estimate" not in parts["findings"] and "± " in parts["findings"]  # every headline has its bar

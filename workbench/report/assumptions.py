@@ -1,0 +1,138 @@
+"""The report's Assumptions table: every parameter a source paper does not give, its value and source.
+
+Gathered from data, never from docstrings:
+
+* the robot preset's ``ASSUMED`` (``workbench.robot.presets.preset_sources``), values from the
+  rows' ``p.robot.*`` when the study sets them, else the preset's default;
+* the scenario module's ``ASSUMED`` (``workbench.registry.SCENARIOS``), values from ``p.scenario.*``;
+* the study kind module's ``ASSUMED`` (``workbench.registry.KINDS``; keys ``"section.key"``, e.g.
+  the series-parallel module geometry), values from the rows;
+* the study's own ``[report] assumptions`` (``"section.key"`` -> text), values from the rows;
+* how the error bars are made (the discretisation estimate and the models' orders).
+
+A swept value is shown as its range with the baseline of the study's base section.  Checked by
+``tests/report/test_findings.py``.
+"""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass
+from typing import Any, Mapping
+
+import numpy as np
+
+from .. import registry
+from .load import ResultSet
+from .style import fmt
+
+__all__ = ["Assumption", "assumption_rows"]
+
+
+@dataclass(frozen=True)
+class Assumption:
+    """One row of the table: the parameter (``section.key``), the value used (text) and its source."""
+
+    key: str
+    value: str
+    source: str
+
+
+def _text(v: Any) -> str:
+    if isinstance(v, float):
+        return fmt(v)
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_text(x) for x in v) + "]"
+    return str(v)
+
+
+def _value(study: ResultSet, key: str, default: Any = None) -> str:
+    """The value(s) the cases ran with (``p.<key>``), else ``default``, else the base section's."""
+    col = f"p.{key}"
+    ok = study.ok
+    section, _, name = key.partition(".")
+    base = study.spec.get(section) if isinstance(study.spec.get(section), Mapping) else {}
+    if col in ok and ok[col].notna().any():
+        vals = list(dict.fromkeys(ok[col].dropna()))
+        if len(vals) == 1:
+            return _text(_plain(vals[0]))
+        nums = [float(v) for v in vals if isinstance(v, (int, float, np.floating)) and not isinstance(v, bool)]
+        if len(nums) == len(vals):
+            b = base.get(name)
+            return f"swept {fmt(min(nums))} … {fmt(max(nums))}" + (f" (baseline {_text(b)})" if b is not None else "")
+        return "swept: " + ", ".join(_text(_plain(v)) for v in vals)
+    if default is not None:
+        return _text(default)
+    if name in base:
+        return _text(base[name])
+    return "n/a"
+
+
+def _plain(v: Any) -> Any:
+    import json
+
+    if isinstance(v, str) and v[:1] == "[":
+        try:
+            return json.loads(v)
+        except ValueError:
+            return v
+    return v.item() if hasattr(v, "item") and getattr(v, "ndim", 1) == 0 else v
+
+
+def _module_of(target: str):
+    module = target.partition(":")[0]
+    __import__(module)
+    return sys.modules[module]
+
+
+def _preset_rows(study: ResultSet) -> list[Assumption]:
+    robot = study.spec.get("robot") if isinstance(study.spec.get("robot"), Mapping) else {}
+    name = robot.get("preset")
+    if not name or name not in registry.PRESETS:
+        return []
+    from ..robot.presets import preset_parameters, preset_sources
+
+    defaults = preset_parameters(name)
+    return [Assumption(f"robot.{k}", _value(study, f"robot.{k}", robot.get(k, defaults.get(k))), text)
+            for k, text in preset_sources(name)["assumed"].items()]
+
+
+def _module_rows(study: ResultSet, section: str, target: str | None) -> list[Assumption]:
+    if not target:
+        return []
+    mod = _module_of(target)
+    out = []
+    for k, text in dict(getattr(mod, "ASSUMED", {}) or {}).items():
+        key = k if "." in k else f"{section}.{k}"
+        out.append(Assumption(key, _value(study, key), text))
+    return out
+
+
+def _estimate_row(study: ResultSet) -> list[Assumption]:
+    models = [m for m in study.models if registry.MODELS.get(m) is not None and registry.MODELS[m].order]
+    if not models or "x.disc_tip_error" not in study.results:
+        return []
+    orders = ", ".join(f"{registry.MODELS[m].label} {fmt(registry.MODELS[m].order)}" for m in models)
+    return [Assumption("error bars", "Richardson, 1/2 and 1/4 resolution",
+                       f"each physics case re-solved with half and a quarter of the elements / links (dynamics: "
+                       f"2x and 4x the time step); error = |q_N - q_N/2| / (2^p - 1) with the declared order p "
+                       f"({orders}; dynamics at most 2), lowered to the observed order when smaller. A CC "
+                       f"comparison is 'not converged' when its error bar exceeds 10 % of its error, unless error "
+                       f"plus error bar stay below 1e-5 L (agreement whatever the mesh).")]
+
+
+def assumption_rows(study: ResultSet) -> list[Assumption]:
+    """Every assumption of the study (see the module docstring), preset first."""
+    spec = study.spec
+    scen = spec.get("scenario") if isinstance(spec.get("scenario"), Mapping) else {}
+    kind = (spec.get("study") or {}).get("kind") if isinstance(spec.get("study"), Mapping) else None
+    rows = _preset_rows(study)
+    rows += _module_rows(study, "scenario", registry.SCENARIOS.get(scen.get("name", "")))
+    rows += _module_rows(study, "", registry.KINDS.get(kind) if kind else None)
+    rep = spec.get("report") if isinstance(spec.get("report"), Mapping) else {}
+    seen = {r.key for r in rows}
+    for key, text in (rep.get("assumptions") or {}).items():
+        if key in seen:  # the study's own words replace the preset's
+            rows = [r for r in rows if r.key != key]
+        rows.append(Assumption(str(key), _value(study, str(key)), str(text)))
+    return rows + _estimate_row(study)
