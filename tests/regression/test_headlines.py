@@ -35,6 +35,9 @@ KNOWN_NOT_CONVERGED = {
     "whole_arm_grasp": "the contact model (penalty contact on ANCF) has no declared order: no discretisation estimate",
     "fruit_harvester_fluidic": "the contact model (penalty contact on ANCF) has no declared order: no discretisation "
                                "estimate",
+    # the closed-loop kind (issue 17) computes its rows with its own tasks, which record no estimate yet;
+    # its plant is the 16-joint chain, the robot's own structure (exempt in hannan_walker) -- open item
+    "closed_loop": "the closed-loop kind's rows carry no discretisation estimate (its own tasks; open item)",
 }
 
 

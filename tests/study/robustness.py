@@ -336,24 +336,8 @@ def _cli_inputs(budget: float):
 # ----------------------------------------------------------------------------------------------
 # kills and concurrent runs
 # ----------------------------------------------------------------------------------------------
-KILL_STUDY = """\
-[study]
-name = "killme"
-models = ["cc", "ancf"]
-
-[robot]
-preset = "steel_rod"
-
-[load]
-mode = "tension"
-tensions = [1.0, 0.0]
-
-[solver]
-n_stations = 5
-
-[sweep]
-product = { "load.tensions" = [[1.0, 0.0], [2.0, 0.0], [3.0, 0.0], [4.0, 0.0], [13.0, 0.0], [6.0, 0.0]], "robot.length" = [0.5, 0.6, 0.7, 0.8, 0.9] }
-"""
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # tests/study: runs_util, also under python -m
+from runs_util import KILL_STUDY  # noqa: E402 - the study the kill tests use
 
 
 def _env():
