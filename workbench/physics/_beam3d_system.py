@@ -35,15 +35,18 @@ _SHEAR_FACTOR_IF_NONE = 100.0
 _REGULARIZATION_FORCE = 1e-3
 
 
-def beam_section(cs, damping: float) -> "exu.BeamSection":
+def beam_section(cs, damping: float, axial_shear_scale: float = 1.0) -> "exu.BeamSection":
     """``BeamSection`` of a cross-section: ``diag(EA, GA, GA, GJ, EI, EI)``, mass and rotary inertia per length.
 
     ``GA = CrossSection.GA`` or ``100 EA`` if None (shear-rigid limit); rotary inertia
     ``mu EI/EA diag(2, 1, 1)`` (solid homogeneous section).  The damping matrix is ignored by
     Exudyn 1.13.6 (``test_exudyn_ge_beam_ignores_section_damping``); it is 0 in dynamics.
+    ``axial_shear_scale`` multiplies EA and GA in the stiffness (not in the inertia): < 1 only in
+    the predictor stages of the static solve (:func:`workbench.physics.beam3d._ramp_static`).
     """
     GA = cs.GA if cs.GA is not None else _SHEAR_FACTOR_IF_NONE * cs.EA
-    K = np.diag([cs.EA, GA, GA, cs.GJ, cs.EI, cs.EI])
+    a = float(axial_shear_scale)
+    K = np.diag([a * cs.EA, a * GA, a * GA, cs.GJ, cs.EI, cs.EI])
     bs = exu.BeamSection()
     bs.stiffnessMatrix = K
     bs.dampingMatrix = damping * K
@@ -78,6 +81,7 @@ class _System:
     def __init__(self, robot: Robot, load: LoadCase, options: SolverOptions, tendon_mode: str,
                  node_type: str = "EP"):
         self.robot = robot
+        self._damping = options.damping
         self.SC = exu.SystemContainer()
         self.mbs = self.SC.AddSystem()
         self.node_s, elem_sec = element_layout(robot, options.n_elements)
@@ -212,6 +216,11 @@ class _System:
                 if rest <= 0:
                     raise ModelFailure(f"beam3d: tendon rest length {rest:.4g} m <= 0 (command too large)")
                 mbs.SetObjectParameter(objs[0], "referenceLength", float(rest))
+
+    def set_axial_shear_scale(self, scale: float) -> None:
+        """Scale EA and GA of every element by ``scale`` (1: the robot's own section); bending and torsion unchanged."""
+        for e, cs in zip(self.elements, self.elem_cs):
+            self.mbs.SetObjectParameter(e, "sectionData", beam_section(cs, self._damping, scale))
 
     def set_loads(self, lam: float) -> None:
         """Every ramped load at ``lam`` times its full value."""
