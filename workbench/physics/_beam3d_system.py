@@ -16,6 +16,7 @@ import numpy as np
 from exudyn.itemInterface import (
     LoadForceVector,
     LoadTorqueVector,
+    MarkerBodyPosition,
     MarkerBodyRigid,
     MarkerNodeRigid,
     NodeRigidBodyEP,
@@ -153,28 +154,31 @@ class _System:
             loads.append((mbs.AddLoad(LoadTorqueVector(markerNumber=mtip, loadVector=[0, 0, 0])), M))
         return loads
 
-    def _add_eyelets(self, ground: int, route: list, sigma: float) -> tuple[list[int], np.ndarray]:
-        """Rigid markers of one tendon route (anchor on ground, then eyelets); the straight segment lengths."""
+    def _add_eyelets(self, ground: int, route: list, sigma: float, rigid: bool) -> tuple[list[int], np.ndarray]:
+        """Markers of one tendon route (anchor on ground, then eyelets); the straight segment lengths.
+
+        ``rigid``: ``MarkerBodyRigid`` (the reeving rope needs them); else ``MarkerBodyPosition``
+        (same points; halves the numerically differentiated connector Jacobian, ``docs/models.md``).
+        """
         c, s_ = math.cos(sigma), math.sin(sigma)
+        Marker = MarkerBodyRigid if rigid else MarkerBodyPosition
         markers, pts = [], []
         for k, (s, d) in enumerate(route):
             if k == 0:
-                markers.append(self.mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localPosition=[0.0, d * c, d * s_])))
+                markers.append(self.mbs.AddMarker(Marker(bodyNumber=ground, localPosition=[0.0, d * c, d * s_])))
             else:
                 e, xl = locate(self.node_s, s)
-                markers.append(self.mbs.AddMarker(
-                    MarkerBodyRigid(bodyNumber=self.elements[e], localPosition=[xl, d * c, d * s_])
-                ))
+                markers.append(self.mbs.AddMarker(Marker(bodyNumber=self.elements[e], localPosition=[xl, d * c, d * s_])))
             pts.append([s, d * c, d * s_])
         return markers, np.linalg.norm(np.diff(np.asarray(pts), axis=0), axis=1)
 
     def _add_tendons(self, robot: Robot, load: LoadCase) -> None:
-        """Tension mode: constant-force segments; length mode: one reeving rope per tendon."""
+        """Tension mode: constant-force segments (position markers); length mode: one reeving rope per tendon (rigid markers)."""
         mbs, act = self.mbs, load.actuation
         ground = mbs.AddObject(ObjectGround())
         path0, rest0 = [], []
         for (j, sigma, group), route in zip(robot.tendon_table(), tendon_routes(robot)):
-            markers, seg = self._add_eyelets(ground, route, sigma)
+            markers, seg = self._add_eyelets(ground, route, sigma, rigid=self.tendon_mode != "tension")
             L0 = float(seg.sum())
             path0.append(L0)
             self.tendon_markers.append(markers)

@@ -12,22 +12,17 @@ Model ``"beam3d"``: ``run(robot, load, options) -> PhysicsResult``.
   payload as a tip mass point (an offset payload: a force at the offset point, static only); tip
   force and torque on the tip node (base-frame directions, not follower loads).
 * Tendons (``options.tendon_model == "eyelets"``; ``"continuum"`` raises :class:`ModelFailure`
-  for loaded tendons): anchored on the base plate at ``d(0)``, through rigid-marker eyelets at every
+  for loaded tendons): anchored on the base plate at ``d(0)``, through marker eyelets at every
   disk at ``(d cos sigma, d sin sigma)``, offsets ``TendonGroup.offset_at(s / s_end)``
   (:func:`tendon_routes`).  Tension mode: zero-stiffness ``ObjectConnectorSpringDamper`` segments
-  with constant force ``T``.  Length mode: one ``ObjectConnectorReevingSystemSprings`` per tendon,
-  rest length ``L_path0 / (1 + T_pre/EA_t) + delta_l``, ``regularizationForce`` 1e-3 N, tensions
+  with constant force ``T`` between ``MarkerBodyPosition`` eyelets.  Length mode: one
+  ``ObjectConnectorReevingSystemSprings`` per tendon (rigid-marker eyelets), rest length
+  ``L_path0 / (1 + T_pre/EA_t) + delta_l``, ``regularizationForce`` 1e-3 N, tensions
   ``max(0, EA_t stretch / rest length)``.  ``forODE2Connectors`` numerical differentiation is on.
-* Static analysis: axial-shear stiffness continuation (``STIFFNESS_STAGES``, :func:`_ramp_static`):
-  loads and commands scale with lambda 0 -> 1 through :func:`workbench.physics._stepping.ramp`
-  (one ``SolveStatic`` per increment, doubling capped at the remaining load, halving on failure)
-  on the rod with EA and GA scaled to ``EA L_e^2 / EI = 3`` (x 9e-4 for the NiTi robot at 20 el.),
-  then EA and GA are raised x 30 per solve at full load (:func:`auto_stiffness_stages`); the last
-  solve is the real rod at ``options.newton_tolerance``.  If a stage fails, the plain load ramp at
-  full stiffness runs from the start.  More than ``options.max_load_steps`` attempts or an
-  increment below 1e-6 raise :class:`ModelFailure`.  Jacobian: every ODE2 term by numerical
-  differentiation (relative epsilon 1e-9): Exudyn's own GE-beam Jacobian is wrong on
-  Euler-parameter nodes and the analytic one of offset connectors too (``docs/models.md``).
+* Static analysis (:func:`_ramp_static`): the load ramp (:func:`workbench.physics._stepping.ramp`)
+  on the rod with EA, GA scaled down (:func:`auto_stiffness_stages`), then EA, GA raised at full
+  load up to the real rod (``options.newton_tolerance``); the plain ramp if a stage fails.  Every
+  ODE2 Jacobian term numerical (Exudyn's GE-beam one is wrong on EP nodes; ``docs/models.md``).
 * Dynamic analysis: generalised-alpha from the static equilibrium at t = 0; commands
   ``TendonActuation.command_at(t, load.ramp_time)`` set in a ``preStepUserFunction`` (called with
   the *end* time of the coming step); no material damping (``options.damping > 0`` is rejected:
@@ -92,7 +87,7 @@ def _tendons_active(robot: Robot, load: LoadCase) -> str:
 #: Predictor stages of a static solve ("auto": :func:`auto_stiffness_stages`); ``()``: load ramp only.
 STIFFNESS_STAGES = "auto"
 #: First stage: EA and GA scaled so that the stiffest element has ``EA L_e^2 / EI`` = this.
-_SOFT_RATIO = 3.0
+_SOFT_RATIO = 1.0
 #: Factor between stages; the last one below 1 / 3 (then the robot's own stiffness).
 _STAGE_GROWTH = 30.0
 #: Newton tolerance of the predictor stages (their equilibria only start the next stage).
