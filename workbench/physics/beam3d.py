@@ -301,7 +301,9 @@ def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bo
 
     act = load.actuation
     cmd0 = act.command_at(0.0, load.ramp_time) if act is not None else np.zeros(n_t)
-    acc, att = _ramp_static(system, options, lambda lam: lam * cmd0, lambda lam: lam, lambda lam: lam)
+    # the method before issue 18 (plain ramp, Exudyn's beam Jacobian): dynamics unchanged by issue 18's statics
+    acc, att = _ramp_static(system, options, lambda lam: lam * cmd0, lambda lam: lam, lambda lam: lam,
+                            stages=(), jacobian="exudyn_beam")
     sim = dynamic_settings(options, load.duration)
     ti = sim.timeIntegration
     ti.newton.numericalDifferentiation.forODE2Connectors = True
@@ -356,7 +358,7 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions, *, stiffness_stage
     stiffness_stages : "auto" or tuple of float
         Static analyses: EA and GA factors of the predictor stages (:func:`_ramp_static`,
         "auto": :func:`auto_stiffness_stages`); ``()`` runs the plain load ramp at full stiffness (the method before issue 18).
-        The initial equilibrium of a dynamic analysis always uses the defaults.
+        The initial equilibrium of a dynamic analysis uses ``()`` and ``"exudyn_beam"`` (as before issue 18).
     jacobian : {"numerical", "exudyn_beam"}
         Static analyses: Jacobian of the static Newton (:func:`_static_settings`).
 
