@@ -155,12 +155,13 @@ def _ramp_static(system, options: SolverOptions, values_at, lam_pre_at, loads_at
     ``values_at(lam)`` tendon commands, ``lam_pre_at(lam)`` pretension factor, ``loads_at(lam)``
     load factor.  With ``stages`` ("auto": :func:`auto_stiffness_stages`; axial-shear stiffness
     continuation): the load ramp (``_RAMP_POLICY``) with EA and GA scaled by ``stages[0]`` to
-    ``_STAGE_TOLERANCE``, then one
-    solve per further stage and one at the robot's own stiffness (``options.newton_tolerance``).
+    ``_STAGE_TOLERANCE``, then one solve per further stage and one at the robot's own stiffness
+    (``options.newton_tolerance``).
     The soft stages are predictors only: the result is the equilibrium of the real rod.  They
     exist because Newton's basin on the real rod is tiny: a bending step leaves axial-strain errors
     ~ EA dtheta^2 that act as compressive loads far above the rod's Euler load.  If any stage fails,
-    the state is reset and the plain load ramp runs at full stiffness.  A failed attempt (solver
+    the state is reset and the plain load ramp runs at full stiffness (``options.max_load_steps`` caps
+    each of the two ramps).  A failed attempt (solver
     error or non-finite state) restores the ODE2 and algebraic coordinates.
     """
     import exudyn as exu
