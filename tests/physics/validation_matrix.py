@@ -172,9 +172,9 @@ ROWS: dict[str, tuple[str, Callable[..., Case]]] = {
 #: Resolutions (coarse, fine): elements / links; the Cosserat model's residual tolerance.
 RESOLUTION = {"ancf": (8, 16), "beam3d": (8, 16), "ancf3d": (8, 16), "spring_link": (16, 32), "cosserat": (1e-6, 1e-9)}
 #: Eyelet cells, (model, row) -> disks per section at (coarse, fine) and elements (links) per disk
-#: interval.  beam3d: 2 elements per interval stall its static Newton in the planar tendon row
-#: (8 disks, 16 elements: load increment below 1e-6 at load factor 0.33, 59 s), and so do 16
-#: disks at 1 per interval (load factor 0.27): that row runs at 4 / 8 disks, pre-asymptotic
+#: interval.  beam3d: before issue 18, 2 elements per interval stalled its static Newton in the planar
+#: tendon row (8 disks, 16 elements: load factor 0.33, 59 s; now 4 s), and so did 16 disks at 1 per
+#: interval (load factor 0.27; now 0.24 s): that row runs at 4 / 8 disks, pre-asymptotic
 #: (at kappa L = pi the 4-disk chords pass the backbone axis).  spring_link: its 3-D continuum
 #: tendons are body-fixed end torques, exact only where the rod does not twist, so the twisting
 #: tendon + tip force row needs eyelets.

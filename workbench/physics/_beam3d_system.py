@@ -16,6 +16,7 @@ import numpy as np
 from exudyn.itemInterface import (
     LoadForceVector,
     LoadTorqueVector,
+    MarkerBodyPosition,
     MarkerBodyRigid,
     MarkerNodeRigid,
     NodeRigidBodyEP,
@@ -35,15 +36,18 @@ _SHEAR_FACTOR_IF_NONE = 100.0
 _REGULARIZATION_FORCE = 1e-3
 
 
-def beam_section(cs, damping: float) -> "exu.BeamSection":
+def beam_section(cs, damping: float, axial_shear_scale: float = 1.0) -> "exu.BeamSection":
     """``BeamSection`` of a cross-section: ``diag(EA, GA, GA, GJ, EI, EI)``, mass and rotary inertia per length.
 
     ``GA = CrossSection.GA`` or ``100 EA`` if None (shear-rigid limit); rotary inertia
     ``mu EI/EA diag(2, 1, 1)`` (solid homogeneous section).  The damping matrix is ignored by
     Exudyn 1.13.6 (``test_exudyn_ge_beam_ignores_section_damping``); it is 0 in dynamics.
+    ``axial_shear_scale`` multiplies EA and GA in the stiffness (not in the inertia): < 1 only in
+    the predictor stages of the static solve (:func:`workbench.physics.beam3d._ramp_static`).
     """
     GA = cs.GA if cs.GA is not None else _SHEAR_FACTOR_IF_NONE * cs.EA
-    K = np.diag([cs.EA, GA, GA, cs.GJ, cs.EI, cs.EI])
+    a = float(axial_shear_scale)
+    K = np.diag([a * cs.EA, a * GA, a * GA, cs.GJ, cs.EI, cs.EI])
     bs = exu.BeamSection()
     bs.stiffnessMatrix = K
     bs.dampingMatrix = damping * K
@@ -78,6 +82,7 @@ class _System:
     def __init__(self, robot: Robot, load: LoadCase, options: SolverOptions, tendon_mode: str,
                  node_type: str = "EP"):
         self.robot = robot
+        self._damping = options.damping
         self.SC = exu.SystemContainer()
         self.mbs = self.SC.AddSystem()
         self.node_s, elem_sec = element_layout(robot, options.n_elements)
@@ -149,28 +154,31 @@ class _System:
             loads.append((mbs.AddLoad(LoadTorqueVector(markerNumber=mtip, loadVector=[0, 0, 0])), M))
         return loads
 
-    def _add_eyelets(self, ground: int, route: list, sigma: float) -> tuple[list[int], np.ndarray]:
-        """Rigid markers of one tendon route (anchor on ground, then eyelets); the straight segment lengths."""
+    def _add_eyelets(self, ground: int, route: list, sigma: float, rigid: bool) -> tuple[list[int], np.ndarray]:
+        """Markers of one tendon route (anchor on ground, then eyelets); the straight segment lengths.
+
+        ``rigid``: ``MarkerBodyRigid`` (the reeving rope needs them); else ``MarkerBodyPosition``
+        (same points; halves the numerically differentiated connector Jacobian, ``docs/models.md``).
+        """
         c, s_ = math.cos(sigma), math.sin(sigma)
+        Marker = MarkerBodyRigid if rigid else MarkerBodyPosition
         markers, pts = [], []
         for k, (s, d) in enumerate(route):
             if k == 0:
-                markers.append(self.mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localPosition=[0.0, d * c, d * s_])))
+                markers.append(self.mbs.AddMarker(Marker(bodyNumber=ground, localPosition=[0.0, d * c, d * s_])))
             else:
                 e, xl = locate(self.node_s, s)
-                markers.append(self.mbs.AddMarker(
-                    MarkerBodyRigid(bodyNumber=self.elements[e], localPosition=[xl, d * c, d * s_])
-                ))
+                markers.append(self.mbs.AddMarker(Marker(bodyNumber=self.elements[e], localPosition=[xl, d * c, d * s_])))
             pts.append([s, d * c, d * s_])
         return markers, np.linalg.norm(np.diff(np.asarray(pts), axis=0), axis=1)
 
     def _add_tendons(self, robot: Robot, load: LoadCase) -> None:
-        """Tension mode: constant-force segments; length mode: one reeving rope per tendon."""
+        """Tension mode: constant-force segments (position markers); length mode: one reeving rope per tendon (rigid markers)."""
         mbs, act = self.mbs, load.actuation
         ground = mbs.AddObject(ObjectGround())
         path0, rest0 = [], []
         for (j, sigma, group), route in zip(robot.tendon_table(), tendon_routes(robot)):
-            markers, seg = self._add_eyelets(ground, route, sigma)
+            markers, seg = self._add_eyelets(ground, route, sigma, rigid=self.tendon_mode != "tension")
             L0 = float(seg.sum())
             path0.append(L0)
             self.tendon_markers.append(markers)
@@ -212,6 +220,11 @@ class _System:
                 if rest <= 0:
                     raise ModelFailure(f"beam3d: tendon rest length {rest:.4g} m <= 0 (command too large)")
                 mbs.SetObjectParameter(objs[0], "referenceLength", float(rest))
+
+    def set_axial_shear_scale(self, scale: float) -> None:
+        """Scale EA and GA of every element by ``scale`` (1: the robot's own section); bending and torsion unchanged."""
+        for e, cs in zip(self.elements, self.elem_cs):
+            self.mbs.SetObjectParameter(e, "sectionData", beam_section(cs, self._damping, scale))
 
     def set_loads(self, lam: float) -> None:
         """Every ramped load at ``lam`` times its full value."""

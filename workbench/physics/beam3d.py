@@ -12,16 +12,17 @@ Model ``"beam3d"``: ``run(robot, load, options) -> PhysicsResult``.
   payload as a tip mass point (an offset payload: a force at the offset point, static only); tip
   force and torque on the tip node (base-frame directions, not follower loads).
 * Tendons (``options.tendon_model == "eyelets"``; ``"continuum"`` raises :class:`ModelFailure`
-  for loaded tendons): anchored on the base plate at ``d(0)``, through rigid-marker eyelets at every
+  for loaded tendons): anchored on the base plate at ``d(0)``, through marker eyelets at every
   disk at ``(d cos sigma, d sin sigma)``, offsets ``TendonGroup.offset_at(s / s_end)``
   (:func:`tendon_routes`).  Tension mode: zero-stiffness ``ObjectConnectorSpringDamper`` segments
-  with constant force ``T``.  Length mode: one ``ObjectConnectorReevingSystemSprings`` per tendon,
-  rest length ``L_path0 / (1 + T_pre/EA_t) + delta_l``, ``regularizationForce`` 1e-3 N, tensions
+  with constant force ``T`` between ``MarkerBodyPosition`` eyelets.  Length mode: one
+  ``ObjectConnectorReevingSystemSprings`` per tendon (rigid-marker eyelets), rest length
+  ``L_path0 / (1 + T_pre/EA_t) + delta_l``, ``regularizationForce`` 1e-3 N, tensions
   ``max(0, EA_t stretch / rest length)``.  ``forODE2Connectors`` numerical differentiation is on.
-* Static analysis: loads and commands scale with lambda 0 -> 1 through
-  :func:`workbench.physics._stepping.ramp` (one ``SolveStatic`` per increment, doubling capped at
-  the remaining load, halving on failure); more than ``options.max_load_steps`` attempts or an
-  increment below 1e-6 raise :class:`ModelFailure`.
+* Static analysis (:func:`_ramp_static`): the load ramp (:func:`workbench.physics._stepping.ramp`)
+  on the rod with EA, GA scaled down (:func:`auto_stiffness_stages`), then EA, GA raised at full
+  load up to the real rod (``options.newton_tolerance``); the plain ramp if a stage fails.  Every
+  ODE2 Jacobian term numerical (Exudyn's GE-beam one is wrong on EP nodes; ``docs/models.md``).
 * Dynamic analysis: generalised-alpha from the static equilibrium at t = 0; commands
   ``TendonActuation.command_at(t, load.ramp_time)`` set in a ``preStepUserFunction`` (called with
   the *end* time of the coming step); no material damping (``options.damping > 0`` is rejected:
@@ -51,7 +52,7 @@ from ..robot import LoadCase, Robot
 from ._beam3d_layout import R_BASE_MODEL, element_layout, tendon_routes
 from ._stepping import RampExhausted, RampPolicy, RampStalled, ramp
 
-__all__ = ["run", "element_layout", "tendon_routes", "R_BASE_MODEL"]
+__all__ = ["run", "auto_stiffness_stages", "element_layout", "tendon_routes", "R_BASE_MODEL"]
 
 _MIN_INCREMENT = 1e-6
 _STATIC_MAX_ITERATIONS = 50
@@ -83,43 +84,135 @@ def _tendons_active(robot: Robot, load: LoadCase) -> str:
 
 
 
-def _static_settings(options: SolverOptions):
+#: Predictor stages of a static solve ("auto": :func:`auto_stiffness_stages`); ``()``: load ramp only.
+STIFFNESS_STAGES = "auto"
+#: First stage: EA and GA scaled so that the stiffest element has ``EA L_e^2 / EI`` = this.
+_SOFT_RATIO = 1.0
+#: Factor between stages; the last one below 1 / 3 (then the robot's own stiffness).
+_STAGE_GROWTH = 30.0
+#: Newton tolerance of the predictor stages (their equilibria only start the next stage).
+_STAGE_TOLERANCE = 1e-3
+#: ``numericalDifferentiation.relativeEpsilon`` of the static Jacobian (Exudyn's default 1e-7 leaves
+#: forward-difference errors in the stiff entries that are as large as the soft bending stiffness).
+_FD_EPSILON = 1e-9
+
+
+def _static_settings(options: SolverOptions, jacobian: str = "numerical", tolerance: float | None = None):
+    """Static settings; ``jacobian="numerical"``: every ODE2 term by numerical differentiation at
+    ``_FD_EPSILON``; ``"exudyn_beam"``: Exudyn's beam Jacobian, numerical connectors only (the
+    setting before issue 18: that beam Jacobian is wrong on Euler-parameter nodes, ``docs/models.md``)."""
     from ._exudyn import static_settings
 
     s = static_settings(options, 1)
     st = s.staticSolver
     st.adaptiveStep = False
-    st.newton.numericalDifferentiation.forODE2Connectors = True
+    nd = st.newton.numericalDifferentiation
+    nd.forODE2Connectors = True
+    if jacobian == "numerical":
+        nd.forODE2 = True
+        nd.relativeEpsilon = _FD_EPSILON
+    elif jacobian != "exudyn_beam":
+        raise ValueError(f"beam3d: jacobian must be 'numerical' or 'exudyn_beam', got {jacobian!r}")
+    if tolerance is not None:
+        st.newton.relativeTolerance = tolerance
     st.newton.maxIterations = _STATIC_MAX_ITERATIONS
     return s
 
 
-def _ramp_static(system, options: SolverOptions, values_at, lam_pre_at, loads_at) -> tuple[int, int]:
-    """Load ramp lambda: 0 -> 1 (``_RAMP_POLICY``); one ``SolveStatic`` per attempt.
+def auto_stiffness_stages(EA, EI, element_lengths) -> tuple[float, ...]:
+    """EA / GA factors of the predictor stages: ``s0 = _SOFT_RATIO / max(EA L_e^2 / EI)``, then
+    ``s0 * _STAGE_GROWTH^k`` while below 1/3; ``()`` when the rod is that soft already.
 
-    ``values_at(lam)`` tendon commands, ``lam_pre_at(lam)`` pretension factor,
-    ``loads_at(lam)`` load factor.  A failed attempt (solver error or non-finite state)
-    restores the ODE2 and algebraic coordinates.  Returns (accepted increments, attempts).
+    Parameters
+    ----------
+    EA, EI, element_lengths : (n_el,) array_like
+        Axial stiffness [N], bending stiffness [N m^2] and length [m] of every element.
+    """
+    ratio = float(np.max(np.asarray(EA, float) * np.asarray(element_lengths, float) ** 2 / np.asarray(EI, float)))
+    s = _SOFT_RATIO / ratio
+    out = []
+    while s < 1.0 / 3.0:
+        out.append(s)
+        s *= _STAGE_GROWTH
+    return tuple(out)
+
+
+def _check_stages(stages) -> tuple[float, ...] | str:
+    if isinstance(stages, str):
+        if stages != "auto":
+            raise ValueError(f"beam3d: stiffness_stages must be 'auto' or a tuple of factors, got {stages!r}")
+        return stages
+    out = tuple(float(a) for a in stages)
+    if any(not 0.0 < a < 1.0 for a in out) or list(out) != sorted(out):
+        raise ValueError(f"beam3d: stiffness_stages must rise strictly inside (0, 1), got {stages!r}")
+    return out
+
+
+def _ramp_static(system, options: SolverOptions, values_at, lam_pre_at, loads_at, *,
+                 stages=STIFFNESS_STAGES, jacobian: str = "numerical") -> tuple[int, int]:
+    """Static equilibrium at lambda = 1; returns (accepted increments, attempts), one ``SolveStatic`` each.
+
+    ``values_at(lam)`` tendon commands, ``lam_pre_at(lam)`` pretension factor, ``loads_at(lam)``
+    load factor.  With ``stages`` ("auto": :func:`auto_stiffness_stages`; axial-shear stiffness
+    continuation): the load ramp (``_RAMP_POLICY``) with EA and GA scaled by ``stages[0]`` to
+    ``_STAGE_TOLERANCE``, then one solve per further stage and one at the robot's own stiffness
+    (``options.newton_tolerance``).
+    The soft stages are predictors only: the result is the equilibrium of the real rod.  They
+    exist because Newton's basin on the real rod is tiny: a bending step leaves axial-strain errors
+    ~ EA dtheta^2 that act as compressive loads far above the rod's Euler load.  If any stage fails,
+    the state is reset and the plain load ramp runs at full stiffness (``options.max_load_steps`` caps
+    each of the two ramps).  A failed attempt (solver
+    error or non-finite state) restores the ODE2 and algebraic coordinates.
     """
     import exudyn as exu
 
     from ._exudyn import ode2_saver
 
     mbs = system.mbs
-    settings = _static_settings(options)
+    stages = _check_stages(stages)
+    if stages == "auto":
+        stages = auto_stiffness_stages([c.EA for c in system.elem_cs], [c.EI for c in system.elem_cs], system.elem_len)
+    settings = _static_settings(options, jacobian)
+    loose = _static_settings(options, jacobian, tolerance=max(_STAGE_TOLERANCE, options.newton_tolerance))
 
-    def attempt(lam: float) -> bool:
-        system.set_tendons(values_at(lam), lam_pre_at(lam))
-        system.set_loads(loads_at(lam))
+    def solve(s) -> bool:
         try:
-            exu.SolveStatic(mbs, settings, updateInitialValues=True)
+            exu.SolveStatic(mbs, s, updateInitialValues=True)
         except exu.SolverError:
             return False
         return bool(np.all(np.isfinite(np.asarray(mbs.systemData.GetODE2Coordinates()))))
 
+    def attempt_with(s):
+        def attempt(lam: float) -> bool:
+            system.set_tendons(values_at(lam), lam_pre_at(lam))
+            system.set_loads(loads_at(lam))
+            return solve(s)
+        return attempt
+
     save, restore = ode2_saver(mbs, with_ae=True)
+    accepted = attempts = 0
+    if stages:
+        start = save()
+        system.set_axial_shear_scale(stages[0])
+        try:
+            info = ramp(attempt_with(loose), save, restore, max_attempts=options.max_load_steps, policy=_RAMP_POLICY)
+            accepted, attempts = info.accepted, info.attempts
+            ok = True
+            for a in stages[1:] + (1.0,):
+                system.set_axial_shear_scale(a)
+                attempts += 1
+                ok = solve(loose if a < 1.0 else settings)
+                if not ok:
+                    break
+                accepted += 1
+        except (RampExhausted, RampStalled):
+            ok = False
+        if ok:
+            return accepted, attempts
+        system.set_axial_shear_scale(1.0)  # fall back: the plain load ramp from the start
+        restore(start)
     try:
-        info = ramp(attempt, save, restore, max_attempts=options.max_load_steps, policy=_RAMP_POLICY)
+        info = ramp(attempt_with(settings), save, restore, max_attempts=options.max_load_steps, policy=_RAMP_POLICY)
     except RampExhausted as stop:
         raise ModelFailure(
             f"beam3d: static load ramp needs more than max_load_steps={options.max_load_steps} "
@@ -129,7 +222,7 @@ def _ramp_static(system, options: SolverOptions, values_at, lam_pre_at, loads_at
         raise ModelFailure(
             f"beam3d: static solve failed to converge (load increment below {_MIN_INCREMENT} at lambda={stop.lam:.4g})"
         ) from None
-    return info.accepted, info.attempts
+    return accepted + info.accepted, attempts + info.attempts
 
 
 class _Recorder:
@@ -209,7 +302,9 @@ def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bo
 
     act = load.actuation
     cmd0 = act.command_at(0.0, load.ramp_time) if act is not None else np.zeros(n_t)
-    acc, att = _ramp_static(system, options, lambda lam: lam * cmd0, lambda lam: lam, lambda lam: lam)
+    # the method before issue 18 (plain ramp, Exudyn's beam Jacobian): dynamics unchanged by issue 18's statics
+    acc, att = _ramp_static(system, options, lambda lam: lam * cmd0, lambda lam: lam, lambda lam: lam,
+                            stages=(), jacobian="exudyn_beam")
     sim = dynamic_settings(options, load.duration)
     ti = sim.timeIntegration
     ti.newton.numericalDifferentiation.forODE2Connectors = True
@@ -247,7 +342,8 @@ def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bo
     return acc, att, n_steps, times, series, rec.stress(system.robot)
 
 
-def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
+def run(robot: Robot, load: LoadCase, options: SolverOptions, *, stiffness_stages=STIFFNESS_STAGES,
+        jacobian: str = "numerical") -> PhysicsResult:
     """Solve the geometrically exact spatial backbone (model ``"beam3d"``).
 
     Parameters
@@ -260,6 +356,12 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
         ``n_elements``, ``tendon_model`` (only ``"eyelets"`` for loaded tendons),
         ``n_stations``, Newton tolerance, ``max_load_steps``, ``time_step``, ``damping``
         (must be 0 in dynamics), ``spectral_radius``.
+    stiffness_stages : "auto" or tuple of float
+        Static analyses: EA and GA factors of the predictor stages (:func:`_ramp_static`,
+        "auto": :func:`auto_stiffness_stages`); ``()`` runs the plain load ramp at full stiffness (the method before issue 18).
+        The initial equilibrium of a dynamic analysis uses ``()`` and ``"exudyn_beam"`` (as before issue 18).
+    jacobian : {"numerical", "exudyn_beam"}
+        Static analyses: Jacobian of the static Newton (:func:`_static_settings`).
 
     Returns
     -------
@@ -276,6 +378,7 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     from ._exudyn import quiet_exudyn
 
     _check(robot, load, options)
+    _check_stages(stiffness_stages)
     mode = _tendons_active(robot, load)
     if mode != "none" and options.tendon_model != "eyelets":
         raise ModelFailure(
@@ -291,7 +394,8 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
         extras = {"n_elements": float(len(system.elements))}
         if load.analysis == "static":
             final = np.asarray(act.values) if act is not None else np.zeros(n_t)
-            acc, att = _ramp_static(system, options, lambda lam: lam * final, lambda lam: lam, lambda lam: lam)
+            acc, att = _ramp_static(system, options, lambda lam: lam * final, lambda lam: lam, lambda lam: lam,
+                                    stages=stiffness_stages, jacobian=jacobian)
             extras["load_steps"] = float(acc)
             times, series = None, {}
         else:
