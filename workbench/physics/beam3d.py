@@ -64,12 +64,6 @@ def _check(robot: Robot, load: LoadCase, options: SolverOptions) -> None:
     check_model_inputs(robot, load, options)
     if load.analysis == "dynamic" and robot.payload.mass > 0 and any(robot.payload.offset):
         raise ModelFailure("beam3d: a payload with non-zero offset is supported in static analysis only")
-    if load.analysis == "dynamic" and options.damping > 0:
-        raise ModelFailure(
-            f"beam3d: options.damping = {options.damping:g} s is not supported: Exudyn's geometrically exact beam "
-            f"ignores the section damping matrix, so it would have no effect; use damping = 0 (dissipation only "
-            f"through options.spectral_radius)"
-        )
 
 
 def _tendons_active(robot: Robot, load: LoadCase) -> str:
