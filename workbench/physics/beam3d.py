@@ -208,6 +208,9 @@ def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bo
     ti = sim.timeIntegration
     ti.newton.numericalDifferentiation.forODE2Connectors = True
     ti.newton.useModifiedNewton = True
+    # sparse LU: the banded beam system (~7 (n_el + 1) coordinates) factorises ~15x faster than dense
+    # at 40 elements (benchmarks/README.md, "Wire delay"); same answer to solver precision
+    sim.linearSolver.solverType = exu.LinearSolverType.EigenSparse
     n_steps = ti.numberOfSteps
     h = load.duration / n_steps
     out_dt = max(1, int(round(max(h, load.duration / 1000.0) / h))) * h
