@@ -42,7 +42,8 @@ def beam_section(cs, damping: float) -> "exu.BeamSection":
 
     ``GA = CrossSection.GA`` or ``100 EA`` if None (shear-rigid limit); rotary inertia
     ``mu EI/EA diag(2, 1, 1)`` (solid homogeneous section).  The damping matrix is ignored by
-    Exudyn 1.13.6 (``test_exudyn_ge_beam_ignores_section_damping``); it is 0 in dynamics.
+    Exudyn 1.13.6 (``test_exudyn_ge_beam_ignores_section_damping``): beam3d's damping is added by
+    :meth:`_System._add_section_dampers` instead.
     """
     GA = cs.GA if cs.GA is not None else _SHEAR_FACTOR_IF_NONE * cs.EA
     K = np.diag([cs.EA, GA, GA, cs.GJ, cs.EI, cs.EI])

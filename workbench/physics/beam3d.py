@@ -24,8 +24,10 @@ Model ``"beam3d"``: ``run(robot, load, options) -> PhysicsResult``.
   increment below 1e-6 raise :class:`ModelFailure`.
 * Dynamic analysis: generalised-alpha from the static equilibrium at t = 0; commands
   ``TendonActuation.command_at(t, load.ramp_time)`` set in a ``preStepUserFunction`` (called with
-  the *end* time of the coming step); no material damping (``options.damping > 0`` is rejected:
-  Exudyn ignores the section damping matrix); undamped tendons; series on the grid of
+  the *end* time of the coming step); sparse LU (``EigenSparse``); ``options.damping = beta`` [s] is
+  stiffness-proportional (Kelvin-Voigt) damping added by inter-node connectors (Exudyn ignores the
+  section damping matrix; ``_System._add_section_dampers``: first-mode damping ratio beta omega_1 / 2);
+  undamped tendons; series on the grid of
   :func:`workbench.models.result.series_times` (every ``max(time_step, duration / 1000)``).
 * Outputs: ``positions`` by the element's own interpolation at ``options.n_stations`` stations;
   ``tip_frame`` = tip cross-section axes (z along the backbone); ``length_change`` = sum of
@@ -256,7 +258,7 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     options : SolverOptions
         ``n_elements``, ``tendon_model`` (only ``"eyelets"`` for loaded tendons),
         ``n_stations``, Newton tolerance, ``max_load_steps``, ``time_step``, ``damping``
-        (must be 0 in dynamics), ``spectral_radius``.
+        (stiffness-proportional beta [s], dynamics only), ``spectral_radius``.
 
     Returns
     -------
@@ -267,7 +269,7 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     ------
     ModelFailure
         Continuum tendons requested with loaded tendons, static ramp exhausted, NaN state,
-        payload offset or damping in dynamics.
+        payload offset in dynamics.
     """
     from ._beam3d_system import _System
     from ._exudyn import quiet_exudyn
