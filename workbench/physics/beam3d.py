@@ -24,10 +24,9 @@ Model ``"beam3d"``: ``run(robot, load, options) -> PhysicsResult``.
   increment below 1e-6 raise :class:`ModelFailure`.
 * Dynamic analysis: generalised-alpha from the static equilibrium at t = 0; commands
   ``TendonActuation.command_at(t, load.ramp_time)`` set in a ``preStepUserFunction`` (called with
-  the *end* time of the coming step); sparse LU (``EigenSparse``); ``options.damping = beta`` [s] is
-  stiffness-proportional (Kelvin-Voigt) damping added by inter-node connectors (Exudyn ignores the
-  section damping matrix; ``_System._add_section_dampers``: first-mode damping ratio beta omega_1 / 2);
-  undamped tendons; series on the grid of
+  the *end* time of the coming step); sparse LU; ``options.damping = beta`` [s]: stiffness-proportional
+  damping by inter-node connectors (``_System._add_section_dampers``; Exudyn ignores the section
+  damping matrix); undamped tendons; series on the grid of
   :func:`workbench.models.result.series_times` (every ``max(time_step, duration / 1000)``).
 * Outputs: ``positions`` by the element's own interpolation at ``options.n_stations`` stations;
   ``tip_frame`` = tip cross-section axes (z along the backbone); ``length_change`` = sum of
