@@ -1,46 +1,81 @@
-"""Wall time of Cojocaru's wire-delay case: 10 s simulated, one tronconic section.
+"""Speed of Cojocaru's wire-delay case (issue 18): 10 s simulated, one tronconic section, 3 s delay.
 
-The delayed case (3 s) is the benchmark; the delay-free move is printed for comparison
-(between t ~ 2 s and 5 s the delayed case snaps into a strongly bent shape that is not a
-constant-curvature arc, at ~1.7 kN per wire; that phase is what costs).
+Target: 10 s simulated in <= 10 s wall at the converged resolution (the committed study's: 40
+beam3d elements with the 5 disks on element boundaries, 2.5 ms, stiffness-proportional damping
+beta = 2.7e-4 s, ``studies/wire_delay.toml``).  Each configuration is run once in this process and
+printed with CPU time (``time.process_time``), wall time, the load average, steps taken, Newton
+iterations and Jacobians, the ratios to the target, and the headline quantities (peak tip-to-CC
+error, backbone compression, largest wire tension) so that a speed setting can be judged against
+what it changes in the answer.  Configurations:
 
-Run from the repository root::
+* ``committed``: the study's settings (sparse LU, damped);
+* ``dense LU``: the same with Exudyn's dense solver (beam3d used it before issue 18);
+* ``undamped``: damping 0 (the snap then needs step reductions and Newton restarts);
+* ``half``: 20 elements at 5 ms (the estimate's first coarse solve).
 
-    /work/venv/bin/python benchmarks/bench_wire_delay.py
+Run from the repository root (minutes)::
 
-Prints, for each configuration, the wall time, the element count, the number of time steps,
-the ratio to the 10 s target and a few physical outputs (peak virtual compression, peak
-backbone compression, peak tension, peak tip error) so that speed settings can be judged
-against what they change in the answer.
+    python benchmarks/bench_wire_delay.py
 """
 
 from __future__ import annotations
 
+import contextlib
+import os
 import time
+
+TARGET = 10.0  # [s] wall for 10 s simulated
+
+
+@contextlib.contextmanager
+def _solver_probe(dense: bool, stats: dict):
+    """Wrap ``exudyn.SolveDynamic``: optionally force the dense LU; record Newton counters."""
+    import exudyn as exu
+
+    original = exu.SolveDynamic
+
+    def wrapped(mbs, sim, **kw):
+        if dense:
+            sim.linearSolver.solverType = exu.LinearSolverType.EXUdense
+        out = original(mbs, sim, **kw)
+        it = mbs.sys["dynamicSolver"].it
+        stats.update(steps=it.currentStepIndex, newton=it.newtonStepsCount, jacobians=it.newtonJacobiCount)
+        return out
+
+    exu.SolveDynamic = wrapped
+    try:
+        yield
+    finally:
+        exu.SolveDynamic = original
 
 
 def main() -> None:
+    from workbench.experiments.wire_delay.analysis import simulate_wire_delay
     from workbench.models import SolverOptions
-    from workbench.physics.wire_delay import default_options, simulate_wire_delay
 
-    target = 10.0
-    coarse = SolverOptions(n_elements=4, tendon_model="eyelets", time_step=1e-2, damping=0.0, spectral_radius=0.8)
+    def opts(n, dt, beta):
+        return SolverOptions(n_elements=n, tendon_model="eyelets", time_step=dt, damping=beta, spectral_radius=0.8)
+
     configs = [
-        ("3 s delay, default (8 el., h = 5 ms)", default_options(), 3.0),
-        ("3 s delay, coarse  (4 el., h = 10 ms)", coarse, 3.0),
-        ("no delay,  default (8 el., h = 5 ms)", default_options(), 0.0),
+        ("committed (40 el, 2.5 ms, beta 2.7e-4 s, sparse)", opts(40, 2.5e-3, 2.7e-4), False),
+        ("dense LU  (40 el, 2.5 ms, beta 2.7e-4 s)        ", opts(40, 2.5e-3, 2.7e-4), True),
+        ("undamped  (40 el, 2.5 ms, beta 0, sparse)       ", opts(40, 2.5e-3, 0.0), False),
+        ("half      (20 el, 5 ms, beta 2.7e-4 s, sparse)  ", opts(20, 5e-3, 2.7e-4), False),
     ]
-    print("wire-delay benchmark: 10 s simulated (3 s delay, 4 s moves), target <= %.0f s wall" % target)
-    for name, opts, delay in configs:
-        t0 = time.perf_counter()
-        r = simulate_wire_delay(options=opts, delay=delay, duration=10.0)
-        wall = time.perf_counter() - t0
-        print(
-            f"{name}: wall {wall:7.2f} s  elements {r.n_elements:2d}  steps {r.n_steps:5d}  "
-            f"wall/target {wall / target:5.2f}  | min e {r.virtual_compression.min() * 1e3:7.3f} mm  "
-            f"min dL {r.length_change.min() * 1e3:7.4f} mm  max T {r.tendon_tensions.max():7.1f} N  "
-            f"max tip error {r.tip_error.max() * 1e3:6.1f} mm  max |twist| {abs(r.tip_twist).max():.2e} rad"
-        )
+    print(f"wire-delay benchmark: 10 s simulated (3 s delay, 4 s moves), target <= {TARGET:.0f} s wall; "
+          f"load average {os.getloadavg()[0]:.1f}")
+    for name, o, dense in configs:
+        stats: dict = {}
+        c0, w0 = time.process_time(), time.perf_counter()
+        with _solver_probe(dense, stats):
+            r = simulate_wire_delay(options=o, delay=3.0, duration=10.0)
+        cpu, wall = time.process_time() - c0, time.perf_counter() - w0
+        H = r.section_length
+        print(f"{name}: CPU {cpu:6.1f} s (x{cpu / TARGET:4.1f})  wall {wall:6.1f} s (x{wall / TARGET:4.1f})  "
+              f"steps {stats['steps']:5d}  Newton/step {stats['newton'] / stats['steps']:4.1f}  "
+              f"Jacobians/step {stats['jacobians'] / stats['steps']:4.2f}  | peak tip error "
+              f"{r.tip_error.max() * 1e3:6.2f} mm  min dL {100 * r.length_change.min() / H:7.4f} % H  "
+              f"max T {r.tendon_tensions.max():7.1f} N  load {os.getloadavg()[0]:.1f}")
 
 
 if __name__ == "__main__":

@@ -114,9 +114,10 @@ MODELS: Mapping[str, ModelInfo] = {
         note="planar ANCF cable in the base x-z plane; gravity out of that plane is dropped and recorded "
              "(x.gravity_out_of_plane)")),
     "beam3d": ModelInfo("workbench.physics.beam3d:run", "GE beam", "#d62728", order=2.0, capabilities=Capabilities(
-        tendon_models=("eyelets",), spatial_length_tendon_models=("eyelets",), dynamic_damping=False,
+        tendon_models=("eyelets",), spatial_length_tendon_models=("eyelets",),
         dynamic_payload_offset=False,
-        note="geometrically exact beam; tendons only as eyelet ropes; damping only through spectral_radius")),
+        note="geometrically exact beam; tendons only as eyelet ropes; damping (stiffness-proportional, beta "
+             "[s]) added by inter-node connectors")),
     "ancf3d": ModelInfo("workbench.physics.ancf3d:run", "ANCF 3-D", "#9467bd", order=4.0, capabilities=Capabilities(
         actuation=(), loads=("tip_force",), torsion=False,
         note="3-D ANCF cable without a cross-section frame: no tendons, tip torque or payload offset")),

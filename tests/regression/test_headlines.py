@@ -27,9 +27,6 @@ pytestmark = pytest.mark.regression
 #: Studies whose headline is known not to converge at a size the default suite can afford (strict:
 #: an unexpected pass fails, so the mark is removed when it is fixed).
 KNOWN_NOT_CONVERGED = {
-    "wire_delay": "the dynamic estimate of 4 beam3d elements at 10 ms needs 2 / 1 elements at 20 / 40 ms, "
-                  "outside the asymptotic range (error bar 0.12 m on a 3.7 mm peak); the committed 40-element "
-                  "study's snapped 3 s peak is itself not converged (docs/models.md, 'Wire delay')",
     # the grasp kind (issue 17) landed after issue 13's estimator: its 'contact' model has no declared
     # order, so its rows carry no estimate and the rule cannot certify them (open item)
     "whole_arm_grasp": "the contact model (penalty contact on ANCF) has no declared order: no discretisation estimate",
@@ -47,16 +44,17 @@ def _params():
         yield pytest.param(p, id=p.stem, marks=[pytest.mark.xfail(strict=True, reason=reason)] if reason else [])
 
 
-def test_wire_delay_sections_even_when_not_converged(small_study_run):
-    """The report of a not-converged study still says so, in the four sections."""
+def test_wire_delay_findings_give_peak_and_final_with_the_damping_assumption(small_study_run):
+    """The snapped wire-delay case (damped, issue 13): its findings give the peak over time and the end
+    value, converged, and the assumptions name the assumed move time and damping."""
     path = next(p for p in small_study_paths() if p.stem == "wire_delay")
     study = load_results(small_study_run(path))
     cmp = compare_table(study.results, reference=study.reference, derived=study.derived)
     with matplotlib.rc_context(STYLE):
         parts = opening_sections(study, cmp, lambda f: "")
-    assert "NOT CONVERGED" in parts["findings"] and "peak tip error over time" in parts["findings"]
+    assert "peak tip error over time" in parts["findings"] and "NOT CONVERGED" not in parts["findings"]
     assert "at the end of that case" in parts["findings"]  # dynamics: peak and final value
-    assert "move_time" in parts["assumptions"]
+    assert "move_time" in parts["assumptions"] and "damping" in parts["assumptions"]
 
 
 @pytest.mark.parametrize("path", list(_params()))

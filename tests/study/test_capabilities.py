@@ -41,9 +41,6 @@ CORPUS = [
     ("beam3d_continuum_arc", study('"beam3d"', load=ARC), E, "solver.tendon_model", "(got 'continuum')"),
     ("beam3d_swept_tendon_model", study('"beam3d"', sweep='product = { "solver.tendon_model" = ["eyelets", '
                                                            '"continuum"] }'), E, "solver.tendon_model", "beam3d"),
-    ("beam3d_dynamic_damping", study('"beam3d"', load='analysis = "dynamic"\nduration = 0.1',
-                                     solver='tendon_model = "eyelets"\ndamping = 0.01'), E, "solver.damping",
-     "ignores damping in dynamic analysis"),
     ("cosserat_eyelets", study('"cc", "cosserat"', solver='tendon_model = "eyelets"'), E, "solver.tendon_model",
      "model 'cosserat' supports"),
     ("cosserat_dynamic", study('"cosserat"', load='analysis = "dynamic"\nduration = 0.1'), E, "load.analysis",
@@ -147,7 +144,7 @@ def test_every_problem_of_a_file_in_one_pass(tmp_path):
 # the declarations are honest: the models themselves refuse what validate refuses
 # ---------------------------------------------------------------------------------------------
 PROBES = [  # (model, corpus id): validate refuses it, so must the model
-    ("beam3d", "beam3d_continuum_tension"), ("beam3d", "beam3d_dynamic_damping"),
+    ("beam3d", "beam3d_continuum_tension"),
     ("ancf3d", "ancf3d_tension"), ("ancf3d", "ancf3d_pretension"), ("ancf3d", "ancf3d_tip_torque"),
     ("ancf", "ancf_tendon_angle"), ("ancf", "ancf_tip_force_y"), ("ancf", "ancf_tip_torque_z"),
     ("spring_link", "spring_link_spatial_length_continuum"),

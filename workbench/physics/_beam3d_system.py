@@ -22,7 +22,9 @@ from exudyn.itemInterface import (
     NodeRigidBodyEP,
     NodeRigidBodyRotVecLG,
     ObjectBeamGeometricallyExact,
+    MarkerNodePosition,
     ObjectConnectorReevingSystemSprings,
+    ObjectConnectorRigidBodySpringDamper,
     ObjectConnectorSpringDamper,
     ObjectGround,
 )
@@ -41,7 +43,8 @@ def beam_section(cs, damping: float, axial_shear_scale: float = 1.0) -> "exu.Bea
 
     ``GA = CrossSection.GA`` or ``100 EA`` if None (shear-rigid limit); rotary inertia
     ``mu EI/EA diag(2, 1, 1)`` (solid homogeneous section).  The damping matrix is ignored by
-    Exudyn 1.13.6 (``test_exudyn_ge_beam_ignores_section_damping``); it is 0 in dynamics.
+    Exudyn 1.13.6 (``test_exudyn_ge_beam_ignores_section_damping``): beam3d's damping is added by
+    :meth:`_System._add_section_dampers` instead.
     ``axial_shear_scale`` multiplies EA and GA in the stiffness (not in the inertia): < 1 only in
     the predictor stages of the static solve (:func:`workbench.physics.beam3d._ramp_static`).
     """
@@ -98,6 +101,9 @@ class _System:
         self.tendon_rest0 = np.zeros(0)
         if tendon_mode != "none":
             self._add_tendons(robot, load)
+        self.dampers: list[int] = []
+        if options.damping > 0 and load.analysis == "dynamic":
+            self._add_section_dampers(float(options.damping))
         self.mbs.Assemble()
 
     # -- building -------------------------------------------------------------------------
@@ -123,6 +129,30 @@ class _System:
                 nodeNumbers=[self.nodes[e], self.nodes[e + 1]], length=float(self.elem_len[e]), sectionData=bs,
             )))
         return clamped
+
+    def _add_section_dampers(self, beta: float) -> None:
+        """Stiffness-proportional (Kelvin-Voigt) damping of every element, ``beta`` [s], added by connectors.
+
+        Exudyn's GE beam ignores ``BeamSection.dampingMatrix``; the same dissipation is added per element
+        between its two nodes: a ``ConnectorSpringDamper`` with damping ``beta EA / L_e`` on the rate of
+        the node distance (axial) and a ``ConnectorRigidBodySpringDamper`` with no stiffness and damping
+        ``beta diag(GJ, EI, EI) / L_e`` on the relative angular velocity in the node frames (torsion,
+        bending; node x = beam axis).  Both rates vanish for rigid motions (objective); transverse shear
+        is not damped.  Dynamics only (no velocities in statics).
+        """
+        mbs = self.mbs
+        zero6 = np.zeros((6, 6))
+        for e, cs in enumerate(self.elem_cs):
+            a, b = self.nodes[e], self.nodes[e + 1]
+            Le = float(self.elem_len[e])
+            pa, pb = (mbs.AddMarker(MarkerNodePosition(nodeNumber=n)) for n in (a, b))
+            self.dampers.append(mbs.AddObject(ObjectConnectorSpringDamper(
+                markerNumbers=[pa, pb], referenceLength=Le, stiffness=0.0, damping=beta * cs.EA / Le)))
+            ra, rb = (mbs.AddMarker(MarkerNodeRigid(nodeNumber=n)) for n in (a, b))
+            D = zero6.copy()
+            D[3:, 3:] = np.diag([cs.GJ, cs.EI, cs.EI]) * (beta / Le)
+            self.dampers.append(mbs.AddObject(ObjectConnectorRigidBodySpringDamper(
+                markerNumbers=[ra, rb], stiffness=zero6, damping=D)))
 
     def _add_masses(self, robot: Robot, g_m: np.ndarray) -> list:
         """Disk masses and a zero-offset payload as node masses; gravity on them and on the beam."""

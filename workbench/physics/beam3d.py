@@ -25,9 +25,9 @@ Model ``"beam3d"``: ``run(robot, load, options) -> PhysicsResult``.
   ODE2 Jacobian term numerical (Exudyn's GE-beam one is wrong on EP nodes; ``docs/models.md``).
 * Dynamic analysis: generalised-alpha from the static equilibrium at t = 0; commands
   ``TendonActuation.command_at(t, load.ramp_time)`` set in a ``preStepUserFunction`` (called with
-  the *end* time of the coming step); no material damping (``options.damping > 0`` is rejected:
-  Exudyn ignores the section damping matrix); undamped tendons; series on the grid of
-  :func:`workbench.models.result.series_times` (every ``max(time_step, duration / 1000)``).
+  the *end* time of the coming step); sparse LU; ``options.damping = beta`` [s]: Kelvin-Voigt damping
+  by inter-node connectors (``_System._add_section_dampers``); series every ``max(time_step, duration
+  / 1000)`` (:func:`workbench.models.result.series_times`).
 * Outputs: ``positions`` by the element's own interpolation at ``options.n_stations`` stations;
   ``tip_frame`` = tip cross-section axes (z along the backbone); ``length_change`` = sum of
   ``L_e (|Gamma_e| - 1)``; ``tip_twist`` = sum of ``L_e kappa_1`` (relative to the base frame
@@ -65,12 +65,6 @@ def _check(robot: Robot, load: LoadCase, options: SolverOptions) -> None:
     check_model_inputs(robot, load, options)
     if load.analysis == "dynamic" and robot.payload.mass > 0 and any(robot.payload.offset):
         raise ModelFailure("beam3d: a payload with non-zero offset is supported in static analysis only")
-    if load.analysis == "dynamic" and options.damping > 0:
-        raise ModelFailure(
-            f"beam3d: options.damping = {options.damping:g} s is not supported: Exudyn's geometrically exact beam "
-            f"ignores the section damping matrix, so it would have no effect; use damping = 0 (dissipation only "
-            f"through options.spectral_radius)"
-        )
 
 
 def _tendons_active(robot: Robot, load: LoadCase) -> str:
@@ -309,6 +303,9 @@ def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bo
     ti = sim.timeIntegration
     ti.newton.numericalDifferentiation.forODE2Connectors = True
     ti.newton.useModifiedNewton = True
+    # sparse LU: the banded beam system (~7 (n_el + 1) coordinates) factorises ~15x faster than dense
+    # at 40 elements (benchmarks/README.md, "Wire delay"); same answer to solver precision
+    sim.linearSolver.solverType = exu.LinearSolverType.EigenSparse
     n_steps = ti.numberOfSteps
     h = load.duration / n_steps
     out_dt = max(1, int(round(max(h, load.duration / 1000.0) / h))) * h
@@ -355,7 +352,7 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions, *, stiffness_stage
     options : SolverOptions
         ``n_elements``, ``tendon_model`` (only ``"eyelets"`` for loaded tendons),
         ``n_stations``, Newton tolerance, ``max_load_steps``, ``time_step``, ``damping``
-        (must be 0 in dynamics), ``spectral_radius``.
+        (stiffness-proportional beta [s], dynamics only), ``spectral_radius``.
     stiffness_stages : "auto" or tuple of float
         Static analyses: EA and GA factors of the predictor stages (:func:`_ramp_static`,
         "auto": :func:`auto_stiffness_stages`); ``()`` runs the plain load ramp at full stiffness (the method before issue 18).
@@ -372,7 +369,7 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions, *, stiffness_stage
     ------
     ModelFailure
         Continuum tendons requested with loaded tendons, static ramp exhausted, NaN state,
-        payload offset or damping in dynamics.
+        payload offset in dynamics.
     """
     from ._beam3d_system import _System
     from ._exudyn import quiet_exudyn
