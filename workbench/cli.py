@@ -170,8 +170,12 @@ def _print_summary(summary, report_note: str | None = None, show_run: bool = Tru
     study_file = (runs[-1].get("study_file") if runs else None) or man.get("study_file") or "STUDY.toml"
     source = (runs[-1].get("study_file") if runs else None) or man.get("study_file")
     print(f"study {name!r}" + (f" ({source})" if source else "") + f": {summary.folder}")
-    cached = f", {summary.n_cached} model rows from the cache" if getattr(summary, "n_cached", 0) else ""
-    this_run = f" (this run: {summary.n_run} run{cached}, {summary.n_skipped} already stored)" if show_run else ""
+    n_cached, n_computed = getattr(summary, "n_cached", 0), getattr(summary, "n_computed", None)
+    if n_cached and n_computed is not None:
+        done = f"{n_computed} computed, {summary.n_run - n_computed} from the cache ({n_cached} model rows)"
+    else:
+        done = f"{summary.n_run} run" + (f", {n_cached} model rows from the cache" if n_cached else "")
+    this_run = f" (this run: {done}, {summary.n_skipped} already stored)" if show_run else ""
     print(f"  cases {summary.n_cases}: ok {summary.n_ok}, failed {summary.n_failed}{this_run}")
     missing = summary.n_cases - summary.n_ok - summary.n_failed
     if missing > 0:
