@@ -72,3 +72,19 @@ def test_cli_caches_next_to_the_output_folder(tmp_path, write_study, capsys):
     assert "(this run: 0 computed, 2 from the cache (2 model rows), 0 already stored)" in capsys.readouterr().out
     assert main(run + [str(tmp_path / "c"), "--no-cache"]) == 0
     assert "cache" not in read_manifest(tmp_path / "c")["runs"][0]
+
+
+def test_retry_failed_recomputes_a_cached_model_failure(tmp_path, write_study):
+    cache = tmp_path / "_cache"
+    study = _study(write_study, [1.0])
+    run_study(study, tmp_path / "a", SerialExecutor(), progress=False, cache=cache)
+    c = ResultCache(cache)
+    (cid,) = pd.read_parquet(tmp_path / "a")["case_id"].tolist()
+    good = c.get(cid, "cc")
+    c.put({**good, "status": "failed", "failure": "model", "error": "ModelFailure: planted"})  # as if it had failed
+    b = run_study(study, tmp_path / "b", SerialExecutor(), progress=False, cache=cache)
+    assert b.n_failed == 1 and b.n_cached == 1 and b.n_computed == 0  # a model failure is a result: reused
+    again = run_study(study, tmp_path / "b", SerialExecutor(), progress=False, cache=cache, resume=True,
+                      retry_failed=True)
+    assert again.n_ok == 1 and again.n_failed == 0 and again.n_cached == 0 and again.n_computed == 1
+    assert ResultCache(cache).get(cid, "cc")["status"] == "ok"  # the recomputed row replaced the failure

@@ -103,11 +103,11 @@ def _complete(unit: Unit, out: Outcome, params: dict[str, Any], separable: bool)
     return rows + failed_rows(cid, params, missing, crash.reason, failure=crash.kind), None
 
 
-def _cached(units: list[Unit], cache: Any, session: RunSession, separable: bool) -> list[Unit]:
-    """Record what ``cache`` holds of ``units``; the units (models) still to compute."""
+def _cached(units: list[Unit], cache: Any, session: RunSession, separable: bool, ok_only: bool = False) -> list[Unit]:
+    """Record what ``cache`` holds of ``units`` (``ok_only``: its ok rows); the units (models) still to compute."""
     out = []
     for u in units:
-        rows = {m: cache.get(u.case.case_id, m) for m in u.models}
+        rows = {m: cache.get(u.case.case_id, m, ok_only=ok_only) for m in u.models}
         missing = tuple(m for m in u.models if rows[m] is None)
         if missing and not separable:  # computed together: all or nothing
             cache.hits -= len(u.models) - len(missing)
@@ -121,13 +121,15 @@ def _cached(units: list[Unit], cache: Any, session: RunSession, separable: bool)
 
 
 def _execute(kind: StudyKind, spec: Any, session: RunSession, executor: Executor, chunk_size: int,
-             options: Any, recorded: dict[str, dict[str, Any]], limits: CaseLimits, cache: Any = None) -> int:
+             options: Any, recorded: dict[str, dict[str, Any]], limits: CaseLimits, cache: Any = None,
+             retry_failed: bool = False) -> int:
     """Submit the session's units (those the cache does not hold); store each outcome; rerun the models left after a crash.
 
     Returns the number of cases submitted (the others came whole from the cache).
     """
     separable = getattr(kind, "separable_models", True)
-    pending = list(session.todo) if cache is None else _cached(list(session.todo), cache, session, separable)
+    pending = list(session.todo) if cache is None else _cached(list(session.todo), cache, session, separable,
+                                                                ok_only=retry_failed)
     n_submitted = len(pending)
     while pending:
         payloads = [kind.payload(spec, u.case, u.models, options) for u in pending]
@@ -236,7 +238,8 @@ def run_cases(
         with session:
             chunk = batch_size or kind.batch_size(len(session.todo), getattr(executor, "slots", 1))
             try:
-                n_computed = _execute(kind, spec, session, executor, chunk, run_opts, recorded, limits, cache)
+                n_computed = _execute(kind, spec, session, executor, chunk, run_opts, recorded, limits, cache,
+                                      retry_failed)
             finally:
                 if cache is not None:
                     session.run_rec["cache"] = {"folder": str(cache.folder), "hits": cache.hits,
