@@ -76,7 +76,35 @@ class _Parser(argparse.ArgumentParser):
         super().__init__(*a, **kw)
 
     def error(self, message: str):  # noqa: D401 - argparse's hook
-        self.exit(2, f"{self.prog}: {message} (see {self.prog} --help)\n")
+        self.exit(2, f"{self.prog}: {message}{self._hint(message)} (see {self.prog} --help)\n")
+
+    def parse_args(self, args=None, namespace=None):  # noqa: D102 - remembers the words for the hint
+        self._words = list(sys.argv[1:] if args is None else args)
+        return super().parse_args(args, namespace)
+
+    def _options(self, words: list[str]) -> list[str]:
+        """The option strings of this parser and of the subcommand named in ``words``."""
+        out = []
+        for a in self._actions:
+            out += [o for o in a.option_strings if o.startswith("--")]
+            if isinstance(a, argparse._SubParsersAction):
+                sub = next((a.choices[w] for w in words if w in a.choices), None)
+                out += sub._options(words) if isinstance(sub, _Parser) else []
+        return sorted(set(out))
+
+    def _hint(self, message: str) -> str:
+        """``; did you mean --workers?`` for an unrecognized option close to a known one."""
+        import difflib
+
+        if "unrecognized arguments:" not in message:
+            return ""
+        words = [w for w in message.partition("unrecognized arguments:")[2].split() if w.startswith("--")]
+        for w in words:
+            close = difflib.get_close_matches(w.partition("=")[0], self._options(getattr(self, "_words", [])), n=1,
+                                              cutoff=0.75)
+            if close:
+                return f"; did you mean {close[0]}?"
+        return ""
 
 
 def _version() -> str:

@@ -145,7 +145,8 @@ def test_retry_failed_needs_resume(capsys):
 
 @pytest.mark.parametrize("argv,words", [
     (["run"], "the following arguments are required: study"),
-    (["run", EXAMPLE, "--worker", "2"], "unrecognized arguments: --worker 2"),  # no prefix matching
+    (["run", EXAMPLE, "--worker", "2"], "unrecognized arguments: --worker 2; did you mean --workers?"),  # no prefix
+    (["report", "data/x", "--format", "png"], "unrecognized arguments: --format png; did you mean --formats?"),
     (["run", EXAMPLE, "--workers", "two"], "invalid int value: 'two'"),
     (["run", EXAMPLE, "--workers", "0", "--no-report"], "--workers: must be >= 1"),
     (["run", EXAMPLE, "--force", "--resume"], "--force: not with --resume"),
