@@ -155,6 +155,8 @@ def _parser() -> argparse.ArgumentParser:
 
     s = sub.add_parser("show", help="summarise a study result folder")
     s.add_argument("folder", help="e.g. data/example")
+    s.add_argument("--reports-dir", default="reports",
+                   help="where to look for its report (default reports/<data folder name>, as for run)")
 
     rp = sub.add_parser("report", help="write the HTML comparison report of a study result folder")
     add_report_arguments(rp)
@@ -487,8 +489,9 @@ def _cmd_show(args) -> int:
     try:
         read_manifest(folder)
         summary = summarize(folder)
-        found = [_report_dir(folder) / n for n in ("report.html", "index.html") if (_report_dir(folder) / n).exists()]
-        _print_summary(summary, report_note=str(found[0]) if found else f"none yet in {_report_dir(folder)}",
+        rdir = _report_dir(folder, args.reports_dir)
+        found = [rdir / n for n in ("report.html", "index.html") if (rdir / n).exists()]
+        _print_summary(summary, report_note=str(found[0]) if found else f"none yet in {rdir}",
                        show_run=False)
     except StudyError as e:
         _err(e.problems)

@@ -226,6 +226,8 @@ def test_show_names_the_study_file_and_the_report_path(capsys, good_folder):
     out = capsys.readouterr().out.splitlines()
     assert out[0] == f"study 'killme' ({study}): {good}"
     assert out[-1] == f"  report: none yet in reports/{good.name}"
+    assert main(["show", str(good), "--reports-dir", str(good.parent / "elsewhere")]) == 0  # as `run --reports-dir`
+    assert capsys.readouterr().out.splitlines()[-1] == f"  report: none yet in {good.parent / 'elsewhere' / good.name}"
 
 
 def test_a_closed_pipe_is_no_traceback():
