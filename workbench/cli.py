@@ -166,7 +166,8 @@ def _parser() -> argparse.ArgumentParser:
 
     v = sub.add_parser("validate", help="check a study file without running it")
     v.add_argument("study", help="study file or bare name (studies/<name>.toml)")
-    v.add_argument("overrides", nargs="*", metavar="KEY=VALUE", help="settings that override the file")
+    v.add_argument("overrides", nargs="*", metavar="KEY=VALUE | STUDY",
+                   help="settings that override the file(s); further study files (validate studies/*.toml)")
     v.add_argument("--max-cases", type=int, metavar="N", help="override study.max_cases")
     return p
 
@@ -298,6 +299,17 @@ def _load(args):
 
 
 def _cmd_validate(args) -> int:
+    """``validate STUDY [STUDY ...] [KEY=VALUE ...]``: each study checked with the overrides; rc 2 if any fails."""
+    more = [a for a in args.overrides if "=" not in a and (a.endswith(".toml") or Path(a).is_file())]
+    if not more:
+        return _validate_one(args)
+    overrides = [a for a in args.overrides if a not in more]
+    codes = [_validate_one(argparse.Namespace(**{**vars(args), "study": s, "overrides": overrides}))
+             for s in [args.study, *more]]
+    return max(codes)
+
+
+def _validate_one(args) -> int:
     from .study import StudyError
 
     try:

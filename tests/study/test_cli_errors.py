@@ -8,6 +8,7 @@ import subprocess
 import sys
 import threading
 import time
+from pathlib import Path
 
 import pytest
 
@@ -160,6 +161,7 @@ def test_retry_failed_needs_resume(capsys):
     (["validate", "example", "solver.n_elements"], "override 'solver.n_elements': expected <section>.<key>=<value>"),
     (["validate", "example", "solver.n_elementz=3"], "solver.n_elementz: unknown key; did you mean 'n_elements'?"),
     (["run", "example", "solver.n_elements=0", "--no-report"], "solver.n_elements: must be >= 1"),
+    (["run", "example", "studies/quickstart.toml"], "studies/quickstart.toml: a second study file? run takes one"),
     (["list"], "the following arguments are required: topic"),
     (["list", "modles"], "invalid choice: 'modles'"),
     (["frobnicate"], "invalid choice: 'frobnicate'"),
@@ -239,3 +241,14 @@ def test_a_closed_pipe_is_no_traceback():
     proc.stdout.close()
     err = proc.stderr.read().decode()
     assert proc.wait(timeout=120) == 0 and "Traceback" not in err, err
+
+
+def test_validate_takes_several_study_files(capsys, monkeypatch):
+    """``workbench validate tests/study/bad_configs/*.toml``: one line per file, exit 2 if any is bad."""
+    monkeypatch.chdir(ROOT)
+    bad = sorted(Path("tests/study/bad_configs").glob("*.toml"))[:5]
+    assert main(["validate", "studies/example.toml", *map(str, bad), "solver.n_elements=8"]) == 2
+    out, err = capsys.readouterr()
+    assert out.startswith("studies/example.toml: ok: study 'example'") and "(with 1 override(s)" in out
+    lines = [x for x in err.splitlines() if not x.startswith("warning: ")]
+    assert [x.split(": ")[0] for x in lines] == [str(b) for b in bad], lines
