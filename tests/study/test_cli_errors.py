@@ -252,3 +252,28 @@ def test_validate_takes_several_study_files(capsys, monkeypatch):
     assert out.startswith("studies/example.toml: ok: study 'example'") and "(with 1 override(s)" in out
     lines = [x for x in err.splitlines() if not x.startswith("warning: ")]
     assert [x.split(": ")[0] for x in lines] == [str(b) for b in bad], lines
+
+
+def test_report_never_replaces_what_is_not_a_report(tmp_path, capsys, good_folder):
+    """`report data/x --out data/x` deleted the results (exit 0) and `--out README.md` replaced the file."""
+    _, good = good_folder
+    data = tmp_path / "data" / "x"
+    shutil.copytree(good, data)
+    stored = sorted(p.name for p in data.iterdir())
+    (tmp_path / "notes.md").write_text("mine")
+    (tmp_path / "stuff").mkdir()
+    (tmp_path / "stuff" / "keep.txt").write_text("mine")
+    for out, words in ((data, "holds the results"), (data.parent, "holds the results"),
+                       (tmp_path / "notes.md", "exists and is not a folder"),
+                       (tmp_path / "stuff", "not empty and holds no report.html")):
+        line = _one_line(capsys, 2, ["report", data, "--out", out, "--formats", "png"])
+        assert words in line, line
+    assert sorted(p.name for p in data.iterdir()) == stored  # the results untouched
+    assert (tmp_path / "notes.md").read_text() == "mine" and (tmp_path / "stuff" / "keep.txt").read_text() == "mine"
+    other = tmp_path / "data" / "y"
+    shutil.copytree(good, other)
+    assert "is a study result folder" in _one_line(capsys, 2, ["report", data, "--out", other])
+    report = tmp_path / "reports" / "x"
+    for _ in range(2):  # a report folder is replaced by the new report
+        assert main(["report", str(data), "--out", str(report), "--formats", "png"]) == 0
+        assert (report / "report.html").exists()
