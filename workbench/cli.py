@@ -347,6 +347,14 @@ def _check_out(folder: Path) -> str | None:
         return f"--out {folder}: {p} is a file, not a folder"
     if not os.access(p, os.W_OK | os.X_OK):
         return f"--out {folder}: no permission to write in {p}"
+    from .study.store import MANIFEST
+
+    if p == folder and not (folder / MANIFEST).exists():
+        # the table is every file of the folder (pandas.read_parquet): other files would make it unreadable
+        others = sorted(q.name for q in folder.iterdir() if not q.name.startswith((".", "_")))
+        if others:
+            return (f"--out {folder}: not empty and not a study result folder (holds {others[0]}"
+                    f"{f' and {len(others) - 1} more' if len(others) > 1 else ''}); choose a new or empty folder")
     return None
 
 

@@ -43,6 +43,11 @@ def test_bad_out_paths(tmp_path, capsys):
     (tmp_path / "afile").write_text("x")
     run = ["run", EXAMPLE, "--in-process", "--no-report", "--out"]
     assert _one_line(capsys, 2, run + [tmp_path / "afile"]).endswith("exists and is not a folder")
+    (tmp_path / "notes").mkdir()
+    (tmp_path / "notes" / "mine.txt").write_text("x")  # a folder of other files: its table would be unreadable
+    line = _one_line(capsys, 2, run + [tmp_path / "notes", "--force"])
+    assert line.endswith("not empty and not a study result folder (holds mine.txt); choose a new or empty folder")
+    assert [p.name for p in (tmp_path / "notes").iterdir()] == ["mine.txt"]
     assert "is a file, not a folder" in _one_line(capsys, 2, run + [tmp_path / "afile" / "sub"])
     assert _one_line(capsys, 2, run + [""]).startswith("--out: empty path")
     ro = tmp_path / "ro"
