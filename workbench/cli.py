@@ -273,6 +273,8 @@ def find_study(text: str) -> Path:
     """
     from .study import StudyError
 
+    if not str(text).strip():
+        raise StudyError(["study: empty path (give a study file, e.g. studies/example.toml, or a bare name)"])
     p = Path(text)
     if p.exists() or p.name != text:  # a path with a folder: the loader says what is wrong with it
         return p
@@ -289,6 +291,10 @@ def _load(args):
     """``(kind, validated study)`` of ``args.study``: the one place the study kind is chosen."""
     from .study import get_kind, kind_of
 
+    from .study import StudyError
+
+    if getattr(args, "max_cases", None) is not None and args.max_cases < 1:
+        raise StudyError([f"--max-cases: must be >= 1, got {args.max_cases}"])
     path = find_study(args.study)
     args.study = str(path)
     kind = get_kind(kind_of(path))
