@@ -76,7 +76,35 @@ class _Parser(argparse.ArgumentParser):
         super().__init__(*a, **kw)
 
     def error(self, message: str):  # noqa: D401 - argparse's hook
-        self.exit(2, f"{self.prog}: {message} (see {self.prog} --help)\n")
+        self.exit(2, f"{self.prog}: {message}{self._hint(message)} (see {self.prog} --help)\n")
+
+    def parse_args(self, args=None, namespace=None):  # noqa: D102 - remembers the words for the hint
+        self._words = list(sys.argv[1:] if args is None else args)
+        return super().parse_args(args, namespace)
+
+    def _options(self, words: list[str]) -> list[str]:
+        """The option strings of this parser and of the subcommand named in ``words``."""
+        out = []
+        for a in self._actions:
+            out += [o for o in a.option_strings if o.startswith("--")]
+            if isinstance(a, argparse._SubParsersAction):
+                sub = next((a.choices[w] for w in words if w in a.choices), None)
+                out += sub._options(words) if isinstance(sub, _Parser) else []
+        return sorted(set(out))
+
+    def _hint(self, message: str) -> str:
+        """``; did you mean --workers?`` for an unrecognized option close to a known one."""
+        import difflib
+
+        if "unrecognized arguments:" not in message:
+            return ""
+        words = [w for w in message.partition("unrecognized arguments:")[2].split() if w.startswith("--")]
+        for w in words:
+            close = difflib.get_close_matches(w.partition("=")[0], self._options(getattr(self, "_words", [])), n=1,
+                                              cutoff=0.75)
+            if close:
+                return f"; did you mean {close[0]}?"
+        return ""
 
 
 def _version() -> str:
@@ -127,6 +155,8 @@ def _parser() -> argparse.ArgumentParser:
 
     s = sub.add_parser("show", help="summarise a study result folder")
     s.add_argument("folder", help="e.g. data/example")
+    s.add_argument("--reports-dir", default="reports",
+                   help="where to look for its report (default reports/<data folder name>, as for run)")
 
     rp = sub.add_parser("report", help="write the HTML comparison report of a study result folder")
     add_report_arguments(rp)
@@ -136,7 +166,8 @@ def _parser() -> argparse.ArgumentParser:
 
     v = sub.add_parser("validate", help="check a study file without running it")
     v.add_argument("study", help="study file or bare name (studies/<name>.toml)")
-    v.add_argument("overrides", nargs="*", metavar="KEY=VALUE", help="settings that override the file")
+    v.add_argument("overrides", nargs="*", metavar="KEY=VALUE | STUDY",
+                   help="settings that override the file(s); further study files (validate studies/*.toml)")
     v.add_argument("--max-cases", type=int, metavar="N", help="override study.max_cases")
     return p
 
@@ -170,8 +201,12 @@ def _print_summary(summary, report_note: str | None = None, show_run: bool = Tru
     study_file = (runs[-1].get("study_file") if runs else None) or man.get("study_file") or "STUDY.toml"
     source = (runs[-1].get("study_file") if runs else None) or man.get("study_file")
     print(f"study {name!r}" + (f" ({source})" if source else "") + f": {summary.folder}")
-    cached = f", {summary.n_cached} model rows from the cache" if getattr(summary, "n_cached", 0) else ""
-    this_run = f" (this run: {summary.n_run} run{cached}, {summary.n_skipped} already stored)" if show_run else ""
+    n_cached, n_computed = getattr(summary, "n_cached", 0), getattr(summary, "n_computed", None)
+    if n_cached and n_computed is not None:
+        done = f"{n_computed} computed, {summary.n_run - n_computed} from the cache ({n_cached} model rows)"
+    else:
+        done = f"{summary.n_run} run" + (f", {n_cached} model rows from the cache" if n_cached else "")
+    this_run = f" (this run: {done}, {summary.n_skipped} already stored)" if show_run else ""
     print(f"  cases {summary.n_cases}: ok {summary.n_ok}, failed {summary.n_failed}{this_run}")
     missing = summary.n_cases - summary.n_ok - summary.n_failed
     if missing > 0:
@@ -238,6 +273,8 @@ def find_study(text: str) -> Path:
     """
     from .study import StudyError
 
+    if not str(text).strip():
+        raise StudyError(["study: empty path (give a study file, e.g. studies/example.toml, or a bare name)"])
     p = Path(text)
     if p.exists() or p.name != text:  # a path with a folder: the loader says what is wrong with it
         return p
@@ -254,6 +291,10 @@ def _load(args):
     """``(kind, validated study)`` of ``args.study``: the one place the study kind is chosen."""
     from .study import get_kind, kind_of
 
+    from .study import StudyError
+
+    if getattr(args, "max_cases", None) is not None and args.max_cases < 1:
+        raise StudyError([f"--max-cases: must be >= 1, got {args.max_cases}"])
     path = find_study(args.study)
     args.study = str(path)
     kind = get_kind(kind_of(path))
@@ -264,6 +305,17 @@ def _load(args):
 
 
 def _cmd_validate(args) -> int:
+    """``validate STUDY [STUDY ...] [KEY=VALUE ...]``: each study checked with the overrides; rc 2 if any fails."""
+    more = [a for a in args.overrides if "=" not in a and (a.endswith(".toml") or Path(a).is_file())]
+    if not more:
+        return _validate_one(args)
+    overrides = [a for a in args.overrides if a not in more]
+    codes = [_validate_one(argparse.Namespace(**{**vars(args), "study": s, "overrides": overrides}))
+             for s in [args.study, *more]]
+    return max(codes)
+
+
+def _validate_one(args) -> int:
     from .study import StudyError
 
     try:
@@ -301,6 +353,14 @@ def _check_out(folder: Path) -> str | None:
         return f"--out {folder}: {p} is a file, not a folder"
     if not os.access(p, os.W_OK | os.X_OK):
         return f"--out {folder}: no permission to write in {p}"
+    from .study.store import MANIFEST
+
+    if p == folder and not (folder / MANIFEST).exists():
+        # the table is every file of the folder (pandas.read_parquet): other files would make it unreadable
+        others = sorted(q.name for q in folder.iterdir() if not q.name.startswith((".", "_")))
+        if others:
+            return (f"--out {folder}: not empty and not a study result folder (holds {others[0]}"
+                    f"{f' and {len(others) - 1} more' if len(others) > 1 else ''}); choose a new or empty folder")
     return None
 
 
@@ -455,8 +515,9 @@ def _cmd_show(args) -> int:
     try:
         read_manifest(folder)
         summary = summarize(folder)
-        found = [_report_dir(folder) / n for n in ("report.html", "index.html") if (_report_dir(folder) / n).exists()]
-        _print_summary(summary, report_note=str(found[0]) if found else f"none yet in {_report_dir(folder)}",
+        rdir = _report_dir(folder, args.reports_dir)
+        found = [rdir / n for n in ("report.html", "index.html") if (rdir / n).exists()]
+        _print_summary(summary, report_note=str(found[0]) if found else f"none yet in {rdir}",
                        show_run=False)
     except StudyError as e:
         _err(e.problems)

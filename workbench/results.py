@@ -18,8 +18,10 @@ What :func:`load` does to the stored table (``pandas.read_parquet`` of the folde
   guessed), ``manifest`` (the run's ``_manifest.json``), ``sweep_axes`` (the swept ``p.*`` columns).
 
 It lives at the top of the package (beside the CLI) because it is the notebook-facing face of
-two layers: the store's format (``workbench.study``) and the report's unit table.  Checked by
-``tests/study/test_results.py`` (every column type round-trips).
+two layers: the store's format (``workbench.study``) and the report's unit table.
+:func:`to_xarray` (optional, needs ``xarray``) turns the table into an ``xarray.Dataset`` over the
+sweep axes and the model.  Checked by ``tests/study/test_results.py`` (every column type
+round-trips; every row at its place in the Dataset).
 """
 
 from __future__ import annotations
@@ -30,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["load"]
+__all__ = ["ARRAY_DIMS", "load", "to_xarray"]
 
 
 def _shape_cell(cell: Any, shape: list[int]) -> Any:
@@ -142,3 +144,113 @@ def _sweep_axes(manifest: dict, df) -> list[str]:
             if isinstance(entry, dict):
                 out += [f"p.{k}" for k in entry if k != "n" and f"p.{k}" in df.columns]
     return list(dict.fromkeys(out))
+
+
+# ---------------------------------------------------------------------------------------
+# optional: an xarray.Dataset over the sweep axes
+# ---------------------------------------------------------------------------------------
+#: Names of the per-row axes of the array columns (``to_xarray`` dimensions); others are ``<col>_dim<i>``.
+ARRAY_DIMS: dict[str, tuple[str, ...]] = {
+    "positions": ("station", "xyz"), "stations": ("station",), "tip_frame": ("row", "col"),
+    "tendon_tensions": ("tendon",), "joint_angles": ("joint",), "time": ("t",),
+}
+
+
+def _label(v: Any) -> Any:
+    """A coordinate label: lists (list parameters) as their canonical JSON, scalars unchanged."""
+    return json.dumps(v, separators=(",", ":")) if isinstance(v, (list, tuple, np.ndarray)) else v
+
+
+def _array_dims(col: str, shape: tuple[int, ...], sizes: dict[str, int]) -> tuple[str, ...]:
+    names = ARRAY_DIMS.get(col) or (("t", "xyz" if shape[-1:] == (3,) else f"{col}_k") if col.startswith("series.")
+                                    else ())
+    if len(names) != len(shape):
+        names = tuple(f"{col}_dim{i}" for i in range(len(shape)))
+    # a shared name (station, t) must mean the same length in every variable
+    return tuple(n if sizes.get(n, k) == k else f"{col}_{n}" for n, k in zip(names, shape))
+
+
+def to_xarray(table, axes: list[str] | None = None):
+    """An ``xarray.Dataset`` of a result table over the sweep axes and the model (needs ``xarray``).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        What :func:`load` returns (its ``attrs`` give the axes, units and frames).
+    axes : list of str, optional
+        The ``p.*`` columns to use as dimensions (default ``table.attrs["sweep_axes"]``).
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimensions ``(*axes, "model")`` when the cases form the full grid of the axes' values
+        (``product`` sweeps), else ``("case_id", "model")`` with the axes as coordinates along
+        ``case_id`` (``zip``, ``cases``, sampled sweeps).  List-valued axes (``p.load.tensions``)
+        are labelled by their JSON (``"[1.0,0.0]"``).  Scalar columns are variables over those
+        dimensions (NaN / missing where a (case, model) has no row); array columns of one shape
+        in every row get their own trailing dimensions (``positions``: ``station``, ``xyz``;
+        series: ``t``, ...), others stay object variables of arrays.  ``units`` and ``frame`` of
+        every variable are in its ``attrs`` (from ``table.attrs``).
+
+    Raises
+    ------
+    ImportError
+        xarray is not installed (``pip install xarray``).
+    ValueError
+        An axis is not a column, or two rows share a (case, model).
+    """
+    try:
+        import xarray as xr
+    except ImportError as e:
+        raise ImportError("workbench.results.to_xarray needs xarray, which is not installed: pip install xarray") from e
+    axes = list(table.attrs.get("sweep_axes", []) if axes is None else axes)
+    missing = [a for a in axes if a not in table.columns]
+    if missing:
+        raise ValueError(f"to_xarray: no column {', '.join(missing)} in the table (columns p.*: the sweep axes)")
+    if table.duplicated(["case_id", "model"]).any():
+        raise ValueError("to_xarray: several rows share a (case_id, model): load one result folder")
+    frame = table.copy()
+    for a in axes:
+        frame[a] = frame[a].map(_label)
+    per_case = frame.drop_duplicates("case_id")
+    grid = bool(axes) and not per_case.duplicated(axes).any() and \
+        int(np.prod([per_case[a].nunique() for a in axes])) == len(per_case)
+    dims = [*axes, "model"] if grid else ["case_id", "model"]
+    arrays = [c for c in frame.columns if c not in dims and frame[c].map(lambda v: isinstance(v, np.ndarray)).any()]
+    scalars = [c for c in frame.columns if c not in dims and c not in arrays and (grid or c not in axes)]
+    ds = frame.set_index(dims)[scalars].to_xarray()
+    if not grid:
+        by_case = per_case.set_index("case_id").reindex(ds["case_id"].values)
+        ds = ds.assign_coords({a: ("case_id", by_case[a].to_numpy()) for a in axes})
+    for c in arrays:
+        _add_array(ds, frame, c, dims)
+    units, frames = table.attrs.get("units", {}), table.attrs.get("frames", {})
+    for name in list(ds.variables):
+        if name in units:
+            ds[name].attrs["units"] = units[name]
+        if name in frames:
+            ds[name].attrs["frame"] = frames[name]
+    ds.attrs["sweep_axes"] = axes
+    ds.attrs["layout"] = "grid" if grid else "cases"
+    return ds
+
+
+def _add_array(ds, frame, col: str, dims: list[str]) -> None:
+    """Array column ``col`` into ``ds``: stacked with trailing dimensions when every cell has one shape."""
+    cells = [v for v in frame[col] if isinstance(v, np.ndarray)]
+    shapes = {v.shape for v in cells}
+    lead = [ds.sizes[d] for d in dims]
+    index = [ds.indexes[d] for d in dims]
+    pos = [tuple(ix.get_loc(k) for ix, k in zip(index, key)) for key in frame[dims].itertuples(index=False)]
+    if len(shapes) == 1:
+        shape = shapes.pop()
+        out = np.full(lead + list(shape), np.nan)
+        for p, v in zip(pos, frame[col]):
+            if isinstance(v, np.ndarray):
+                out[p] = v
+        ds[col] = ([*dims, *_array_dims(col, shape, dict(ds.sizes))], out)
+    else:  # rows of different lengths (a swept resolution): one array per cell
+        out = np.full(lead, None, dtype=object)
+        for p, v in zip(pos, frame[col]):
+            out[p] = v
+        ds[col] = (dims, out)

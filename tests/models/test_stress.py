@@ -93,3 +93,24 @@ def test_hanging_rod_carries_its_weight(model):
     s_first = {"ancf": 0.0, "beam3d": L / 32, "spring_link": L / 32}[model]  # first stress sample (see above)
     hand = ROD.mass_per_length * g * (L - s_first) / A
     assert res.extras["max_stress_backbone"] == pytest.approx(hand, rel=1e-6)
+
+
+def test_cc_arc_stresses_match_the_closed_form():
+    """Two sections: section 0 carries the tendons of both, so its axial force is the sum of all four tensions."""
+    tendons = TendonGroup((0.0, math.pi), 0.02, 4e4, area=WIRE_AREA, strength=WIRE_STRENGTH)
+    weak = CrossSection.circular(6e-3)  # no yield strength declared
+    robot = Robot(sections=(Section(length=0.4, cross_section=ROD, tendons=tendons),
+                            Section(length=0.4, cross_section=weak, tendons=tendons)))
+    T = np.array([30.0, 0.0, 10.0, 0.0])
+    from workbench.models.cc import arc_from_actuation, arc_stresses
+
+    kappa, _, _ = arc_from_actuation(robot, TendonActuation("tension", tuple(T)))
+    st = arc_stresses(robot, kappa, T)
+    d = 0.02
+    assert st.bending == pytest.approx([(30.0 + 10.0) * d / W, 10.0 * d / W], rel=1e-12)  # M = sum T d
+    assert st.axial == pytest.approx([40.0 / A, 10.0 / A], rel=1e-12)
+    assert st.backbone == pytest.approx(st.bending + st.axial, rel=1e-15)
+    assert st.yield_strength[0] == YIELD and np.isnan(st.yield_strength[1])
+    assert st.tendon == pytest.approx(T / WIRE_AREA, rel=1e-15)
+    length = arc_stresses(robot, kappa, np.full(4, np.nan))  # length mode: no forces
+    assert length.tendon is None and np.all(length.axial == 0.0) and length.bending == pytest.approx(st.bending)

@@ -27,6 +27,7 @@ def test_an_added_sweep_value_computes_only_the_new_case(tmp_path, write_study):
                        cache=cache)
     rec = read_manifest(tmp_path / "b")["runs"][0]["cache"]
     assert second.n_cached == 2 and rec == {"folder": str(cache), "hits": 2, "writes": 1}  # one case computed
+    assert first.n_computed == 2 and second.n_computed == 1 and second.n_run == 3
     a, b = pd.read_parquet(tmp_path / "a"), pd.read_parquet(tmp_path / "b")
     old = b[b["case_id"].isin(a["case_id"])]
     assert same_table(old, a) and old.sort_values("case_id")["wall_time"].tolist() == \
@@ -41,6 +42,7 @@ def test_an_added_model_computes_only_that_model(tmp_path, write_study):
     s = run_study(_study(write_study, [1.0], models='"cc", "ancf"'), tmp_path / "b", SerialExecutor(),
                   progress=False, cache=cache)
     assert s.n_cached == 1 and read_manifest(tmp_path / "b")["runs"][0]["cache"]["writes"] == 1
+    assert s.n_computed == 1  # the case is submitted for its new model
     assert set(pd.read_parquet(tmp_path / "b")["model"]) == {"cc", "ancf"} and s.n_ok == 1
 
 
@@ -67,6 +69,22 @@ def test_cli_caches_next_to_the_output_folder(tmp_path, write_study, capsys):
     assert main(run + [str(tmp_path / "a")]) == 0 and (tmp_path / "_cache" / "cc").is_dir()
     capsys.readouterr()
     assert main(run + [str(tmp_path / "b")]) == 0
-    assert "2 model rows from the cache" in capsys.readouterr().out
+    assert "(this run: 0 computed, 2 from the cache (2 model rows), 0 already stored)" in capsys.readouterr().out
     assert main(run + [str(tmp_path / "c"), "--no-cache"]) == 0
     assert "cache" not in read_manifest(tmp_path / "c")["runs"][0]
+
+
+def test_retry_failed_recomputes_a_cached_model_failure(tmp_path, write_study):
+    cache = tmp_path / "_cache"
+    study = _study(write_study, [1.0])
+    run_study(study, tmp_path / "a", SerialExecutor(), progress=False, cache=cache)
+    c = ResultCache(cache)
+    (cid,) = pd.read_parquet(tmp_path / "a")["case_id"].tolist()
+    good = c.get(cid, "cc")
+    c.put({**good, "status": "failed", "failure": "model", "error": "ModelFailure: planted"})  # as if it had failed
+    b = run_study(study, tmp_path / "b", SerialExecutor(), progress=False, cache=cache)
+    assert b.n_failed == 1 and b.n_cached == 1 and b.n_computed == 0  # a model failure is a result: reused
+    again = run_study(study, tmp_path / "b", SerialExecutor(), progress=False, cache=cache, resume=True,
+                      retry_failed=True)
+    assert again.n_ok == 1 and again.n_failed == 0 and again.n_cached == 0 and again.n_computed == 1
+    assert ResultCache(cache).get(cid, "cc")["status"] == "ok"  # the recomputed row replaced the failure

@@ -78,13 +78,21 @@ CORPUS = [
     ("report_unknown_key", study(report='axis = ["kappaL"]'), E, "report.axis", "unknown key"),
     ("fat_rod", study(robot="diameter = 6.0"), W, "robot.diameter", "is no slender rod"),
     ("short_rod", study(robot="length = 0.02"), W, "robot.diameter", "length / diameter = 3.33"),
-    ("huge_tension", study(load='mode = "tension"\ntensions = [3340.0, 0.0]'), W, "load.tensions",
-     "beyond the elastic range of metals"),
+    ("huge_tension_backbone", study(load='mode = "tension"\ntensions = [3340.0, 0.0]'), W, "load.tensions",
+     "stresses the backbone of section 0 to 3268 MPa (bending EI kappa / W 3150 MPa + axial sum T / A 118 MPa), "
+     "2.72 x its yield strength 1200 MPa (robot.yield_strength of preset 'steel_rod': hardened and tempered"),
+    ("huge_tension_wire", study(load='mode = "tension"\ntensions = [3340.0, 0.0]'), W, "load.tensions",
+     "the CC tension 3340 N of tendon 0 (section 0) on its 0.19 mm^2 wire is a stress T / A_t = 17535 MPa, 7.28 x "
+     "the tendon strength 2410 MPa (robot.tendon_strength of preset 'steel_rod': music wire ASTM A228"),
+    ("wire_breaks_backbone_holds", study(load='mode = "tension"\ntensions = [500.0, 0.0]'), W, "load.tensions",
+     "1.09 x the tendon strength 2410 MPa"),
+    ("weak_wire_set_in_study", study(robot="tendon_strength = 1e8", load='mode = "tension"\ntensions = [50.0, 0.0]'),
+     W, "load.tensions", "2.62 x the tendon strength 100 MPa (robot.tendon_strength set in the study)"),
     ("more_than_a_turn", study(load='mode = "tension"\nbend_angle = 7.0'), W, "load.bend_angle", "full turns"),
     ("one_huge_swept_tension", study(sweep='product = { "load.tensions" = [[1.0, 0.0], [3340.0, 0.0], '
                                            '[2.0, 0.0]] }'), W, "load.tensions", "(case 1: "),
     ("huge_length_change", study(load='mode = "length"\nlength_changes = [-0.15, 0.0]'), W, "load.length_changes",
-     "surface strain"),
+     "to 3259 MPa (bending EI kappa / W; CC predicts no tendon forces under length control), 2.72 x its yield"),
 ]
 
 #: supported combinations: accepted without a word (the checks do not over-reach)
@@ -169,3 +177,30 @@ def test_declared_limit_is_enforced_by_the_model(tmp_path, model, cid):
     options = build_options(base["solver"])
     with pytest.raises((ModelFailure, ValueError)):
         get_model(model)(robot, load, options)
+
+
+# ---------------------------------------------------------------------------------------------
+# stress vs strength: only against a declared strength
+# ---------------------------------------------------------------------------------------------
+def _solid_rod_robot(yield_strength=None, strength=None):
+    from workbench.robot import CrossSection, Robot, Section, TendonGroup
+
+    rod = CrossSection.circular(6e-3, yield_strength=yield_strength)
+    tendons = TendonGroup((0.0, 3.141592653589793), 0.02, 4e4, area=1.905e-7, strength=strength)
+    return Robot(sections=(Section(length=0.8, cross_section=rod, tendons=tendons),))
+
+
+@pytest.mark.parametrize("yield_strength,strength", [(None, None), (1.2e9, None), (None, 2.41e9), (1.2e9, 2.41e9)])
+def test_stress_warnings_only_where_a_strength_is_declared(yield_strength, strength):
+    from workbench.robot import LoadCase, TendonActuation
+    from workbench.study.plausibility import plausibility_warnings
+
+    params = {"robot": {"preset": "steel_rod", "diameter": 6e-3, "youngs_modulus": 210e9},
+              "load": {"tensions": [3340.0, 0.0]}}
+    lines = plausibility_warnings(_solid_rod_robot(yield_strength, strength),
+                                  LoadCase(actuation=TendonActuation("tension", (3340.0, 0.0))), params)
+    assert any("stresses the backbone" in x for x in lines) == (yield_strength is not None), lines
+    assert any("the wire would break" in x for x in lines) == (strength is not None), lines
+    # the surface-strain fallback speaks for a solid rod whose yield strength is unknown (1.5 % here)
+    assert any("surface strain kappa d / 2 = 1.5 %" in x for x in lines) == (yield_strength is None), lines
+    assert all(x.startswith("load.tensions: ") for x in lines), lines

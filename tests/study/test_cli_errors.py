@@ -8,6 +8,7 @@ import subprocess
 import sys
 import threading
 import time
+from pathlib import Path
 
 import pytest
 
@@ -20,6 +21,7 @@ EXAMPLE = ROOT / "studies" / "example.toml"
 def _one_line(capsys, rc_expected, argv) -> str:
     rc = main([str(a) for a in argv])
     err = capsys.readouterr().err.strip().splitlines()
+    err = [x for x in err if not x.startswith("warning: ")]  # the study's plausibility warnings are no error
     assert rc == rc_expected and len(err) == 1, (rc, err)
     assert "Traceback" not in err[0]
     return err[0]
@@ -41,6 +43,11 @@ def test_bad_out_paths(tmp_path, capsys):
     (tmp_path / "afile").write_text("x")
     run = ["run", EXAMPLE, "--in-process", "--no-report", "--out"]
     assert _one_line(capsys, 2, run + [tmp_path / "afile"]).endswith("exists and is not a folder")
+    (tmp_path / "notes").mkdir()
+    (tmp_path / "notes" / "mine.txt").write_text("x")  # a folder of other files: its table would be unreadable
+    line = _one_line(capsys, 2, run + [tmp_path / "notes", "--force"])
+    assert line.endswith("not empty and not a study result folder (holds mine.txt); choose a new or empty folder")
+    assert [p.name for p in (tmp_path / "notes").iterdir()] == ["mine.txt"]
     assert "is a file, not a folder" in _one_line(capsys, 2, run + [tmp_path / "afile" / "sub"])
     assert _one_line(capsys, 2, run + [""]).startswith("--out: empty path")
     ro = tmp_path / "ro"
@@ -144,12 +151,16 @@ def test_retry_failed_needs_resume(capsys):
 
 @pytest.mark.parametrize("argv,words", [
     (["run"], "the following arguments are required: study"),
-    (["run", EXAMPLE, "--worker", "2"], "unrecognized arguments: --worker 2"),  # no prefix matching
+    (["run", EXAMPLE, "--worker", "2"], "unrecognized arguments: --worker 2; did you mean --workers?"),  # no prefix
+    (["report", "data/x", "--format", "png"], "unrecognized arguments: --format png; did you mean --formats?"),
     (["run", EXAMPLE, "--workers", "two"], "invalid int value: 'two'"),
     (["run", EXAMPLE, "--workers", "0", "--no-report"], "--workers: must be >= 1"),
     (["run", EXAMPLE, "--force", "--resume"], "--force: not with --resume"),
     (["run", "nosuchstudy"], "nosuchstudy: no such study file (nor studies/nosuchstudy.toml); studies in studies/"),
     (["validate", "nosuchstudy"], "no such study file"),
+    (["validate", "studies"], "studies: cannot read file: is a folder, not a TOML file"),
+    (["validate", ""], "study: empty path"),
+    (["validate", "example", "--max-cases", "-3"], "--max-cases: must be >= 1, got -3"),
     (["validate"], "the following arguments are required: study"),
     (["show"], "the following arguments are required: folder"),
     (["show", "reports/nothing_here"], "this looks like a report folder: results are in data/<name>"),
@@ -158,6 +169,7 @@ def test_retry_failed_needs_resume(capsys):
     (["validate", "example", "solver.n_elements"], "override 'solver.n_elements': expected <section>.<key>=<value>"),
     (["validate", "example", "solver.n_elementz=3"], "solver.n_elementz: unknown key; did you mean 'n_elements'?"),
     (["run", "example", "solver.n_elements=0", "--no-report"], "solver.n_elements: must be >= 1"),
+    (["run", "example", "studies/quickstart.toml"], "studies/quickstart.toml: a second study file? run takes one"),
     (["list"], "the following arguments are required: topic"),
     (["list", "modles"], "invalid choice: 'modles'"),
     (["frobnicate"], "invalid choice: 'frobnicate'"),
@@ -224,6 +236,8 @@ def test_show_names_the_study_file_and_the_report_path(capsys, good_folder):
     out = capsys.readouterr().out.splitlines()
     assert out[0] == f"study 'killme' ({study}): {good}"
     assert out[-1] == f"  report: none yet in reports/{good.name}"
+    assert main(["show", str(good), "--reports-dir", str(good.parent / "elsewhere")]) == 0  # as `run --reports-dir`
+    assert capsys.readouterr().out.splitlines()[-1] == f"  report: none yet in {good.parent / 'elsewhere' / good.name}"
 
 
 def test_a_closed_pipe_is_no_traceback():
@@ -235,3 +249,39 @@ def test_a_closed_pipe_is_no_traceback():
     proc.stdout.close()
     err = proc.stderr.read().decode()
     assert proc.wait(timeout=120) == 0 and "Traceback" not in err, err
+
+
+def test_validate_takes_several_study_files(capsys, monkeypatch):
+    """``workbench validate tests/study/bad_configs/*.toml``: one line per file, exit 2 if any is bad."""
+    monkeypatch.chdir(ROOT)
+    bad = sorted(Path("tests/study/bad_configs").glob("*.toml"))[:5]
+    assert main(["validate", "studies/example.toml", *map(str, bad), "solver.n_elements=8"]) == 2
+    out, err = capsys.readouterr()
+    assert out.startswith("studies/example.toml: ok: study 'example'") and "(with 1 override(s)" in out
+    lines = [x for x in err.splitlines() if not x.startswith("warning: ")]
+    assert [x.split(": ")[0] for x in lines] == [str(b) for b in bad], lines
+
+
+def test_report_never_replaces_what_is_not_a_report(tmp_path, capsys, good_folder):
+    """`report data/x --out data/x` deleted the results (exit 0) and `--out README.md` replaced the file."""
+    _, good = good_folder
+    data = tmp_path / "data" / "x"
+    shutil.copytree(good, data)
+    stored = sorted(p.name for p in data.iterdir())
+    (tmp_path / "notes.md").write_text("mine")
+    (tmp_path / "stuff").mkdir()
+    (tmp_path / "stuff" / "keep.txt").write_text("mine")
+    for out, words in ((data, "holds the results"), (data.parent, "holds the results"),
+                       (tmp_path / "notes.md", "exists and is not a folder"),
+                       (tmp_path / "stuff", "not empty and holds no report.html")):
+        line = _one_line(capsys, 2, ["report", data, "--out", out, "--formats", "png"])
+        assert words in line, line
+    assert sorted(p.name for p in data.iterdir()) == stored  # the results untouched
+    assert (tmp_path / "notes.md").read_text() == "mine" and (tmp_path / "stuff" / "keep.txt").read_text() == "mine"
+    other = tmp_path / "data" / "y"
+    shutil.copytree(good, other)
+    assert "is a study result folder" in _one_line(capsys, 2, ["report", data, "--out", other])
+    report = tmp_path / "reports" / "x"
+    for _ in range(2):  # a report folder is replaced by the new report
+        assert main(["report", str(data), "--out", str(report), "--formats", "png"]) == 0
+        assert (report / "report.html").exists()

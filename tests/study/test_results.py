@@ -93,3 +93,56 @@ def test_dynamic_series_have_time_first(dynamic_folder):
 def test_not_a_result_folder(tmp_path):
     with pytest.raises(FileNotFoundError, match="not a study result folder"):
         results.load(tmp_path)
+
+
+# ---------------------------------------------------------------------------------------------
+# the optional xarray view over the sweep axes
+# ---------------------------------------------------------------------------------------------
+def test_xarray_grid_over_the_sweep_axes(static_folder):
+    pytest.importorskip("xarray")
+    df = results.load(static_folder)
+    ds = results.to_xarray(df)
+    assert ds.attrs["layout"] == "grid"
+    assert dict(ds["tip_x"].sizes) == {"p.load.tensions": 3, "p.robot.length": 2, "model": 2}
+    assert ds["positions"].dims[-2:] == ("station", "xyz") and ds.sizes["station"] == 9
+    assert ds["tip_x"].attrs == {"units": "m", "frame": "base"} and ds["positions"].attrs["frame"] == "base"
+    for _, row in df.iterrows():  # every row at its place, arrays included; failed rows NaN
+        at = {"p.load.tensions": json.dumps(row["p.load.tensions"], separators=(",", ":")),
+              "p.robot.length": row["p.robot.length"], "model": row["model"]}
+        cell = ds.sel(at)
+        assert cell["case_id"].item() == row["case_id"] and cell["status"].item() == row["status"]
+        if row["status"] == "ok":
+            assert cell["tip_x"].item() == row["tip_x"]
+            assert np.array_equal(cell["positions"].values, row["positions"])
+        else:
+            assert np.isnan(cell["tip_x"].item()) and np.all(np.isnan(cell["positions"].values))
+
+
+def test_xarray_cases_layout_when_not_a_grid(static_folder):
+    pytest.importorskip("xarray")
+    df = results.load(static_folder)
+    part = df[df["case_id"] != df["case_id"].iloc[0]].reset_index(drop=True)  # one case missing: no full grid
+    part.attrs = df.attrs
+    ds = results.to_xarray(part)
+    assert ds.attrs["layout"] == "cases" and dict(ds["tip_x"].sizes) == {"case_id": 5, "model": 2}
+    first = part.iloc[0]
+    sel = ds.sel(case_id=first["case_id"])
+    assert sel["p.robot.length"].item() == first["p.robot.length"]
+    assert sel["tip_x"].sel(model=first["model"]).item() == first["tip_x"]
+
+
+def test_xarray_series_share_the_time_axis(dynamic_folder):
+    pytest.importorskip("xarray")
+    df = results.load(dynamic_folder)
+    ds = results.to_xarray(df)
+    n_t = df.iloc[0]["time"].shape[0]
+    assert ds["time"].dims[-1] == "t" and ds["series.tip_position"].dims[-2:] == ("t", "xyz")
+    assert ds.sizes["t"] == n_t and ds["time"].attrs["units"] == "s"
+
+
+def test_xarray_missing_names_the_install(static_folder, monkeypatch):
+    import sys
+
+    monkeypatch.setitem(sys.modules, "xarray", None)  # as if it were not installed
+    with pytest.raises(ImportError, match="pip install xarray"):
+        results.to_xarray(results.load(static_folder))

@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import subprocess
 import sys
+import textwrap
 from pathlib import Path
 
 import pytest
@@ -56,6 +57,67 @@ def test_all_problems_reported_together(write_study):
     assert "robot.lenght" in text and "solver.n_elements" in text and "robot.diameter" in text
     assert "derived.gravity_parameter: must be finite" in text
     assert len(ei.value.problems) == 4
+
+
+def _keys(path, text) -> list[str]:
+    path.write_text(textwrap.dedent(text))
+    with pytest.raises(StudyError) as ei:
+        load_study(path)
+    lines = ei.value.problems
+    assert all(x.startswith(f"{path}: ") and "\n" not in x for x in lines), lines
+    return [x[len(f"{path}: "):].split(" ")[0].rstrip(":") for x in lines]
+
+
+def test_schema_error_does_not_hide_case_checks(tmp_path):
+    """Schema errors in [solver] and [robot], a bad sweep value and a capability error: four lines, one pass."""
+    keys = _keys(tmp_path / "s.toml", """
+        [study]
+        name = "op"
+        models = ["cc", "beam3d"]
+        [robot]
+        preset = "steel_rod"
+        lenght = 0.8
+        [load]
+        mode = "tension"
+        tensions = [1.0, 0.0]
+        [solver]
+        n_elements = 0
+        [sweep]
+        product = { "robot.length" = [0.5, -1.0], "robot.tendon_offset" = [0.01, 0.02] }
+        """)
+    assert keys == ["solver.n_elements", "robot.lenght", 'sweep.product["robot.length"][1]', "solver.tendon_model"]
+
+
+def test_load_and_sweep_schema_errors_do_not_hide_a_capability_error(tmp_path):
+    keys = _keys(tmp_path / "s.toml", """
+        [study]
+        name = "op"
+        models = ["cc", "ancf"]
+        [robot]
+        preset = "steel_rod"
+        first_tendon_angle = 0.3
+        [load]
+        pretension = -1.0
+        tip_force = [0.0, 0.0]
+        [sweep]
+        prodcut = { "robot.length" = [0.5, 1.0] }
+        """)
+    assert keys == ["load.pretension", "load.tip_force", "sweep.prodcut", "robot.first_tendon_angle"]
+
+
+@pytest.mark.parametrize("models,tables,key", [
+    # a typo in the value: no second line about the default ('continuum') beam3d cannot use
+    ('"cc", "beam3d"', 'mode = "tension"\ntensions = [1.0, 0.0]\n[solver]\ntendon_model = "eyelet"', "solver.tendon_model"),
+    # a bad tendon count: no line about the tension count against the default count
+    ('"cc"', 'mode = "tension"\ntensions = [1.0, 0.0, 0.0]\n[robot]\npreset = "steel_rod"\ntendon_count = -3',
+     "robot.tendon_count"),
+    # a bad mode: no line "needs mode = ..." about the default mode
+    ('"cc"', 'mode = "lenght"\nlength_changes = [-0.01, 0.0]', "load.mode"),
+], ids=["tendon_model_typo", "bad_tendon_count", "bad_mode"])
+def test_no_knock_on_lines_from_a_key_at_its_default(tmp_path, models, tables, key):
+    robot = "" if "[robot]" in tables else '[robot]\npreset = "steel_rod"\n'
+    text = f'[study]\nname = "op"\nmodels = [{models}]\n{robot}[load]\n{tables}\n'
+    assert _keys(tmp_path / "s.toml", text) == [key]
 
 
 def test_cli_validate_bad_exit_2_no_traceback(capsys):

@@ -30,6 +30,7 @@ peels the sections from the base outwards.
 from __future__ import annotations
 
 import time
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -42,7 +43,7 @@ from ..robot import LoadCase, Robot, TendonActuation
 from .inputs import check_model_inputs
 from .result import PhysicsResult, SolverInfo, SolverOptions, series_times
 
-__all__ = ["actuation_from_arc", "arc_from_actuation", "run"]
+__all__ = ["ArcStresses", "actuation_from_arc", "arc_from_actuation", "arc_stresses", "run"]
 
 
 def _section_offset(robot: Robot, tendon_section: int, section: int) -> float:
@@ -283,19 +284,69 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     )
 
 
-def _stress(robot: Robot, kappa: np.ndarray, tensions: np.ndarray) -> dict[str, float]:
-    """What CC can say about stresses (:mod:`workbench.models.stress`): the bending stress
-    ``EI kappa / W`` of every section's arc, plus in tension mode the axial ``sum T / A`` of the
-    tendons passing the section and the tendon stresses; length mode predicts no forces, so the
-    backbone stress is the bending part alone and there is no tendon stress."""
-    from .stress import combined_stress, section_arrays, stress_extras
+@dataclass(frozen=True)
+class ArcStresses:
+    """The stresses the CC arc of a command implies (:func:`arc_stresses`), per section and per tendon.
+
+    Attributes
+    ----------
+    axial, bending : ndarray, shape (n_sections,) or None
+        ``sum T / A`` of the tendons passing each section (0 in length mode: CC predicts no
+        forces) and ``EI |kappa| / W`` at mid-section [Pa]; ``None`` when a section has no
+        stress geometry (``area`` / ``section_modulus``).
+    yield_strength : ndarray, shape (n_sections,) or None
+        Backbone yield strength at mid-section [Pa] (NaN: unknown).
+    tendon, tendon_strength : ndarray, shape (n_tendons,) or None
+        Tendon stress ``T / A_t`` and tensile strength [Pa] (NaN: unknown), ``robot.tendon_table()``
+        order; ``None`` in length mode or when a tendon has no area.
+    """
+
+    axial: np.ndarray | None
+    bending: np.ndarray | None
+    yield_strength: np.ndarray | None
+    tendon: np.ndarray | None
+    tendon_strength: np.ndarray | None
+
+    @property
+    def backbone(self) -> np.ndarray | None:
+        """Combined outer-fibre stress ``axial + bending`` per section [Pa] (:func:`~.stress.combined_stress`)."""
+        return None if self.axial is None else self.axial + self.bending
+
+
+def arc_stresses(robot: Robot, kappa: np.ndarray, tensions: np.ndarray) -> ArcStresses:
+    """The stresses of the CC arc ``kappa`` (shape (n_sections,)) under ``tensions`` [N] (NaN: length mode).
+
+    Backbone: the bending stress ``EI kappa / W`` of every section's arc plus, in tension mode,
+    the axial ``sum T / A`` of the tendons passing the section, combined as
+    :func:`workbench.models.stress.combined_stress` does; tendons: ``T / A_t``.  Pure numpy; the
+    CC model's stress extras and the study's plausibility warnings both use it.
+    """
+    from .stress import combined_stress, section_arrays, tendon_arrays
 
     cs = [robot.sections[j].cross_section_at(0.5) for j in range(robot.n_sections)]
     arrs = section_arrays(cs)
-    if arrs is None:
-        return stress_extras(None, None, robot, tensions)
-    T = np.nan_to_num(np.asarray(tensions, dtype=float))
-    N = np.array([sum(T[i] for i, (sec, _, _) in enumerate(robot.tendon_table()) if sec >= j)
-                  for j in range(robot.n_sections)], dtype=float)
-    M = np.array([c.EI for c in cs]) * np.abs(kappa)
-    return stress_extras(combined_stress(N, M, arrs[0], arrs[1]), arrs[2], robot, tensions)
+    T_raw = np.asarray(tensions, dtype=float)
+    axial = bending = strength = None
+    if arrs is not None:
+        T = np.nan_to_num(T_raw)
+        N = np.array([sum(T[i] for i, (sec, _, _) in enumerate(robot.tendon_table()) if sec >= j)
+                      for j in range(robot.n_sections)], dtype=float)
+        M = np.array([c.EI for c in cs]) * np.abs(np.asarray(kappa, dtype=float))
+        axial = combined_stress(N, 0.0, arrs[0], arrs[1])
+        bending = combined_stress(0.0, M, arrs[0], arrs[1])
+        strength = arrs[2]
+    tab = tendon_arrays(robot)
+    tendon = tendon_strength = None
+    if tab is not None and T_raw.size == tab[0].size and np.all(np.isfinite(T_raw)):
+        tendon, tendon_strength = np.abs(T_raw) / tab[0], tab[1]
+    return ArcStresses(axial, bending, strength, tendon, tendon_strength)
+
+
+def _stress(robot: Robot, kappa: np.ndarray, tensions: np.ndarray) -> dict[str, float]:
+    """What CC can say about stresses (:mod:`workbench.models.stress`, :func:`arc_stresses`): the
+    backbone stress of every section's arc and the tendon stresses; length mode predicts no
+    forces, so the backbone stress is the bending part alone and there is no tendon stress."""
+    from .stress import stress_extras
+
+    parts = arc_stresses(robot, kappa, tensions)
+    return stress_extras(parts.backbone, parts.yield_strength, robot, tensions)

@@ -191,6 +191,24 @@ def _swap_in(tmp: Path, out: Path) -> None:
     shutil.rmtree(old, ignore_errors=True)
 
 
+def _check_out(out: Path, data_dir: Path) -> None:
+    """Refuse an output folder the swap would destroy: a file, the results (or a folder holding them), a
+    result folder, a non-empty folder that holds no report.  A one-line :class:`ValueError` each."""
+    o, d = out.resolve(), Path(data_dir).resolve()
+    if o == d or o in d.parents:
+        raise ValueError(f"--out {out}: holds the results {data_dir}; the report needs its own folder "
+                         f"(default {default_report_dir(data_dir)})")
+    if not out.exists():
+        return
+    if not out.is_dir():
+        raise ValueError(f"--out {out}: exists and is not a folder (the report is a folder; it would replace the file)")
+    if (out / MANIFEST).exists():
+        raise ValueError(f"--out {out}: is a study result folder; the report would replace it")
+    if any(out.iterdir()) and not (out / "report.html").exists():
+        raise ValueError(f"--out {out}: not empty and holds no report.html; the report would replace its contents "
+                         f"(choose another folder or empty it)")
+
+
 def _recover(out: Path) -> None:
     """A kill between the two renames of :func:`_swap_in` left only ``.<name>.old-*``: put it back."""
     olds = sorted(out.parent.glob(f".{out.name}.old-*"))
@@ -233,12 +251,19 @@ def build_report(data_dir: str | Path, out_dir: str | Path | None = None, *, for
         Parquet files are embedded in the page as downloads too.  The report is written into a
         temporary sibling folder and swapped in when complete: a kill while writing leaves the
         previous report whole.
+
+    Raises
+    ------
+    ValueError
+        ``out_dir`` is a file, the results or a folder holding them, a result folder, or a
+        non-empty folder without ``report.html`` (the swap would delete what it holds).
     """
     bad = sorted(set(formats) - {"png", "svg", "pdf"})
     if bad:
         raise ValueError(f"formats must be among png, svg, pdf; got {bad}")
     study = load_results(data_dir)
     out = Path(out_dir) if out_dir is not None else default_report_dir(data_dir)
+    _check_out(out, Path(data_dir))
     out.parent.mkdir(parents=True, exist_ok=True)
     _recover(out)
     tmp = out.with_name(f".{out.name}.tmp-{os.getpid()}")

@@ -10,7 +10,8 @@ packages, the case building and row code of ``workbench/study/`` -- and the vers
 numpy, scipy and Exudyn: editing any of them invalidates that model's entries.
 
 Only rows that are results are cached: ``ok`` rows and model failures (``failure = "model"``:
-raised, not converged, non-finite); crashes, timeouts, memory, killed and lost rows are not.
+raised, not converged, non-finite); crashes, timeouts, memory, killed and lost rows are not; a
+run with ``--retry-failed`` does not reuse cached model failures (it recomputes them).
 Entries are pickled row dicts, one file per ``<cache>/<model>/<version>/<case_id>.pkl``, written
 atomically (two runs may share a cache; the last writer of an identical row wins).  A run with a
 custom ``model_lookup`` or ``arc_actuation`` (tests) does not use the cache.  The CLI uses
@@ -77,14 +78,19 @@ class ResultCache:
     def _path(self, case_id: str, model: str) -> Path:
         return self.folder / model / code_version(model) / f"{case_id}.pkl"
 
-    def get(self, case_id: str, model: str) -> dict[str, Any] | None:
-        """The cached row of ``(case_id, model)`` at the current code version, or ``None``."""
+    def get(self, case_id: str, model: str, ok_only: bool = False) -> dict[str, Any] | None:
+        """The cached row of ``(case_id, model)`` at the current code version, or ``None``.
+
+        ``ok_only``: a cached model failure counts as absent (``--retry-failed`` recomputes it).
+        """
         p = self._path(case_id, model)
         try:
             row = pickle.loads(p.read_bytes())
         except (OSError, pickle.UnpicklingError, EOFError, AttributeError, ValueError):
             return None  # missing or unreadable (a half-written file cannot exist: writes are atomic)
         if not isinstance(row, dict) or row.get("case_id") != case_id or row.get("model") != model:
+            return None
+        if ok_only and row.get("status") != "ok":
             return None
         self.hits += 1
         return row

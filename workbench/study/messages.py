@@ -309,9 +309,9 @@ def read_toml(path: str | Path, *, cannot_read: str = "cannot read file",
         is nested deeper than :data:`MAX_DEPTH`.
     """
     p = Path(path)
+    if p.is_dir():
+        raise StudyError([f"{p}: {cannot_read}: is a folder, not a TOML file"])
     try:
-        if p.is_dir():
-            raise StudyError([f"{p}: {cannot_read}: is a folder, not a TOML file"])
         data = p.read_bytes()
     except OSError as e:
         raise StudyError([f"{p}: {cannot_read}: {e.strerror or e}"]) from None

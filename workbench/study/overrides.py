@@ -24,6 +24,9 @@ def parse_override(text: str) -> tuple[list[str], Any]:
     key, sep, value = text.partition("=")
     key = key.strip()
     section, dot, rest = key.partition(".")
+    if not sep and text.endswith(".toml"):
+        raise StudyError([f"{text}: a second study file? run takes one study (validate takes several); an override "
+                          f"is <section>.<key>=<value>, e.g. solver.n_elements=32"])
     if not sep or not dot or not section or not rest:
         raise StudyError([f"override {text!r}: expected <section>.<key>=<value>, e.g. solver.n_elements=32"])
     try:

@@ -58,7 +58,8 @@ class RunSummary:
 
     ``failures`` counts failed rows per ``failure`` kind; ``n_duplicates`` the rows beyond the
     first of a (case_id, model) pair (0 in a folder only locked runs wrote); ``n_cached`` the
-    rows of this run taken from the result cache.
+    rows of this run taken from the result cache, ``n_computed`` the cases of this run submitted to
+    the executor (the other ``n_run - n_computed`` came whole from the cache; ``None``: not counted).
     """
 
     folder: Path
@@ -73,6 +74,7 @@ class RunSummary:
     failures: dict[str, int] = field(default_factory=dict)
     n_duplicates: int = 0
     n_cached: int = 0
+    n_computed: int | None = None
 
     @property
     def exit_code(self) -> int:
@@ -101,11 +103,11 @@ def _complete(unit: Unit, out: Outcome, params: dict[str, Any], separable: bool)
     return rows + failed_rows(cid, params, missing, crash.reason, failure=crash.kind), None
 
 
-def _cached(units: list[Unit], cache: Any, session: RunSession, separable: bool) -> list[Unit]:
-    """Record what ``cache`` holds of ``units``; the units (models) still to compute."""
+def _cached(units: list[Unit], cache: Any, session: RunSession, separable: bool, ok_only: bool = False) -> list[Unit]:
+    """Record what ``cache`` holds of ``units`` (``ok_only``: its ok rows); the units (models) still to compute."""
     out = []
     for u in units:
-        rows = {m: cache.get(u.case.case_id, m) for m in u.models}
+        rows = {m: cache.get(u.case.case_id, m, ok_only=ok_only) for m in u.models}
         missing = tuple(m for m in u.models if rows[m] is None)
         if missing and not separable:  # computed together: all or nothing
             cache.hits -= len(u.models) - len(missing)
@@ -119,10 +121,16 @@ def _cached(units: list[Unit], cache: Any, session: RunSession, separable: bool)
 
 
 def _execute(kind: StudyKind, spec: Any, session: RunSession, executor: Executor, chunk_size: int,
-             options: Any, recorded: dict[str, dict[str, Any]], limits: CaseLimits, cache: Any = None) -> None:
-    """Submit the session's units (those the cache does not hold); store each outcome; rerun the models left after a crash."""
+             options: Any, recorded: dict[str, dict[str, Any]], limits: CaseLimits, cache: Any = None,
+             retry_failed: bool = False) -> int:
+    """Submit the session's units (those the cache does not hold); store each outcome; rerun the models left after a crash.
+
+    Returns the number of cases submitted (the others came whole from the cache).
+    """
     separable = getattr(kind, "separable_models", True)
-    pending = list(session.todo) if cache is None else _cached(list(session.todo), cache, session, separable)
+    pending = list(session.todo) if cache is None else _cached(list(session.todo), cache, session, separable,
+                                                                ok_only=retry_failed)
+    n_submitted = len(pending)
     while pending:
         payloads = [kind.payload(spec, u.case, u.models, options) for u in pending]
         requeue: list[Unit] = []
@@ -136,6 +144,7 @@ def _execute(kind: StudyKind, spec: Any, session: RunSession, executor: Executor
                     cache.put(r)
             session.record(unit.case.case_id, rows, complete=more is None)
         pending = requeue
+    return n_submitted
 
 
 def run_cases(
@@ -229,7 +238,8 @@ def run_cases(
         with session:
             chunk = batch_size or kind.batch_size(len(session.todo), getattr(executor, "slots", 1))
             try:
-                _execute(kind, spec, session, executor, chunk, run_opts, recorded, limits, cache)
+                n_computed = _execute(kind, spec, session, executor, chunk, run_opts, recorded, limits, cache,
+                                      retry_failed)
             finally:
                 if cache is not None:
                     session.run_rec["cache"] = {"folder": str(cache.folder), "hits": cache.hits,
@@ -241,6 +251,7 @@ def run_cases(
     summary = summarize(session.folder, n_cases=len(cases), n_run=len(session.todo),
                         wall_time=time.perf_counter() - session.t0)
     summary.n_cached = cache.hits if cache is not None else 0
+    summary.n_computed = n_computed
     return summary
 
 

@@ -22,7 +22,10 @@ All quantities are SI.  :func:`load_study` collects *all* problems and raises on
 :func:`parse_study` runs in steps: the sections against their schema
 (:mod:`workbench.study.schema`), the model list, the robot preset and its overrides, the load
 and derived rules, the scenario, the sweep axes, and finally every case (size limit, duplicates,
-a dry build of robot and load: :mod:`workbench.study.checks`).  Validation imports no execution
+a dry build of robot and load: :mod:`workbench.study.checks`).  All problems come in one pass:
+each step runs on what the earlier ones left valid (a key with a problem at its default, a sweep
+axis with a problem left out, lines about such keys dropped: :mod:`workbench.study.onepass`);
+only a table wrong as a whole (``load: set only one of ...``) stops the case checks.  Validation imports no execution
 code (no cycle: ``spec`` -> ``checks`` -> ``build`` / ``expand`` / ``scenarios``).
 
 The message helpers (``_suggest``, ``_translate``, ``_pydantic_problems``, ``check_robot_value``)
@@ -199,9 +202,16 @@ def load_study(path: str | Path, *, max_cases: int | None = None, overrides: Seq
     return replace(study, overrides=tuple(overrides)) if overrides else study
 
 
-def _parse_sections(raw: Mapping[str, Any]) -> tuple[dict[str, BaseModel], list[str]]:
-    """Unknown and missing sections, and every schema section validated (absent ones: defaults)."""
+def _parse_sections(raw: Mapping[str, Any]) -> tuple[dict[str, BaseModel], list[str], dict[str, BaseModel]]:
+    """Unknown and missing sections, and every schema section validated (absent ones: defaults).
+
+    Returns ``(sections, problems, repaired)``: ``repaired`` holds the failing sections validated
+    without their failing keys (:func:`workbench.study.onepass.repair_section`), for the later checks.
+    """
+    from .onepass import repair_section
+
     problems: list[str] = []
+    repaired: dict[str, BaseModel] = {}
     top_known = list(StudyFile.model_fields)
     for key in raw:
         if key not in top_known:
@@ -222,7 +232,10 @@ def _parse_sections(raw: Mapping[str, Any]) -> tuple[dict[str, BaseModel], list[
             sections[name] = model.model_validate(raw[name])
         except ValidationError as e:
             problems.extend(pydantic_problems(e, (name,), model))
-    return sections, problems
+            fixed = repair_section(model, raw[name], e)
+            if fixed is not None:
+                repaired[name] = fixed
+    return sections, problems, repaired
 
 
 def _check_models(sections: Mapping[str, BaseModel]) -> list[str]:
@@ -376,46 +389,66 @@ def _whole_file_problem(raw: Mapping[str, Any], source: str) -> None:
                           f"study: add kind = \"series_parallel\" to [study]"])
 
 
+def _with_defaults(base: dict[str, dict[str, Any]], unset: set[str],
+                   preset_defaults: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
+    """``base`` with every key that had a problem back at its default (the case checks' view of the file)."""
+    out = {sec: dict(d) for sec, d in base.items()}
+    for key in unset:
+        section, _, name = key.partition(".")
+        if name not in out.get(section, {}):
+            continue
+        if section == "robot":
+            out[section][name] = preset_defaults.get(name, out[section][name])
+        elif section in SECTION_MODELS and name in SECTION_MODELS[section].model_fields:
+            out[section][name] = SECTION_MODELS[section].model_fields[name].get_default(call_default_factory=True)
+    return out
+
+
 def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: int | None = None,
                 run_models: bool = True) -> Study:
     """Validate an already parsed study mapping (see :func:`load_study`).
 
-    ``run_models=False``: the study kind computes its rows with its own tasks, not through the
-    models' ``run(robot, load, options)``, so their declared capabilities are not checked.
+    Every problem of the file in one pass: each stage runs on what the earlier ones left valid
+    (:mod:`workbench.study.onepass`), so a schema error in one table does not hide the sweep or
+    case checks of the others.  ``run_models=False``: the study kind computes its rows with its own
+    tasks, not through the models' ``run(robot, load, options)``, so their declared capabilities
+    are not checked.
     """
     from ..models import MODEL_NAMES
+    from .onepass import knock_on, problem_keys, valid_sweep
 
     raw = dict(raw)
     _whole_file_problem(raw, source)
     _drop_kind(raw, source)
-    sections, problems = _parse_sections(raw)
-    problems += _check_models(sections)
+    sections, problems, repaired = _parse_sections(raw)
+    usable = {**repaired, **sections}  # the valid sections and the valid part of the others
+    problems += _check_models(usable)
     robot_base, preset_defaults, robot_problems = _resolve_robot(raw.get("robot"))
     problems += robot_problems
-    problems += _load_and_derived_rules(sections, raw.get("robot"), preset_defaults, raw.get("sweep"))
+    unset = problem_keys(problems)
+    later = _load_and_derived_rules(usable, raw.get("robot"), preset_defaults, raw.get("sweep"))
     scenario_base, scenario_problems = check_scenario(raw.get("scenario"))
-    problems += scenario_problems
-    base = _resolve_base(sections, robot_base, scenario_base)
+    later += scenario_problems
+    base = _resolve_base(usable, robot_base, scenario_base)
     sweep: dict[str, Any] = {}
-    if "sweep" in sections and base is not None:
-        sweep, sweep_problems = check_sweep(sections["sweep"], base, preset_defaults)
+    sweep_problems: list[str] = []
+    if "sweep" in usable and base is not None:
+        sweep, sweep_problems = check_sweep(usable["sweep"], base, preset_defaults)
         if raw.get("scenario") is not None and scenario_base is None:  # knock-on errors of a bad [scenario]
             sweep_problems = [p for p in sweep_problems if '["scenario.' not in p.partition(": ")[0]]
-        problems += sweep_problems
-        sweep_ok = not sweep_problems
-    else:
-        sweep_ok = "sweep" not in raw or "sweep" in sections
-    problems += _sensitivity_rules(sections.get("report"), base, sweep)
-    st = sections.get("study")
-    report = sections["report"].model_dump(exclude_defaults=True) if "report" in sections else None
+        later += sweep_problems
+    later += _sensitivity_rules(usable.get("report"), base, sweep)
+    st = usable.get("study")
+    report = usable["report"].model_dump(exclude_defaults=True) if "report" in usable else None
     scenario_ok = raw.get("scenario") is None or scenario_base is not None  # else its keys are unknown: knock-ons
     if base is not None and report is not None and scenario_ok:
-        problems += check_report(report, known_paths(base))
-    # the cases are checked too when the other problems are only in [study] / [report] (no knock-on errors)
-    only_presentation = all(re.split(r"[.:\[ ]", p, maxsplit=1)[0] in ("study", "report") for p in problems)
-    if base is None or "solver" not in sections or not sweep_ok or not only_presentation:
+        later += check_report(report, known_paths(base))
+    problems += [p for p in later if not knock_on(p, unset)]
+    unset = problem_keys(problems)
+    whole = unset & {"robot", "load", "solver", "derived", "scenario"}  # a table as a whole is wrong
+    if base is None or "solver" not in usable or not scenario_ok or whole:
         raise StudyError([f"{source}: {p}" for p in collapse_indexed(problems)] or [f"{source}: invalid study"])
-    solver = sections["solver"]
+    solver = usable["solver"]
     models = tuple(st.models) if st is not None else ()
     study = Study(
         path=source, name=st.name if st else "?", description=st.description if st else "",
@@ -424,12 +457,18 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
         base=base, sweep=sweep, report=report or {},
         limits=CaseLimits(solver.max_case_seconds, solver.max_case_memory),
     )
+    # the cases' view: keys with a problem at their defaults, sweep axes with a problem left out
+    checked = replace(study, base=_with_defaults(base, unset, preset_defaults),
+                      sweep=valid_sweep(sweep, sweep_problems)) if problems else study
     try:  # size limit, duplicates, a dry build and the models' capabilities of every case (time-bounded)
-        check = check_cases(study, source, run_models=run_models)
+        check = check_cases(checked, source, run_models=run_models)
     except StudyError as e:  # reported with the file's other problems, in one pass
         if not problems:
             raise
-        problems += [p[len(source) + 2:] if p.startswith(f"{source}: ") else p for p in e.problems]
+        own = [p[len(source) + 2:] if p.startswith(f"{source}: ") else p for p in e.problems]
+        if checked.sweep != sweep:  # case numbers of the reduced sweep are not the file's: show the values only
+            own = [re.sub(r"\bcase \d+: ", "", p) for p in own]
+        problems += [p for p in own if not knock_on(p, unset)]
         check = None
     if problems or st is None:
         raise StudyError([f"{source}: {p}" for p in collapse_indexed(problems)] or [f"{source}: invalid study"])
