@@ -30,14 +30,6 @@ KNOWN_NOT_CONVERGED = {
     "wire_delay": "the dynamic estimate of 4 beam3d elements at 10 ms needs 2 / 1 elements at 20 / 40 ms, "
                   "outside the asymptotic range (error bar 0.12 m on a 3.7 mm peak); the committed 40-element "
                   "study's snapped 3 s peak is itself not converged (docs/models.md, 'Wire delay')",
-    # the grasp kind (issue 17) landed after issue 13's estimator: its 'contact' model has no declared
-    # order, so its rows carry no estimate and the rule cannot certify them (open item)
-    "whole_arm_grasp": "the contact model (penalty contact on ANCF) has no declared order: no discretisation estimate",
-    "fruit_harvester_fluidic": "the contact model (penalty contact on ANCF) has no declared order: no discretisation "
-                               "estimate",
-    # the closed-loop kind (issue 17) computes its rows with its own tasks, which record no estimate yet;
-    # its plant is the 16-joint chain, the robot's own structure (exempt in hannan_walker) -- open item
-    "closed_loop": "the closed-loop kind's rows carry no discretisation estimate (its own tasks; open item)",
 }
 
 
