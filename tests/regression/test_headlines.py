@@ -26,16 +26,7 @@ pytestmark = pytest.mark.regression
 
 #: Studies whose headline is known not to converge at a size the default suite can afford (strict:
 #: an unexpected pass fails, so the mark is removed when it is fixed).
-KNOWN_NOT_CONVERGED = {
-    # the grasp kind (issue 17) landed after issue 13's estimator: its 'contact' model has no declared
-    # order, so its rows carry no estimate and the rule cannot certify them (open item)
-    "whole_arm_grasp": "the contact model (penalty contact on ANCF) has no declared order: no discretisation estimate",
-    "fruit_harvester_fluidic": "the contact model (penalty contact on ANCF) has no declared order: no discretisation "
-                               "estimate",
-    # the closed-loop kind (issue 17) computes its rows with its own tasks, which record no estimate yet;
-    # its plant is the 16-joint chain, the robot's own structure (exempt in hannan_walker) -- open item
-    "closed_loop": "the closed-loop kind's rows carry no discretisation estimate (its own tasks; open item)",
-}
+KNOWN_NOT_CONVERGED: dict[str, str] = {}
 
 
 def _params():

@@ -18,6 +18,14 @@ Every row's standard cells are the plant's (or the plan's) state at the last sam
 ``x.final_tracking_error`` [m], ``x.max_tension`` [N], ``x.plant_solves`` (``wall_time``: the time in the plant).  A
 plant failure fails its row with the sample and step it happened at; the other rows go on.
 
+Discretisation error (issue 13; cells ``x.disc_tip_error`` [m], ``x.disc_order_observed``,
+``x.disc_order``, ``disc_status``, :func:`disc_columns`): the co-simulation is a sequence of static
+equilibria, so there is no time step to refine; what remains is the plant's mesh.  The ``plan`` row
+and the ``cc`` plant's rows are closed-form arcs (error 0).  A plant listed in ``[solver]
+error_estimate_exempt`` (the 16-joint spring-link chain: one link per physical joint, the robot's
+own structure, as in the hannan_walker study) gets 0 and the exemption as its status; any other
+plant gets no estimate (NaN, and the status says so), so the report does not certify it.
+
 Plants: ``spring_link`` runs in a warm-started :class:`workbench.physics.spring_link.session.StaticSession`
 (20x faster than fresh solves, same equilibria); every other model is called fresh per control step
 through its registered ``run``.  Checked by ``tests/experiments/test_closed_loop.py``.
@@ -39,10 +47,32 @@ from .controller import ControllerSettings, LoopTrace, cc_plan, run_closed_loop,
 from .plants import cc_result, hw_cable_map, model_plant
 from .scenario import CONTROLLER_KEYS, joint_count, loop_path, null_space_target
 
-__all__ = ["PLAN", "CLOSED_SUFFIX", "row_models", "evaluate_closed_loop_case", "evaluate_closed_loop_rows"]
+__all__ = ["PLAN", "CLOSED_SUFFIX", "CLOSED_FORM_STATUS", "row_models", "disc_columns", "evaluate_closed_loop_case",
+           "evaluate_closed_loop_rows"]
 
 PLAN = "plan"
 CLOSED_SUFFIX = "_closed_loop"
+
+
+#: ``disc_status`` of the rows computed from closed-form CC arcs (the plan, the ``cc`` plant).
+CLOSED_FORM_STATUS = "closed form: CC arcs, no discretisation"
+
+
+def disc_columns(row_model: str, options) -> dict[str, Any]:
+    """The discretisation-error cells of one row of this kind (module docstring)."""
+    from ...study.estimate import EXEMPT_STATUS
+
+    plant = row_model[: -len(CLOSED_SUFFIX)] if row_model.endswith(CLOSED_SUFFIX) else row_model
+    nan = float("nan")
+    if plant in (PLAN, "cc"):
+        return {"x.disc_tip_error": 0.0, "x.disc_order_observed": nan, "x.disc_order": nan,
+                "disc_status": CLOSED_FORM_STATUS}
+    if plant in getattr(options, "error_estimate_exempt", ()):
+        return {"x.disc_tip_error": 0.0, "x.disc_order_observed": nan, "x.disc_order": nan,
+                "disc_status": EXEMPT_STATUS}
+    return {"x.disc_tip_error": nan, "x.disc_order_observed": nan, "x.disc_order": nan,
+            "disc_status": f"no estimate: the closed-loop kind re-solves no {plant!r} plant at a coarser mesh "
+                           f"(exempt it in [solver] error_estimate_exempt only if its mesh is the robot's structure)"}
 
 
 def row_models(plants: Sequence[str]) -> tuple[str, ...]:
@@ -153,6 +183,9 @@ def evaluate_closed_loop_case(case_id: str, params: Mapping[str, Any], plants: S
         for name, loop, closed in ((m, run_open_loop, False), (m + CLOSED_SUFFIX, run_closed_loop, True)):
             plant = _plant(m, robot, ctx["options"], pretension, model_lookup)
             rows.append(_loop_row(name, loop, plant, ctx, cable_map, closed))
+    for r in rows:
+        if r.get("status") == "ok" and ctx["options"].error_estimate != "none":
+            r.update(disc_columns(str(r["model"]), ctx["options"]))
     return rows
 
 

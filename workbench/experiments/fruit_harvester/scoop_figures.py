@@ -24,6 +24,7 @@ from matplotlib.figure import Figure
 
 from ...compare.table import array_cell, row_positions
 from ...report.figures import ReportFigure, fmt
+from ...report.headline import baseline_cases
 from .scoop_findings import findings
 from .scoop_notes import ASSUMPTIONS, QUESTION, SEED_ROWS
 
@@ -196,7 +197,7 @@ def _control_figure(pairs) -> ReportFigure | None:
 
 def figures(results, cmp: pd.DataFrame) -> list[ReportFigure]:
     """The scoop figures (module docstring)."""
-    pairs = _pairs(results.ok)
+    pairs = _pairs(baseline_cases(results, results.ok))  # sensitivity cases: the Sensitivity section
     if not pairs:
         return []
     figs = [_shapes_figure(pairs), _centre_figure(pairs), _length_figure(pairs), _control_figure(pairs)]

@@ -23,6 +23,7 @@ from matplotlib.figure import Figure
 
 from ...compare.table import array_cell, row_positions
 from ...report.figures import ReportFigure, fmt
+from ...report.headline import baseline_cases
 from .findings import findings
 from .notes import ASSUMPTIONS, QUESTION, SEED_ROWS
 
@@ -298,7 +299,7 @@ def _carry_figure(pairs) -> ReportFigure | None:
 
 def figures(results, cmp: pd.DataFrame) -> list[ReportFigure]:
     """The grasp figures (module docstring); cases without both rows are left out."""
-    pairs = _pairs(results.ok)
+    pairs = _pairs(baseline_cases(results, results.ok))  # sensitivity cases: the Sensitivity section
     if not pairs:
         return []
     figs = [_wraps_figure(pairs), _contact_figure(pairs)]
