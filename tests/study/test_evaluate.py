@@ -93,3 +93,30 @@ def test_bend_angle_goes_through_arc_actuation(write_study):
     assert r["status"] == "ok"
     # fake actuation realises kappa = 1.2 / L exactly with the fake arc model
     assert r["x.kappa"] == pytest.approx(1.2 / 0.8, rel=1e-12)
+
+
+def test_n_elements_by_model(write_study):
+    """``[solver] n_elements_by_model``: each model runs (and records) its own resolution; without the
+    key the case parameters (and so the case ids) do not mention it."""
+    from study_fakes import GOOD
+
+    from workbench.study import StudyError
+
+    assert "n_elements_by_model" not in _case(write_study)[0].params["solver"]
+    base = GOOD.replace("n_elements = 8\n", "n_elements = 8\nn_elements_by_model = { ancf = 32 }\n")
+    case = _case(write_study, base=base)[0]
+    seen = {}
+
+    def lookup(name):
+        def run(robot, load, options):
+            seen.setdefault(name, []).append(options.n_elements)
+            return fakes.arc(robot, load, options)
+        return run
+
+    rows = evaluate_case(case.case_id, case.params, ("cc", "ancf"), lookup)
+    assert [r["p.solver.n_elements"] for r in rows] == [8, 32]
+    assert seen["cc"] == [8] and seen["ancf"][:3] == [32, 16, 8]  # the estimate coarsens the model's own mesh
+    with pytest.raises(StudyError, match="n_elements_by_model: 'beam3d' is not one of study.models"):
+        load_study(write_study(base=base.replace("ancf = 32", "beam3d = 32")))
+    with pytest.raises(StudyError, match="must be in"):
+        load_study(write_study(base=base.replace("ancf = 32", "ancf = 0")))

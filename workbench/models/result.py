@@ -6,7 +6,7 @@ Importing this module does not import Exudyn.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Literal, Mapping
 
 import numpy as np
@@ -68,6 +68,11 @@ class SolverOptions:
         Study pipeline only (models ignore it): ``"richardson"`` re-solves every physics case at
         1/2 and 1/4 of the resolution and records its discretisation-error estimate
         (:mod:`workbench.models.discretization`); ``"none"`` turns that off.
+    n_elements_by_model : tuple of (str, int)
+        Study pipeline only: ``n_elements`` of the named models where it differs from
+        ``n_elements`` (``[solver] n_elements_by_model = { spring_link = 256 }``; a mapping is
+        accepted); :meth:`for_model` applies it.  Lets one case give an order-2 chain more links
+        than an order-4 beam needs elements.
     error_estimate_exempt : tuple of str
         Study pipeline only: models whose discretisation *is* the hardware (e.g. a spring-link
         chain with one link per physical joint), so that coarsening them would change the robot,
@@ -85,6 +90,7 @@ class SolverOptions:
     spring_link_backend: Literal["auto", "tree", "bodies"] = "auto"
     error_estimate: Literal["richardson", "none"] = "richardson"
     error_estimate_exempt: tuple[str, ...] = ()
+    n_elements_by_model: tuple[tuple[str, int], ...] = ()
 
     def __post_init__(self) -> None:
         for name in ("n_elements", "n_stations", "max_load_steps"):
@@ -109,6 +115,17 @@ class SolverOptions:
         if self.error_estimate not in ("richardson", "none"):
             raise ValueError(f"SolverOptions.error_estimate must be 'richardson' or 'none', got {self.error_estimate!r}")
         object.__setattr__(self, "error_estimate_exempt", tuple(str(m) for m in self.error_estimate_exempt))
+        by = self.n_elements_by_model
+        pairs = tuple(sorted((str(k), v) for k, v in (by.items() if isinstance(by, Mapping) else by)))
+        for k, v in pairs:
+            if isinstance(v, bool) or int(v) != v or v < 1:
+                raise ValueError(f"SolverOptions.n_elements_by_model[{k!r}] must be an integer >= 1, got {v!r}")
+        object.__setattr__(self, "n_elements_by_model", tuple((k, int(v)) for k, v in pairs))
+
+    def for_model(self, name: str) -> "SolverOptions":
+        """These options with ``n_elements`` of model ``name`` (``n_elements_by_model``, else unchanged)."""
+        n = dict(self.n_elements_by_model).get(str(name))
+        return self if n is None or n == self.n_elements else replace(self, n_elements=n)
 
 
 @dataclass(frozen=True)

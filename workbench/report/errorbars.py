@@ -85,7 +85,7 @@ def _comparable(g: pd.DataFrame, col: str, others: list[str]) -> pd.DataFrame:
     others = [c for c in others if c in g]
     if not others:
         return g
-    sig = g[others].astype(str).agg("|".join, axis=1)
+    sig = g[others].astype(object).map(str).agg("|".join, axis=1)  # str(NaN) = "nan": missing cells compare too
     common = set.intersection(*[set(sig[g[col] == v]) for v in g[col].dropna().unique()])
     return g[sig.isin(common)] if common else g
 

@@ -136,21 +136,32 @@ def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str
     cc_reference = CCReference(model_lookup, robot, load, options)
     for name in models:
         t0 = time.perf_counter()
+        opts, ran_m, flat_m = _model_resolution(name, options, ran, flat)
         try:
             fn = model_lookup(name)
             with quiet_if_loaded():
-                res = fn(robot, load, options)
+                res = fn(robot, load, opts)
             wall = time.perf_counter() - t0
-            row = row_from_result(res, case_id, name, ran, robot, wall, flat)
+            row = row_from_result(res, case_id, name, ran_m, robot, wall, flat_m)
             if name == "cc":
                 cc_reference.set(res)
             if row["status"] == "ok":  # the discretisation-error estimate (study/estimate.py)
                 with quiet_if_loaded():
-                    row.update(discretization_columns(name, fn, robot, load, options, res, cc_reference))
+                    row.update(discretization_columns(name, fn, robot, load, opts, res, cc_reference))
         except Exception as e:  # noqa: BLE001 - ModelFailure, exudyn.SolverError, bugs: all recorded
             kind = "memory" if isinstance(e, MemoryError) else "model"
-            row = failed_rows(case_id, ran, [name], _reason(e), time.perf_counter() - t0, flat, failure=kind)[0]
+            row = failed_rows(case_id, ran_m, [name], _reason(e), time.perf_counter() - t0, flat_m, failure=kind)[0]
         yield row
+
+
+def _model_resolution(name: str, options, ran: Mapping[str, Any], flat: Mapping[str, Any]):
+    """Options, parameters and flat ``p.*`` cells of model ``name``: its ``[solver] n_elements_by_model``
+    entry applied, so its rows record the resolution that ran (``p.solver.n_elements``)."""
+    opts = options.for_model(name)
+    if opts is options:
+        return options, ran, flat
+    ran_m = {**ran, "solver": {**ran["solver"], "n_elements": opts.n_elements}}
+    return opts, ran_m, {**flat, "p.solver.n_elements": opts.n_elements}
 
 
 def evaluate_rows(payload: tuple) -> Iterator[dict[str, Any]]:

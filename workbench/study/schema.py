@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from typing import Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import BaseModel, ConfigDict, Field, field_validator
 
 __all__ = [
     "DEFAULT_MAX_CASES", "DEFAULT_MAX_CASE_SECONDS", "SAMPLED_BLOCKS", "LIMIT_KEYS", "MAX_RESOLUTION", "SWEEP_SECTIONS",
@@ -93,6 +93,16 @@ class SolverSection(CaseLimitFields):
     spring_link_backend: Literal["auto", "tree", "bodies"] = "auto"
     error_estimate: Literal["richardson", "none"] = "richardson"
     error_estimate_exempt: list[str] = Field(default_factory=list)
+    # per-model n_elements (a study key only when set: keeps the case ids of studies without it)
+    n_elements_by_model: dict[str, int] = Field(default_factory=dict)
+
+    @field_validator("n_elements_by_model")
+    @classmethod
+    def _resolutions(cls, v: dict[str, int]) -> dict[str, int]:
+        for k, n in v.items():
+            if not 1 <= n <= MAX_RESOLUTION["n_elements"]:
+                raise ValueError(f"n_elements_by_model[{k!r}] = {n} must be in [1, {MAX_RESOLUTION['n_elements']}]")
+        return v
 
 
 class DerivedSection(BaseModel):

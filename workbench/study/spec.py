@@ -260,6 +260,9 @@ def _check_models(sections: Mapping[str, BaseModel]) -> list[str]:
     for i, m in enumerate(getattr(sol, "error_estimate_exempt", None) or []):
         if m not in st.models:
             problems.append(f"solver.error_estimate_exempt[{i}]: {m!r} is not one of study.models ({', '.join(st.models)})")
+    for m in getattr(sol, "n_elements_by_model", None) or {}:
+        if m not in st.models:
+            problems.append(f"solver.n_elements_by_model: {m!r} is not one of study.models ({', '.join(st.models)})")
     return problems
 
 
@@ -335,7 +338,9 @@ def _resolve_base(sections: Mapping[str, BaseModel], robot_base: dict[str, Any] 
     base = {
         "robot": robot_base,
         "load": sections["load"].model_dump(),
-        "solver": sections["solver"].model_dump(exclude=set(LIMIT_KEYS)),
+        # n_elements_by_model only when set (keeps the case ids of the studies without it)
+        "solver": sections["solver"].model_dump(exclude=set(LIMIT_KEYS) | (
+            set() if sections["solver"].n_elements_by_model else {"n_elements_by_model"})),
         "derived": sections["derived"].model_dump(),
     }
     if scenario_base is not None:  # only when given: keeps case ids of scenario-free studies
