@@ -53,6 +53,23 @@ def _jac_per_step(sim) -> None:
     sim.timeIntegration.newton.modifiedNewtonJacUpdatePerStep = True
 
 
+def _analytic_connectors(sim) -> None:
+    sim.timeIntegration.newton.numericalDifferentiation.forODE2Connectors = False
+
+
+def _contractivity(c: float):
+    """Modified Newton: a new Jacobian when the residual contracts by less than ``c`` per iteration."""
+
+    def tweak(sim) -> None:
+        sim.timeIntegration.newton.modifiedNewtonContractivity = c
+
+    return tweak
+
+
+def _threads2(sim) -> None:
+    sim.parallel.numberOfThreads = 2
+
+
 def _both(*tweaks):
     def tweak(sim) -> None:
         for t in tweaks:
@@ -102,6 +119,17 @@ def main() -> None:
         "jacstep": ("Jacobian every step (40 el, 2.5 ms)", opts(40, 2.5e-3, b), _jac_per_step),
         "num9full": ("numerical eps 1e-9, full Newton (40 el, 2.5 ms)", opts(40, 2.5e-3, b),
                      _both(_numerical(1e-9), _full_newton)),
+        "anaconn": ("analytic connector Jacobians (40 el, 2.5 ms)", opts(40, 2.5e-3, b), _analytic_connectors),
+        "contract8": ("modified Newton contractivity 0.8 (40 el, 2.5 ms)", opts(40, 2.5e-3, b), _contractivity(0.8)),
+        "contract3": ("modified Newton contractivity 0.3 (40 el, 2.5 ms)", opts(40, 2.5e-3, b), _contractivity(0.3)),
+        "half_anaconn": ("half, analytic connectors (20 el, 5 ms)", opts(20, 5e-3, b), _analytic_connectors),
+        "ana_c8": ("analytic connectors, contractivity 0.8 (40 el, 2.5 ms)", opts(40, 2.5e-3, b),
+                   _both(_analytic_connectors, _contractivity(0.8))),
+        "half_ana_c8": ("half, analytic connectors, contractivity 0.8 (20 el, 5 ms)", opts(20, 5e-3, b),
+                        _both(_analytic_connectors, _contractivity(0.8))),
+        "half_c8": ("half, contractivity 0.8 (20 el, 5 ms)", opts(20, 5e-3, b), _contractivity(0.8)),
+        "threads2": ("2 threads (40 el, 2.5 ms)", opts(40, 2.5e-3, b), _threads2),
+        "half_threads2": ("half, 2 threads (20 el, 5 ms)", opts(20, 5e-3, b), _threads2),
         "half_num9": ("half, numerical eps 1e-9 (20 el, 5 ms)", opts(20, 5e-3, b), _numerical(1e-9)),
         "40_5ms_num9": ("numerical eps 1e-9 (40 el, 5 ms)", opts(40, 5e-3, b), _numerical(1e-9)),
     }
