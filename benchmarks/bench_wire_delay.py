@@ -6,16 +6,25 @@ beta = 2.7e-4 s, ``studies/wire_delay.toml``).  Each configuration is run once i
 printed with CPU time (``time.process_time``), wall time, the load average, steps taken, Newton
 iterations and Jacobians, the ratios to the target, and the headline quantities (peak tip-to-CC
 error, backbone compression, largest wire tension) so that a speed setting can be judged against
-what it changes in the answer.  Configurations:
+what it changes in the answer.
+
+Default configurations:
 
 * ``committed``: the study's settings (sparse LU, damped);
-* ``dense LU``: the same with Exudyn's dense solver (beam3d used it before issue 18);
+* ``dense``: the same with Exudyn's dense solver (beam3d used it before issue 18);
 * ``undamped``: damping 0 (the snap then needs step reductions and Newton restarts);
 * ``half``: 20 elements at 5 ms (the estimate's first coarse solve).
+
+Named on the command line (40 elements / 2.5 ms unless ``half_``): ``num9`` / ``num7`` (every ODE2
+Jacobian term numerical, relative epsilon 1e-9 / 1e-7), ``full`` (no modified Newton), ``jacstep``
+(a Jacobian every step), ``num9full``, ``contract3`` / ``contract8`` (modified-Newton contractivity),
+``anaconn`` (analytic connector Jacobians), ``ana_c8``, ``threads2`` (two threads), ``half_num9``,
+``half_anaconn``, ``half_ana_c8``, ``half_c8``, ``half_threads2``, ``40_5ms_num9``.
 
 Run from the repository root (minutes)::
 
     python benchmarks/bench_wire_delay.py
+    python benchmarks/bench_wire_delay.py committed half full contract8
 """
 
 from __future__ import annotations
