@@ -328,3 +328,12 @@ def test_dynamic_series_shapes_and_start_from_equilibrium():
     tip = res.series["tip_position"][before]
     assert np.max(np.abs(tip - tip[0])) < 1e-9
     np.testing.assert_allclose(res.series["tendon_tensions"][-1], [20.0, 0.0, 0.0])
+
+
+@pytest.mark.parametrize("ramps", [None, (4.0, 2.0, 0.0)])
+def test_dynamic_command_function_equals_command_at_bit_for_bit(ramps):
+    # the pre-step's plain-float commands must be exactly TendonActuation.command_at (same arithmetic)
+    act = TendonActuation("length", (0.01, -0.02, 0.005), start_times=(3.0, 0.0, 1.5), ramp_durations=ramps)
+    command = beam3d._command_function(act, 2.5)
+    for t in np.linspace(-1.0, 12.0, 2601):
+        assert np.array_equal(command(t), act.command_at(t, 2.5)), t

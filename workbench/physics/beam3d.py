@@ -284,6 +284,21 @@ def _kept_frames(times: np.ndarray, frames: list) -> dict[str, np.ndarray]:
     return backbone_series(times[keep], [frames[i] for i in keep]) if keep else {}
 
 
+def _command_function(act, default_ramp: float):
+    """``act.command_at(t, default_ramp)`` for scalar ``t`` in plain floats (the same arithmetic, so
+    the same bits; numpy's per-call overhead was most of the Python step cost, issue 18)."""
+    n = len(act.values)
+    t0 = act.start_times or (0.0,) * n
+    T = act.ramp_durations or (float(default_ramp),) * n
+    terms = tuple(zip(act.values, t0, T))
+
+    def command(t: float) -> np.ndarray:
+        t = float(t)
+        return np.array([v * (min(max((t - a) / d, 0.0), 1.0) if d > 0 else float(t >= a)) for v, a, d in terms])
+
+    return command
+
+
 def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bool, stations: np.ndarray):
     """Static equilibrium at t = 0, then generalised-alpha; returns (accepted, attempts, n_steps, times, series,
     stress extras over the recorded states).
@@ -312,19 +327,21 @@ def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bo
     n_out = int(round(load.duration / out_dt)) + 1
     rec = _Recorder(system, n_t, stations, frame_stride(n_out))
 
+    command = _command_function(act, load.ramp_time) if drive else None
+
     def pre_step(mbs, t):
         # Exudyn calls this with t = the END time of the step about to be solved;
         # the state is the converged state at t - h_cur (last accepted step).
         solver = mbs.sys.get("dynamicSolver")
         h_cur = solver.it.currentStepSize if solver is not None else h
         t_state = t - h_cur
-        if drive:  # record the state with the commands it was solved for
-            system.set_tendons(act.command_at(t_state, load.ramp_time), 1.0)
         k = round(t_state / out_dt)
         if abs(t_state - k * out_dt) < 0.5 * h:
+            if drive:  # record the state with the commands it was solved for
+                system.set_tendons(command(t_state), 1.0)
             rec.record(float(t_state))
         if drive:  # commands at the end of this step (exact also for reduced steps)
-            system.set_tendons(act.command_at(t, load.ramp_time), 1.0)
+            system.set_tendons(command(t), 1.0)
         return True
 
     system.mbs.SetPreStepUserFunction(pre_step)
