@@ -60,4 +60,4 @@ def run_units(fn: Callable[[Any], Any], payloads: Sequence[Any], limits: CaseLim
     """The Dask task: every unit of a chunk in this worker thread's sandbox, one outcome each."""
     plugin = get_worker().plugins[PLUGIN_NAME]
     box = plugin.sandbox(limits.memory)
-    return [box.run(fn, p, limits.seconds) for p in payloads]
+    return [out for _, out in box.run_many(fn, payloads, limits.seconds)]  # one message per chunk
