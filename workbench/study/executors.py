@@ -13,7 +13,8 @@ its own exceptions (:func:`~workbench.study.evaluate.evaluate_rows` does); execu
 
 - :class:`SerialExecutor` -- in this process, one after another: the debugging executor
   (pdb, breakpoints), **without isolation**: a case that crashes the process ends the run (the
-  rows of the cases before it are stored: the runner flushes after every case); the time limit
+  rows of the cases before it are kept: the runner journals every case, and the next run of the
+  folder stores them); the time limit
   interrupts Python code only (SIGALRM), there is no memory cap.
 - :class:`IsolatedExecutor` -- one at a time in a child process (a
   :class:`~workbench.study.sandbox.Sandbox`) that is restarted after a crash or timeout: the
@@ -51,7 +52,7 @@ class Executor(Protocol):
 
     name: str
     slots: int  # units it runs at once (chunk sizing)
-    isolates_cases: bool  # False: a crashing case takes the caller down (flush after every case)
+    isolates_cases: bool  # False: a crashing case takes the caller down (journal every case)
 
     def __enter__(self) -> "Executor": ...
     def __exit__(self, *exc: Any) -> None: ...

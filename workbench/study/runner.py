@@ -179,7 +179,8 @@ def run_cases(
         A bar (True), nothing (False), or (None) a bar on a terminal and log lines otherwise.
     flush_rows, flush_seconds : int, float
         When buffered rows are written as a part (also on a timer); ``flush_rows`` defaults to
-        ``kind.flush_rows``.  An executor without isolation writes after every case.
+        ``kind.flush_rows``.  An executor without isolation journals every case at once
+        (the next run of the folder stores what a crash left there).
     batch_size : int, optional
         Units per Dask task; default ``kind.batch_size(n, executor.slots)``.
     limits : CaseLimits, optional
