@@ -22,7 +22,7 @@ from distributed.diagnostics.plugin import WorkerPlugin
 from .outcomes import CaseLimits, Outcome
 from .sandbox import Sandbox
 
-__all__ = ["PLUGIN_NAME", "SandboxPlugin", "run_units"]
+__all__ = ["PLUGIN_NAME", "SandboxPlugin", "run_chunk", "run_units"]
 
 PLUGIN_NAME = "workbench-sandbox"
 
@@ -61,3 +61,12 @@ def run_units(fn: Callable[[Any], Any], payloads: Sequence[Any], limits: CaseLim
     plugin = get_worker().plugins[PLUGIN_NAME]
     box = plugin.sandbox(limits.memory)
     return [out for _, out in box.run_many(fn, payloads, limits.seconds)]  # one message per chunk
+
+
+def run_chunk(fn: Callable[[Any], Any], payloads: Sequence[Any], limits: CaseLimits) -> tuple[list[Outcome], float]:
+    """:func:`run_units` and the seconds the chunk took in the worker (the executor sizes later chunks by it)."""
+    import time
+
+    t0 = time.perf_counter()
+    outs = run_units(fn, payloads, limits)
+    return outs, time.perf_counter() - t0

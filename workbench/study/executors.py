@@ -273,43 +273,87 @@ class DaskExecutor:
         return Crash("lost", f"the Dask worker running this case was lost {n + 1} time(s) "
                              f"(the scheduler's allowed-failures = {n}); --resume retries it")
 
-    def imap_unordered(self, fn, payloads, limits=_NO_LIMITS, chunk_size=1):
+    #: the runner may pass ``max_chunk`` (adaptive chunk sizes)
+    adapts_chunks = True
+    #: adaptive chunks aim at this many seconds of work per task (Dask's 2-3 ms per task is then < 1 %)
+    task_seconds = 0.5
+
+    def _chunk(self, size: int, cap: int, per_unit: float | None, left: int, slots: int) -> int:
+        """Units of the next task: ``size`` until a chunk was timed, then ``task_seconds`` of work, at most
+        ``cap`` and a quarter of the remaining units per slot (the tail stays balanced)."""
+        if per_unit is None or cap <= size:
+            return size
+        want = int(self.task_seconds / max(per_unit, 1e-6))
+        return max(1, min(cap, want, -(-left // (4 * slots))))
+
+    def imap_unordered(self, fn, payloads, limits=_NO_LIMITS, chunk_size=1, max_chunk=None):
+        """Yield ``(index, Outcome)`` per payload, submitted as tasks of several units.
+
+        Fixed ``chunk_size`` units per task, or with ``max_chunk`` adaptive sizes: ``chunk_size``
+        until the first tasks report their time per unit, then about :attr:`task_seconds` of
+        work per task (at most ``max_chunk``); about two tasks per worker slot are in flight.  A
+        task whose worker was lost (Dask's ``KilledWorker``) is resubmitted one unit per task, so
+        only a unit that loses workers by itself is stored ``lost``.
+        """
         from distributed.scheduler import KilledWorker
 
-        from .dask_worker import run_units
+        from .dask_worker import run_chunk
 
         tag = uuid.uuid4().hex[:12]
         size = max(1, int(chunk_size))
-        starts = list(range(0, len(payloads), size))
-        futures = {}
-        try:
-            for k, s in enumerate(starts):
-                f = self._client.submit(run_units, fn, list(payloads[s:s + size]), limits, pure=False,
-                                        key=f"cases-{tag}-{k}")
-                futures[f.key] = (f, s, min(size, len(payloads) - s))
-        except Exception as e:  # noqa: BLE001
-            raise InfrastructureError(f"cannot submit to the Dask scheduler: {type(e).__name__}: {e}") from None
-        remaining = {f for f, _, _ in futures.values()}
+        cap = size if max_chunk is None else max(size, int(max_chunk))
+        nxt, singles = 0, []  # next payload to submit; units of lost chunks, to resubmit one by one
+        futures: dict[str, tuple[Any, list[int]]] = {}
+        seconds = units = 0.0
+        count = 0
         lost_since = None
+        slots, slots_at = self.slots, time.monotonic()  # asked again every 5 s (workers come and go)
+
+        def submit(idx: list[int]) -> None:
+            nonlocal count
+            try:
+                f = self._client.submit(run_chunk, fn, [payloads[i] for i in idx], limits, pure=False,
+                                        key=f"cases-{tag}-{count}")
+            except Exception as e:  # noqa: BLE001
+                raise InfrastructureError(f"cannot submit to the Dask scheduler: {type(e).__name__}: {e}") from None
+            count += 1
+            futures[f.key] = (f, idx)
+
         try:
-            while remaining:
-                done, lost_since = self._wait(remaining, lost_since)
+            while True:
+                if time.monotonic() - slots_at > 5.0:
+                    slots, slots_at = self.slots, time.monotonic()
+                while len(futures) < 2 * slots and (singles or nxt < len(payloads)):
+                    if singles:
+                        submit([singles.pop(0)])
+                        continue
+                    k = self._chunk(size, cap, seconds / units if units else None, len(payloads) - nxt, slots)
+                    submit(list(range(nxt, min(len(payloads), nxt + k))))
+                    nxt += k
+                if not futures:
+                    return
+                done, lost_since = self._wait({f for f, _ in futures.values()}, lost_since)
                 for f in done:
-                    remaining.discard(f)
-                    _, start, n = futures[f.key]
+                    _, idx = futures.pop(f.key)
                     try:
-                        outs = f.result()
+                        outs, took = f.result()
                     except KilledWorker:
-                        outs = [Outcome([], self._lost()) for _ in range(n)]
+                        f.release()
+                        if len(idx) > 1:
+                            singles.extend(idx)  # blame the right unit: one per task
+                            continue
+                        outs, took = [Outcome([], self._lost())], 0.0
                     except Exception as e:  # noqa: BLE001 - the sandbox catches every case: systemic
                         raise InfrastructureError(
                             f"the Dask workers cannot run the cases: {type(e).__name__}: {str(e)[:300]} (is the "
                             f"same workbench installed in the workers' environment?)") from None
                     f.release()
-                    for j, out in enumerate(outs):
-                        yield start + j, out
+                    if took:
+                        seconds, units = seconds + took, units + len(idx)
+                    for i, out in zip(idx, outs):
+                        yield i, out
         finally:
-            for f, _, _ in futures.values():
+            for f, _ in futures.values():
                 try:
                     f.cancel()
                 except Exception:  # noqa: BLE001

@@ -118,15 +118,21 @@ def _cached(units: list[Unit], cache: Any, session: RunSession, separable: bool)
     return out
 
 
+#: largest adaptive chunk (units per task) when the run does not fix ``batch_size``
+MAX_ADAPTIVE_CHUNK = 256
+
+
 def _execute(kind: StudyKind, spec: Any, session: RunSession, executor: Executor, chunk_size: int,
-             options: Any, recorded: dict[str, dict[str, Any]], limits: CaseLimits, cache: Any = None) -> None:
+             options: Any, recorded: dict[str, dict[str, Any]], limits: CaseLimits, cache: Any = None,
+             adaptive: bool = False) -> None:
     """Submit the session's units (those the cache does not hold); store each outcome; rerun the models left after a crash."""
     separable = getattr(kind, "separable_models", True)
     pending = list(session.todo) if cache is None else _cached(list(session.todo), cache, session, separable)
     while pending:
         payloads = [kind.payload(spec, u.case, u.models, options) for u in pending]
         requeue: list[Unit] = []
-        for i, out in executor.imap_unordered(kind.task, payloads, limits, chunk_size):
+        extra = {"max_chunk": MAX_ADAPTIVE_CHUNK} if adaptive and getattr(executor, "adapts_chunks", False) else {}
+        for i, out in executor.imap_unordered(kind.task, payloads, limits, chunk_size, **extra):
             unit = pending[i]
             rows, more = _complete(unit, out, recorded[unit.case.case_id], separable)
             if more is not None:
@@ -182,7 +188,9 @@ def run_cases(
         ``kind.flush_rows``.  An executor without isolation journals every case at once
         (the next run of the folder stores what a crash left there).
     batch_size : int, optional
-        Units per Dask task; default ``kind.batch_size(n, executor.slots)``.
+        Units per task (per message to the isolated child); default ``kind.batch_size(n,
+        executor.slots)``, and an executor that adapts (Dask) then sizes later tasks by the
+        measured time per unit (at most :data:`MAX_ADAPTIVE_CHUNK`).
     limits : CaseLimits, optional
         Per-case limits; default ``kind.limits(spec)`` (``[solver] max_case_seconds`` /
         ``max_case_memory``).
@@ -230,7 +238,8 @@ def run_cases(
         with session:
             chunk = batch_size or kind.batch_size(len(session.todo), getattr(executor, "slots", 1))
             try:
-                _execute(kind, spec, session, executor, chunk, run_opts, recorded, limits, cache)
+                _execute(kind, spec, session, executor, chunk, run_opts, recorded, limits, cache,
+                         adaptive=batch_size is None)
             finally:
                 if cache is not None:
                     session.run_rec["cache"] = {"folder": str(cache.folder), "hits": cache.hits,
