@@ -94,21 +94,18 @@ def make_study(n_cases: int):
     return parse_study(raw, source="<bench>")
 
 
-def tree_cpu(skip: frozenset = frozenset()) -> float:
+def tree_cpu() -> float:
     """CPU seconds (user + system) of this process and every live descendant, with their reaped children.
 
     A worker that exits during a run is counted through its parent's ``children_*`` times, so the
     difference of two calls is the CPU the whole process tree spent in between (Dask nannies,
-    workers, their sandboxes and the runner's own sandbox included).  ``skip``: pids left out
-    (the processes of the cluster that is not in use, and their descendants).
+    workers, their sandboxes and the runner's own sandbox included).
     """
     import psutil
 
     me = psutil.Process()
     total = 0.0
     for p in [me, *me.children(recursive=True)]:
-        if p.pid in skip:
-            continue
         try:
             t = p.cpu_times()
         except psutil.Error:  # exited between listing and reading
@@ -133,48 +130,26 @@ def bare_loop(study, model) -> tuple[float, float]:
     return time.perf_counter() - t0, time.process_time() - c
 
 
-def _descendants() -> set[int]:
-    import psutil
-
-    return {p.pid for p in psutil.Process().children(recursive=True)}
-
-
-SKIP: dict[str, frozenset] = {}  # path -> pids of the clusters it does not use
-
-
-def through_runner(study, executor, lookup, skip: frozenset = frozenset()) -> tuple[float, float, float]:
-    """Wall seconds, CPU seconds of this (the runner's) process, CPU seconds of the process tree (less ``skip``)."""
+def through_runner(study, executor, lookup) -> tuple[float, float, float]:
+    """Wall seconds, CPU seconds of this (the runner's) process, CPU seconds of the whole process tree."""
     from workbench.study import run_study
 
     with tempfile.TemporaryDirectory() as d:
-        tree0, c0, t0 = tree_cpu(skip), time.process_time(), time.perf_counter()
+        tree0, c0, t0 = tree_cpu(), time.process_time(), time.perf_counter()
         s = run_study(study, Path(d) / "out", executor, model_lookup=lookup, progress=False)
-        dt, dc, dtree = time.perf_counter() - t0, time.process_time() - c0, tree_cpu(skip) - tree0
+        dt, dc, dtree = time.perf_counter() - t0, time.process_time() - c0, tree_cpu() - tree0
         assert s.n_ok == s.n_cases, s
     return dt, dc, dtree
-
-
-def _with_children(pids: frozenset) -> frozenset:
-    """``pids`` and their live descendants (a cluster's nannies, workers and the workers' sandboxes)."""
-    import psutil
-
-    out = set(pids)
-    for pid in pids:
-        try:
-            out |= {c.pid for c in psutil.Process(pid).children(recursive=True)}
-        except psutil.Error:
-            pass
-    return frozenset(out)
 
 
 def _load() -> str:
     return "load average " + " / ".join(f"{x:.1f}" for x in os.getloadavg()) + " (1 / 5 / 15 min)"
 
 
-def _marginal(study_n, study_2n, make, lookup, repeats: int, n: int, skip=frozenset()) -> tuple[float, ...]:
+def _marginal(study_n, study_2n, make, lookup, repeats: int, n: int) -> tuple[float, ...]:
     """Best-of-``repeats`` T(N) and T(2N) (wall, runner CPU, tree CPU); per extra case and the fixed part."""
-    a = [through_runner(study_n, make(), lookup, skip) for _ in range(repeats)]
-    b = [through_runner(study_2n, make(), lookup, skip) for _ in range(repeats)]
+    a = [through_runner(study_n, make(), lookup) for _ in range(repeats)]
+    b = [through_runner(study_2n, make(), lookup) for _ in range(repeats)]
     best = [min(x[k] for x in a) for k in range(3)]
     best2 = [min(x[k] for x in b) for k in range(3)]
     per = [(best2[k] - best[k]) / n for k in range(3)]
@@ -188,58 +163,56 @@ def main() -> None:
     ap.add_argument("--repeats", type=int, default=3, help="best of R runs for the overhead part")
     args = ap.parse_args()
 
-    import dask
-    from distributed import LocalCluster
-
-    from workbench.study import DaskExecutor, IsolatedExecutor, SerialExecutor
+    from workbench.study import IsolatedExecutor, SerialExecutor
 
     n = args.cases
     small, large = make_study(n), make_study(2 * n)
     print(f"{n} cases (and {2 * n} to separate the fixed per-run cost), 1 model each; {_load()}")
-    clusters = {}
+    spins = ("0ms", "1.5ms") + (() if args.quick else ("20ms",))
+    rows = []
+    # no cluster exists while the bare loop and the serial paths run: a LocalCluster's scheduler
+    # lives in this process and its background CPU would be charged to them
+    for spin in spins:
+        lookup, model = LOOKUPS[spin]
+        reps = args.repeats if spin != "20ms" else 1
+        bare = [bare_loop(small, model) for _ in range(reps)]
+        bw, bc = min(b[0] for b in bare) / n, min(b[1] for b in bare) / n
+        rows.append((spin, "bare loop", bw * n, bw, 0.0, bc, bc))
+        for path, make in (("runner serial in-process", SerialExecutor), ("runner serial isolated", IsolatedExecutor)):
+            if spin == "20ms" and make is SerialExecutor:
+                continue
+            through_runner(make_study(8), make(), lookup)  # warm-up
+            # best of `repeats` (the machine is shared: the minimum is the least disturbed run)
+            rows.append((spin, path, *_marginal(small, large, make, lookup, reps, n)))
+    for w in (1, 2):  # one cluster at a time (its scheduler's CPU is part of its cost)
+        rows += _dask_rows(w, spins, small, large, n, args.repeats)
+    _print([r for r in rows if r[0] != "20ms"], [r[1:] for r in rows if r[0] == "20ms"], n)
+
+
+def _dask_rows(w: int, spins, small, large, n: int, repeats: int) -> list[tuple]:
+    import dask
+    from distributed import LocalCluster
+
+    from workbench.study import DaskExecutor
+
+    path = f"runner dask {w} worker" + ("s" if w > 1 else "")
     with dask.config.set({"distributed.scheduler.worker-saturation": 1.0,
                           "distributed.scheduler.allowed-failures": 1,
                           "distributed.scheduler.work-stealing": False}):
-        pids = {}
-        for w in (1, 2):
-            before = _descendants()
-            t0 = time.perf_counter()
-            clusters[w] = LocalCluster(n_workers=w, threads_per_worker=1, processes=True,
-                                       dashboard_address=":0", silence_logs=logging.CRITICAL)
-            pids[w] = frozenset(_descendants() - before)
-            print(f"LocalCluster start-up with {w} worker(s): {time.perf_counter() - t0:.2f} s (not in the times below)")
-    paths = {
-        "runner serial in-process": SerialExecutor,
-        "runner serial isolated": IsolatedExecutor,
-        "runner dask 1 worker": lambda: DaskExecutor(scheduler=clusters[1].scheduler_address),
-        "runner dask 2 workers": lambda: DaskExecutor(scheduler=clusters[2].scheduler_address),
-    }
-    # the idle cluster's heartbeats are not the path's cost (sandboxes of its workers are descendants of
-    # the listed pids only after their first task: the warm-up runs on both clusters come first)
-    skip = {"runner serial in-process": pids[1] | pids[2], "runner serial isolated": pids[1] | pids[2],
-            "runner dask 1 worker": pids[2], "runner dask 2 workers": pids[1]}
-    rows, speed = [], []
+        t0 = time.perf_counter()
+        cluster = LocalCluster(n_workers=w, threads_per_worker=1, processes=True, dashboard_address=":0",
+                               silence_logs=logging.CRITICAL)
+        print(f"LocalCluster start-up with {w} worker(s): {time.perf_counter() - t0:.2f} s (not in the times below)")
+    out = []
     try:
-        for spin in ("0ms", "1.5ms"):
-            lookup, model = LOOKUPS[spin]
-            bare = [bare_loop(small, model) for _ in range(args.repeats)]
-            bw, bc = min(b[0] for b in bare) / n, min(b[1] for b in bare) / n
-            rows.append((spin, "bare loop", bw * n, bw, 0.0, bc, bc))
-            for path, make in paths.items():
-                through_runner(make_study(8), make(), lookup)  # warm-up (worker imports)
-                # best of `repeats` (the machine is shared: the minimum is the least disturbed run)
-                rows.append((spin, path, *_marginal(small, large, make, lookup, args.repeats, n,
-                                                    _with_children(skip[path]))))
-        if not args.quick:
-            lookup, model = LOOKUPS["20ms"]
-            bw, bc = bare_loop(small, model)
-            speed.append(("bare loop", bw, bw / n, 0.0, bc / n, bc / n))
-            for path in ("runner serial isolated", "runner dask 1 worker", "runner dask 2 workers"):
-                speed.append((path, *_marginal(small, large, paths[path], lookup, 1, n, _with_children(skip[path]))))
+        make = lambda: DaskExecutor(scheduler=cluster.scheduler_address)  # noqa: E731
+        for spin in spins:
+            lookup, _ = LOOKUPS[spin]
+            through_runner(make_study(8), make(), lookup)  # warm-up (worker imports)
+            out.append((spin, path, *_marginal(small, large, make, lookup, repeats if spin != "20ms" else 1, n)))
     finally:
-        for c in clusters.values():
-            c.close()
-    _print(rows, speed, n)
+        cluster.close()
+    return out
 
 
 def _print(rows, speed, n) -> None:
