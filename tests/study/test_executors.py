@@ -253,3 +253,29 @@ def test_progress_bar_counts(tmp_path, write_study, capsys):
               progress=True, batch_size=1)
     err = capsys.readouterr().err
     assert "9/9" in err and "ok=6 failed=3" in err
+
+
+def test_adaptive_dask_chunks_run_every_case_once_with_the_serial_results(tmp_path, write_study, dask_scheduler):
+    """40 cases, chunks re-sized after every task (a tiny target time per task): nothing lost or run twice."""
+    study = _study(write_study, tensions=[1.0 + 0.1 * k for k in range(40)])
+    run_study(study, tmp_path / "a", SerialExecutor(), model_lookup=fakes.lookup, progress=False)
+    ex = DaskExecutor(scheduler=dask_scheduler)
+    ex.task_seconds = 0.003
+    s = run_study(study, tmp_path / "b", ex, model_lookup=fakes.lookup, progress=False)
+    b = pd.read_parquet(tmp_path / "b")
+    assert s.n_ok == 40 and len(b) == 80 and not b.duplicated(["case_id", "model"]).any()
+    from runs_util import same_table
+
+    assert same_table(pd.read_parquet(tmp_path / "a"), b)
+
+
+@pytest.mark.slow
+def test_a_lost_chunk_is_retried_unit_by_unit_so_only_the_killer_is_lost(tmp_path, write_study):
+    """The 2 N case kills every worker that runs it: its chunk of 3 is rerun one case per task."""
+    study = _study(write_study, tensions=[1.0, 2.0, 3.0])
+    s = run_study(study, tmp_path / "o", DaskExecutor(n_workers=2), model_lookup=fakes.lookup_kills_worker_always,
+                  progress=False, batch_size=3)
+    df = pd.read_parquet(tmp_path / "o")
+    df["t0"] = _t0(df)
+    assert s.n_ok == 2 and s.exit_code == 3
+    assert set(df[df["status"] != "ok"]["t0"]) == {2.0} and (df[df["t0"] != 2.0]["status"] == "ok").all()

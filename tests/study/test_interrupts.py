@@ -55,24 +55,51 @@ def test_sigterm_stores_finished_cases_exits_143_and_resume_completes(tmp_path, 
 
 
 def test_in_process_crash_keeps_the_cases_before_it(tmp_path, write_study):
-    """--in-process has no isolation: os._exit in case 4 ends the command, cases 0-3 are on disk."""
+    """--in-process has no isolation: os._exit in case 4 ends the command; cases 0-3 survive in the
+    rows journal (not in parts yet: a part per case costs ~4 ms), the next run stores them first and
+    computes only the rest."""
     from study_fakes import GOOD
+
+    from workbench.study.store import JOURNAL
 
     p = write_study('\n[sweep]\nproduct = { "load.tensions" = [[1.0, 0.0], [2.0, 0.0], [3.0, 0.0], [4.0, 0.0], '
                     '[66.0, 0.0], [6.0, 0.0]] }\n', base=GOOD)
     out = tmp_path / "o"
-    r = subprocess.run(cli_args(p, out, lookup="study_fakes:lookup", in_process=True), env=env(), cwd=tmp_path,
-                       capture_output=True, text=True, timeout=120)
+    r = subprocess.run(cli_args(p, out, "--flush-rows", "1000", lookup="study_fakes:lookup", in_process=True),
+                       env=env(), cwd=tmp_path, capture_output=True, text=True, timeout=120)
     assert r.returncode == 3  # the fake's os._exit(3): the process is gone
-    df = pd.read_parquet(out)
-    assert sorted(df["p.load.tensions"].unique()) == ["[1.0,0.0]", "[2.0,0.0]", "[3.0,0.0]", "[4.0,0.0]"]
-    assert len(df) == 8
+    assert (out / JOURNAL).stat().st_size > 0
     # the default executor then finishes the run; the crashing case is stored as a crash
     r = subprocess.run(cli_args(p, out, "--resume", lookup="study_fakes:lookup", in_process=False), env=env(),
                        cwd=tmp_path, capture_output=True, text=True, timeout=120)
     df = pd.read_parquet(out)
-    assert r.returncode == 1 and len(df) == 12
+    assert r.returncode == 1 and len(df) == 12 and not df.duplicated(["case_id", "model"]).any()
+    assert read_manifest(out)["runs"][1]["cases_to_run"] == 2  # cases 0-3 came from the journal
     assert (df[df["p.load.tensions"] == "[66.0,0.0]"]["failure"] == "crash").all()
+    assert not (out / JOURNAL).exists()
+
+
+def test_a_journal_torn_by_a_kill_keeps_its_whole_records_and_never_duplicates(tmp_path):
+    """Records after a torn one are never written (the writer died there); rows already in a part are
+    skipped (killed between a part's rename and the journal's truncation)."""
+    from workbench.study.store import JOURNAL, ResultStore
+
+    row = {"case_id": "c0", "model": "cc", "status": "ok", "error": "", "wall_time": 0.0}
+    store = ResultStore(tmp_path / "o", flush_rows=1000, flush_seconds=1e9, journal=True)
+    for k in range(3):
+        store.add([{**row, "case_id": f"c{k}"}])
+    store.flush()  # c0-c2 in a part, the journal emptied
+    store.add([{**row, "case_id": "c3"}])
+    store.add([{**row, "case_id": "c4"}])
+    journal = (tmp_path / "o" / JOURNAL).read_bytes()
+    # as if killed while writing c4's record, and c1 had been journaled again before a lost truncation
+    ResultStore(tmp_path / "x", journal=True).add([{**row, "case_id": "c1"}])
+    again = (tmp_path / "x" / JOURNAL).read_bytes()
+    (tmp_path / "o" / JOURNAL).write_bytes(again + journal[:-5])
+    fresh = ResultStore(tmp_path / "o")
+    assert fresh.recover_journal() == 1  # c3 (c1 is stored, c4 torn)
+    ids = sorted(pd.read_parquet(tmp_path / "o")["case_id"])
+    assert ids == ["c0", "c1", "c2", "c3"] and not (tmp_path / "o" / JOURNAL).exists()
 
 
 def test_rows_are_flushed_on_a_timer(tmp_path, write_study):

@@ -112,13 +112,14 @@ def resolve_case(params: Mapping[str, Any], robot_cache: dict[str, Any] | None =
     return robot, {**params, "robot": robot_params, "load": load}
 
 
-def parameters_as_run(params: Mapping[str, Any]) -> dict[str, Any]:
+def parameters_as_run(params: Mapping[str, Any], robot_cache: dict[str, Any] | None = None) -> dict[str, Any]:
     """The parameters a case runs with (:func:`resolve_case`), or ``params`` if the case cannot be built.
 
     A case that cannot be built records its configured parameters (its rows are failed rows).
+    ``robot_cache`` as in :func:`resolve_case` (a sweep over loads builds its robot once).
     """
     try:
-        return resolve_case(params)[1]
+        return resolve_case(params, robot_cache)[1]
     except Exception:  # noqa: BLE001 - the worker records the failure with its reason
         return dict(params)
 

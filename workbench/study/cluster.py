@@ -326,7 +326,8 @@ class JobQueueExecutor(DaskExecutor):
             time.sleep(0.5)
         self._log(f"cluster: first worker after {time.monotonic() - t0:.1f} s (jobs {', '.join(self.job_ids())})")
 
-    def imap_unordered(self, fn, payloads, limits: CaseLimits = CaseLimits(), chunk_size: int = 1):
+    def imap_unordered(self, fn, payloads, limits: CaseLimits = CaseLimits(), chunk_size: int = 1,
+                       max_chunk: int | None = None):
         """As :meth:`DaskExecutor.imap_unordered`, with the case limit and task size a worker's life allows.
 
         (:func:`cluster_limits`; what changed is logged once.)  A cluster left without workers for
@@ -335,8 +336,10 @@ class JobQueueExecutor(DaskExecutor):
         limits, chunk_size, note = cluster_limits(self.config, limits, chunk_size)
         if note:
             self._log(f"cluster: {note}")
+        if max_chunk is not None:  # adaptive chunks stay within a worker's life too
+            max_chunk = cluster_limits(self.config, limits, max_chunk)[1]
         try:
-            yield from super().imap_unordered(fn, payloads, limits, chunk_size)
+            yield from super().imap_unordered(fn, payloads, limits, chunk_size, max_chunk)
         except InfrastructureError as e:
             if isinstance(e, ClusterError) or "no workers" not in str(e):
                 raise

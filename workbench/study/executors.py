@@ -13,11 +13,13 @@ its own exceptions (:func:`~workbench.study.evaluate.evaluate_rows` does); execu
 
 - :class:`SerialExecutor` -- in this process, one after another: the debugging executor
   (pdb, breakpoints), **without isolation**: a case that crashes the process ends the run (the
-  rows of the cases before it are stored: the runner flushes after every case); the time limit
+  rows of the cases before it are kept: the runner journals every case, and the next run of the
+  folder stores them); the time limit
   interrupts Python code only (SIGALRM), there is no memory cap.
 - :class:`IsolatedExecutor` -- one at a time in a child process (a
   :class:`~workbench.study.sandbox.Sandbox`) that is restarted after a crash or timeout: the
-  CLI default.
+  CLI default.  Units go to the child ``chunk_size`` per message (the child streams rows and
+  the end of every unit back), so a unit costs no round trip; a crash still blames its unit.
 - :class:`DaskExecutor` -- Dask distributed: a ``LocalCluster`` started inside the command
   (one thread per worker process), an existing scheduler, or a cluster made by a given function
   (the batch-scheduler clusters of :mod:`workbench.study.cluster`); every worker runs its units in its
@@ -50,7 +52,7 @@ class Executor(Protocol):
 
     name: str
     slots: int  # units it runs at once (chunk sizing)
-    isolates_cases: bool  # False: a crashing case takes the caller down (flush after every case)
+    isolates_cases: bool  # False: a crashing case takes the caller down (journal every case)
 
     def __enter__(self) -> "Executor": ...
     def __exit__(self, *exc: Any) -> None: ...
@@ -131,8 +133,10 @@ class IsolatedExecutor:
             if self._box is not None:
                 self._box.close()
             self._box = want
-        for i, p in enumerate(payloads):
-            yield i, self._box.run(fn, p, limits.seconds)
+        size = max(1, int(chunk_size))
+        for s in range(0, len(payloads), size):  # a chunk per message: no round trip per unit
+            for k, out in self._box.run_many(fn, payloads[s:s + size], limits.seconds):
+                yield s + k, out
 
 
 def check_scheduler_address(address: str, timeout: float = 5.0) -> str | None:
@@ -269,43 +273,87 @@ class DaskExecutor:
         return Crash("lost", f"the Dask worker running this case was lost {n + 1} time(s) "
                              f"(the scheduler's allowed-failures = {n}); --resume retries it")
 
-    def imap_unordered(self, fn, payloads, limits=_NO_LIMITS, chunk_size=1):
+    #: the runner may pass ``max_chunk`` (adaptive chunk sizes)
+    adapts_chunks = True
+    #: adaptive chunks aim at this many seconds of work per task (Dask's 2-3 ms per task is then < 1 %)
+    task_seconds = 0.5
+
+    def _chunk(self, size: int, cap: int, per_unit: float | None, left: int, slots: int) -> int:
+        """Units of the next task: ``size`` until a chunk was timed, then ``task_seconds`` of work, at most
+        ``cap`` and a quarter of the remaining units per slot (the tail stays balanced)."""
+        if per_unit is None or cap <= size:
+            return size
+        want = int(self.task_seconds / max(per_unit, 1e-6))
+        return max(1, min(cap, want, -(-left // (4 * slots))))
+
+    def imap_unordered(self, fn, payloads, limits=_NO_LIMITS, chunk_size=1, max_chunk=None):
+        """Yield ``(index, Outcome)`` per payload, submitted as tasks of several units.
+
+        Fixed ``chunk_size`` units per task, or with ``max_chunk`` adaptive sizes: ``chunk_size``
+        until the first tasks report their time per unit, then about :attr:`task_seconds` of
+        work per task (at most ``max_chunk``); about two tasks per worker slot are in flight.  A
+        task whose worker was lost (Dask's ``KilledWorker``) is resubmitted one unit per task, so
+        only a unit that loses workers by itself is stored ``lost``.
+        """
         from distributed.scheduler import KilledWorker
 
-        from .dask_worker import run_units
+        from .dask_worker import run_chunk
 
         tag = uuid.uuid4().hex[:12]
         size = max(1, int(chunk_size))
-        starts = list(range(0, len(payloads), size))
-        futures = {}
-        try:
-            for k, s in enumerate(starts):
-                f = self._client.submit(run_units, fn, list(payloads[s:s + size]), limits, pure=False,
-                                        key=f"cases-{tag}-{k}")
-                futures[f.key] = (f, s, min(size, len(payloads) - s))
-        except Exception as e:  # noqa: BLE001
-            raise InfrastructureError(f"cannot submit to the Dask scheduler: {type(e).__name__}: {e}") from None
-        remaining = {f for f, _, _ in futures.values()}
+        cap = size if max_chunk is None else max(size, int(max_chunk))
+        nxt, singles = 0, []  # next payload to submit; units of lost chunks, to resubmit one by one
+        futures: dict[str, tuple[Any, list[int]]] = {}
+        seconds = units = 0.0
+        count = 0
         lost_since = None
+        slots, slots_at = self.slots, time.monotonic()  # asked again every 5 s (workers come and go)
+
+        def submit(idx: list[int]) -> None:
+            nonlocal count
+            try:
+                f = self._client.submit(run_chunk, fn, [payloads[i] for i in idx], limits, pure=False,
+                                        key=f"cases-{tag}-{count}")
+            except Exception as e:  # noqa: BLE001
+                raise InfrastructureError(f"cannot submit to the Dask scheduler: {type(e).__name__}: {e}") from None
+            count += 1
+            futures[f.key] = (f, idx)
+
         try:
-            while remaining:
-                done, lost_since = self._wait(remaining, lost_since)
+            while True:
+                if time.monotonic() - slots_at > 5.0:
+                    slots, slots_at = self.slots, time.monotonic()
+                while len(futures) < 2 * slots and (singles or nxt < len(payloads)):
+                    if singles:
+                        submit([singles.pop(0)])
+                        continue
+                    k = self._chunk(size, cap, seconds / units if units else None, len(payloads) - nxt, slots)
+                    submit(list(range(nxt, min(len(payloads), nxt + k))))
+                    nxt += k
+                if not futures:
+                    return
+                done, lost_since = self._wait({f for f, _ in futures.values()}, lost_since)
                 for f in done:
-                    remaining.discard(f)
-                    _, start, n = futures[f.key]
+                    _, idx = futures.pop(f.key)
                     try:
-                        outs = f.result()
+                        outs, took = f.result()
                     except KilledWorker:
-                        outs = [Outcome([], self._lost()) for _ in range(n)]
+                        f.release()
+                        if len(idx) > 1:
+                            singles.extend(idx)  # blame the right unit: one per task
+                            continue
+                        outs, took = [Outcome([], self._lost())], 0.0
                     except Exception as e:  # noqa: BLE001 - the sandbox catches every case: systemic
                         raise InfrastructureError(
                             f"the Dask workers cannot run the cases: {type(e).__name__}: {str(e)[:300]} (is the "
                             f"same workbench installed in the workers' environment?)") from None
                     f.release()
-                    for j, out in enumerate(outs):
-                        yield start + j, out
+                    if took:
+                        seconds, units = seconds + took, units + len(idx)
+                    for i, out in zip(idx, outs):
+                        yield i, out
         finally:
-            for f, _, _ in futures.values():
+            for f, _ in futures.values():
                 try:
                     f.cancel()
                 except Exception:  # noqa: BLE001

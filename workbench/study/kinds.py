@@ -29,7 +29,7 @@ from typing import Any, Callable, Iterable, Protocol, Sequence
 
 from .. import registry
 from .build import parameters_as_run
-from .evaluate import evaluate_rows
+from .evaluate import _robot_memo, evaluate_rows
 from .expand import Case, count_cases, expand
 from .outcomes import CaseLimits
 from .spec import Study, load_study
@@ -117,8 +117,12 @@ class SweepKind:
         return tuple(spec.models)
 
     def recorded_params(self, spec: Study, case: Case) -> dict[str, Any]:
-        """:func:`~workbench.study.build.parameters_as_run` (derived gravity, scenario load fields)."""
-        return parameters_as_run(case.params)
+        """:func:`~workbench.study.build.parameters_as_run` (derived gravity, scenario load fields).
+
+        Robots come from this process's memo (:func:`~workbench.study.evaluate._robot_memo`): a sweep
+        over loads builds its robot once, not once per case.
+        """
+        return parameters_as_run(case.params, _robot_memo())
 
     def run_options(self, spec: Study, *, model_lookup: Callable | None = None,
                     arc_actuation: Callable | None = None) -> tuple[Callable | None, Callable | None]:

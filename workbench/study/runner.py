@@ -120,9 +120,13 @@ def _cached(units: list[Unit], cache: Any, session: RunSession, separable: bool,
     return out
 
 
+#: largest adaptive chunk (units per task) when the run does not fix ``batch_size``
+MAX_ADAPTIVE_CHUNK = 256
+
+
 def _execute(kind: StudyKind, spec: Any, session: RunSession, executor: Executor, chunk_size: int,
              options: Any, recorded: dict[str, dict[str, Any]], limits: CaseLimits, cache: Any = None,
-             retry_failed: bool = False) -> int:
+             retry_failed: bool = False, adaptive: bool = False) -> int:
     """Submit the session's units (those the cache does not hold); store each outcome; rerun the models left after a crash.
 
     Returns the number of cases submitted (the others came whole from the cache).
@@ -134,7 +138,8 @@ def _execute(kind: StudyKind, spec: Any, session: RunSession, executor: Executor
     while pending:
         payloads = [kind.payload(spec, u.case, u.models, options) for u in pending]
         requeue: list[Unit] = []
-        for i, out in executor.imap_unordered(kind.task, payloads, limits, chunk_size):
+        extra = {"max_chunk": MAX_ADAPTIVE_CHUNK} if adaptive and getattr(executor, "adapts_chunks", False) else {}
+        for i, out in executor.imap_unordered(kind.task, payloads, limits, chunk_size, **extra):
             unit = pending[i]
             rows, more = _complete(unit, out, recorded[unit.case.case_id], separable)
             if more is not None:
@@ -188,9 +193,12 @@ def run_cases(
         A bar (True), nothing (False), or (None) a bar on a terminal and log lines otherwise.
     flush_rows, flush_seconds : int, float
         When buffered rows are written as a part (also on a timer); ``flush_rows`` defaults to
-        ``kind.flush_rows``.  An executor without isolation writes after every case.
+        ``kind.flush_rows``.  An executor without isolation journals every case at once
+        (the next run of the folder stores what a crash left there).
     batch_size : int, optional
-        Units per Dask task; default ``kind.batch_size(n, executor.slots)``.
+        Units per task (per message to the isolated child); default ``kind.batch_size(n,
+        executor.slots)``, and an executor that adapts (Dask) then sizes later tasks by the
+        measured time per unit (at most :data:`MAX_ADAPTIVE_CHUNK`).
     limits : CaseLimits, optional
         Per-case limits; default ``kind.limits(spec)`` (``[solver] max_case_seconds`` /
         ``max_case_memory``).
@@ -239,7 +247,7 @@ def run_cases(
             chunk = batch_size or kind.batch_size(len(session.todo), getattr(executor, "slots", 1))
             try:
                 n_computed = _execute(kind, spec, session, executor, chunk, run_opts, recorded, limits, cache,
-                                      retry_failed)
+                                      retry_failed, adaptive=batch_size is None)
             finally:
                 if cache is not None:
                     session.run_rec["cache"] = {"folder": str(cache.folder), "hits": cache.hits,

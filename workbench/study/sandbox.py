@@ -2,10 +2,12 @@
 
 The isolation of every process executor (the default serial one and each Dask worker):
 a :class:`Sandbox` keeps one child Python process (``subprocess``, so it also works inside
-daemonic Dask workers) and sends it one unit at a time: ``(fn, payload)`` pickled with
-cloudpickle (functions of a ``__main__`` script travel by value).  The child iterates
-``fn(payload)`` and streams every item (a result row) back as soon as it exists, so a unit that
-crashes after its first models keeps their rows.  The parent enforces the time limit
+daemonic Dask workers) and sends it a chunk of units in one message: ``(fn, payloads)`` pickled
+with cloudpickle (functions of a ``__main__`` script travel by value; ``fn`` once per chunk).
+The child runs the units one after another, streams every item (a result row) back as soon as
+it exists, and ends each unit with a message of its own, so a unit that crashes after its first
+models keeps their rows and the per-unit cost is two small messages, not a round trip
+(:meth:`Sandbox.run_many`; :meth:`Sandbox.run` is a chunk of one).  The parent enforces the time limit
 (:class:`~workbench.study.outcomes.CaseLimits`): after ``seconds`` it kills the child (SIGKILL:
 a C++ solver loop cannot be interrupted more gently) and reports a ``timeout``; the child caps
 its own address space (``RLIMIT_AS``) so a runaway case fails with ``MemoryError`` (``memory``)
@@ -13,8 +15,10 @@ instead of taking the machine down.  A child that dies is restarted for the next
 unit gets a :class:`~workbench.study.outcomes.Crash` from its exit status
 (:func:`~workbench.study.outcomes.crash_from_exit`).
 
-The time limit counts from the moment the unit is sent to a child that is up (a new child's
-start-up is not charged to the case).  The child ignores SIGINT and SIGTERM (the parent decides when to stop it, so an interrupted run
+The time limit counts from the moment the unit is sent to a child that is up, or, inside a
+chunk, from the moment the previous unit's end is read (a new child's start-up is not charged to
+the case); a unit that kills the child or times out is blamed alone and the rest of its chunk
+goes to a fresh child.  The child ignores SIGINT and SIGTERM (the parent decides when to stop it, so an interrupted run
 records no spurious crash) and exits by itself within a second when its parent disappears
 (``kill -9`` of the run).
 
@@ -31,7 +35,7 @@ import sys
 import threading
 import time
 from multiprocessing.connection import Connection
-from typing import Any, Callable
+from typing import Any, Callable, Iterator, Sequence
 
 from .outcomes import Crash, Outcome, crash_from_exit
 
@@ -135,12 +139,48 @@ class Sandbox:
         else:
             self.close()
 
-    # -- running a unit ----------------------------------------------------------------------
+    # -- running units -----------------------------------------------------------------------
     def run(self, fn: Callable[[Any], Any], payload: Any, seconds: float | None = None) -> Outcome:
         """Run ``fn(payload)`` in the child; the rows it yielded and the crash that stopped it, if any."""
+        return [out for _, out in self.run_many(fn, [payload], seconds)][0]
+
+    def run_many(self, fn: Callable[[Any], Any], payloads: Sequence[Any],
+                 seconds: float | None = None) -> Iterator[tuple[int, Outcome]]:
+        """Run ``fn(p)`` for every ``p`` of ``payloads`` in the child, one after another; yield ``(index, Outcome)``.
+
+        One message carries the whole chunk (``fn`` is pickled once), the child streams every
+        row back and ends each unit with its own message, so the per-unit cost is one row
+        message and one end message.  ``seconds`` limits each unit: its clock starts when the
+        end of the unit before it has been read (the first: when the child is up).  A unit that
+        kills the child or runs out of time is blamed alone; the units after it are sent to a
+        fresh child.  Outcomes come in payload order, one per payload.  Leaving the iteration
+        early kills the child (it would still be running the chunk).
+        """
         import cloudpickle
 
-        data = cloudpickle.dumps((fn, payload))
+        todo = list(range(len(payloads)))
+        while todo:
+            data = cloudpickle.dumps((fn, [payloads[i] for i in todo]))
+            crash = self._send(data)
+            if crash is not None:
+                for i in todo:
+                    yield i, Outcome([], crash)
+                return
+            done = 0
+            finished = False
+            try:
+                for out in self._collect_many(len(todo), seconds):
+                    i = todo[done]
+                    done += 1
+                    yield i, out
+                finished = True
+            finally:
+                if not finished and self._proc is not None and done < len(todo):
+                    self._discard()  # the caller stopped listening: the child is mid-chunk
+            todo = todo[done:]
+
+    def _send(self, data: bytes) -> Crash | None:
+        """Send one chunk to a live child (started or restarted as needed); why not, if it cannot be."""
         for attempt in (0, 1):
             if self._proc is None or self._proc.poll() is not None:
                 if self._proc is not None:
@@ -148,36 +188,49 @@ class Sandbox:
                 try:
                     self._start()
                 except _StartFailed as e:
-                    return Outcome([], Crash("crash", str(e)))
+                    return Crash("crash", str(e))
             try:
                 self._tx.send_bytes(data)
-                break
+                return None
             except (BrokenPipeError, OSError):  # the idle child had died: start another once
                 self._discard()
-                if attempt:
-                    return Outcome([], Crash("crash", "the case's worker process could not be started"))
-        return self._collect(seconds)
+        return Crash("crash", "the case's worker process could not be started")
 
-    def _collect(self, seconds: float | None) -> Outcome:
+    def _collect_many(self, n: int, seconds: float | None) -> Iterator[Outcome]:
+        """The outcomes of the ``n`` units of the chunk just sent; stops after a unit that ended the child."""
+        for k in range(n):
+            out, state = self._collect(seconds)
+            if state == "abort":  # the child could not read the chunk: every unit of it fails alike
+                for _ in range(k, n):
+                    yield out
+                return
+            yield out
+            if state == "dead":
+                return
+
+    def _collect(self, seconds: float | None) -> tuple[Outcome, str]:
+        """One unit's outcome and the child's state: ``"ok"`` (serves the rest of the chunk), ``"dead"``, ``"abort"``."""
         rows: list[Any] = []
         deadline = None if seconds is None else time.monotonic() + seconds
+        rx = self._rx
         while True:
             wait = 1.0 if deadline is None else max(0.0, min(1.0, deadline - time.monotonic()))
-            if self._rx.poll(wait):
+            if rx.poll(wait):
                 try:
-                    msg = pickle.loads(self._rx.recv_bytes())
+                    msg = pickle.loads(rx.recv_bytes())
                 except (EOFError, OSError):
-                    return Outcome(rows, crash_from_exit(self._discard(kill=False)))
+                    return Outcome(rows, crash_from_exit(self._discard(kill=False))), "dead"
                 if msg[0] == "row":
                     rows.append(msg[1])
                     continue
                 if msg[0] == "done":
-                    return Outcome(rows)
-                return Outcome(rows, Crash(msg[1], msg[2]))  # ("crash", kind, reason) from the child
+                    return Outcome(rows), "ok"
+                # ("crash", kind, reason): the unit failed, the child goes on; ("abort", ...): the chunk did
+                return Outcome(rows, Crash(msg[1], msg[2])), "ok" if msg[0] == "crash" else "abort"
             if deadline is not None and time.monotonic() >= deadline:
                 self._discard()
                 return Outcome(rows, Crash("timeout", f"stopped after max_case_seconds = {seconds:g} s "
-                                                      f"(the case was still running)"))
+                                                      f"(the case was still running)")), "dead"
 
 
 # ------------------------------------------------------------------------------------------
@@ -200,8 +253,24 @@ def _cap_memory(memory: int) -> None:
     resource.setrlimit(resource.RLIMIT_AS, (cap, hard))
 
 
+def _unit_in_child(tx: Connection, fn: Callable[[Any], Any], payload: Any, memory: int) -> None:
+    """Run one unit in the child: stream its rows, end with ``("done",)`` or ``("crash", kind, reason)``."""
+    try:
+        for item in fn(payload):
+            tx.send_bytes(pickle.dumps(("row", item), protocol=pickle.HIGHEST_PROTOCOL))
+        msg = ("done",)
+    except MemoryError as e:
+        cap = f"{memory / 2**30:.3g} GiB" if memory else "none"
+        msg = ("crash", "memory", f"MemoryError: the case exceeded the memory cap (max_case_memory: {cap}) {e}"
+               .rstrip())
+    except BaseException as e:  # noqa: BLE001 - fn should not raise; report it, keep serving
+        msg = ("crash", "crash", f"task raised {type(e).__name__}: {str(e)[:500]}")
+    tx.send_bytes(pickle.dumps(msg))
+
+
 def child_main(rfd: int, wfd: int, memory: int, parent: int) -> None:
-    """The child's loop: receive ``(fn, payload)``, stream ``("row", item)``, end with ``("done",)`` or ``("crash", kind, reason)``."""
+    """The child's loop: receive ``(fn, payloads)``; per payload stream ``("row", item)`` and end with ``("done",)``
+    or ``("crash", kind, reason)``."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_IGN)
     threading.Thread(target=_watch_parent, args=(parent,), daemon=True).start()
@@ -214,14 +283,9 @@ def child_main(rfd: int, wfd: int, memory: int, parent: int) -> None:
         except (EOFError, OSError):
             return
         try:
-            fn, payload = pickle.loads(data)
-            for item in fn(payload):
-                tx.send_bytes(pickle.dumps(("row", item)))
-            msg = ("done",)
-        except MemoryError as e:
-            cap = f"{memory / 2**30:.3g} GiB" if memory else "none"
-            msg = ("crash", "memory", f"MemoryError: the case exceeded the memory cap (max_case_memory: {cap}) {e}"
-                   .rstrip())
-        except BaseException as e:  # noqa: BLE001 - fn should not raise; report it, keep serving
-            msg = ("crash", "crash", f"task raised {type(e).__name__}: {str(e)[:500]}")
-        tx.send_bytes(pickle.dumps(msg))
+            fn, payloads = pickle.loads(data)
+        except BaseException as e:  # noqa: BLE001 - e.g. a module the child cannot import: the whole chunk fails
+            tx.send_bytes(pickle.dumps(("abort", "crash", f"task raised {type(e).__name__}: {str(e)[:500]}")))
+            continue
+        for payload in payloads:
+            _unit_in_child(tx, fn, payload, memory)

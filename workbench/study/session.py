@@ -203,7 +203,9 @@ class RunSession:
     lock : FolderLock
     progress : Progress
     flush_each : bool
-        Write every unit's rows at once (the in-process executor: a crash kills the run).
+        Make every unit's rows survive a crash of this process at once (the in-process executor):
+        they are journaled as they come (:class:`~workbench.study.store.ResultStore` ``journal``)
+        and the next run of the folder stores what a crash left in the journal.
     n_ok, n_failed : int
         Cases of this run whose rows are all ``ok`` / not all ``ok``.
     """
@@ -283,8 +285,9 @@ class RunSession:
         })
         changes = presentation_changes(manifest.get("study") or {}, resolved) if manifest["runs"] else {}
         try:
-            store = ResultStore(folder, param_rows, flush_rows, flush_seconds)
+            store = ResultStore(folder, param_rows, flush_rows, flush_seconds, journal=flush_each)
             store.cleanup_temporaries()
+            store.recover_journal()  # rows of an in-process run that died between its flushes
             stored = store.stored_rows()
         except SchemaMismatch as e:
             raise StudyError([f"{folder}: --resume refused: {e} (the folder was written by another workbench "
@@ -347,9 +350,7 @@ class RunSession:
         for r in rows:
             if not r.get("failure"):
                 r["failure"] = "" if r.get("status") == "ok" else "model"
-        self.store.add(rows)
-        if self.flush_each:
-            self.store.flush()
+        self.store.add(rows)  # flush_each: journaled at once (ResultStore(journal=True)), a part per batch
         if any(r.get("status") != "ok" for r in rows):
             self._failed_ids.add(case_id)
         if not complete:
@@ -385,9 +386,9 @@ class RunSession:
 
 def _discard_results(folder: Path) -> None:
     """``--force``: remove the stored parts, schema and manifest (under the lock)."""
-    from .store import SCHEMA_FILE
+    from .store import JOURNAL, SCHEMA_FILE
 
     for p in folder.glob("part-*.parquet"):
         p.unlink()
-    for name in (SCHEMA_FILE, MANIFEST):
+    for name in (SCHEMA_FILE, MANIFEST, JOURNAL):
         (folder / name).unlink(missing_ok=True)

@@ -28,10 +28,13 @@ from __future__ import annotations
 import contextlib
 import json
 import os
+import pickle
 import signal
+import struct
 import threading
 import time
 import uuid
+import zlib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Iterable, Mapping
@@ -49,6 +52,9 @@ __all__ = ["CorruptPart", "ResultStore", "SchemaMismatch", "StoredRow", "atomic_
 
 MANIFEST = "_manifest.json"
 SCHEMA_FILE = "part-0000000000000000000-schema.parquet"
+#: rows added but not yet in a part, one record per unit (``journal=True``; a dot-name: readers skip it)
+JOURNAL = ".rows-journal.bin"
+_RECORD = struct.Struct("<II")  # payload length, crc32
 _SHAPES_KEY = b"workbench.shapes"
 
 _F64, _LIST = pa.float64(), pa.list_(pa.float64())
@@ -180,12 +186,21 @@ class ResultStore:
         Buffered rows are written as one part when either limit is reached (and on
         :meth:`flush` / :meth:`close`; a timer may call :meth:`flush_if_due` from another thread).
         The rows of one unit (a case's models) are never split across parts.
+    journal : bool
+        Also append every :meth:`add` to :data:`JOURNAL` (one ``write`` of a length- and
+        CRC-framed pickle, no fsync), emptied once its rows are in a part.  The kernel keeps
+        what was written when the process dies (SIGKILL, a segfault of the in-process executor),
+        so no finished unit is lost, at ~0.03 ms per unit instead of a part (~4 ms) per unit; the
+        next run of the folder stores them (:meth:`recover_journal`).  An OS crash can lose
+        the unsynced tail, as it loses the buffer.
     """
 
     def __init__(self, folder: str | Path, param_rows: Iterable[Mapping[str, Any]] = (),
-                 flush_rows: int = 256, flush_seconds: float = 2.0) -> None:
+                 flush_rows: int = 256, flush_seconds: float = 2.0, journal: bool = False) -> None:
         self.folder = Path(folder)
         self.folder.mkdir(parents=True, exist_ok=True)
+        self._journaling = bool(journal)
+        self._journal: int | None = None  # opened at the first add (after recover_journal)
         self.flush_rows, self.flush_seconds = int(flush_rows), float(flush_seconds)
         self._buffer: list[dict[str, Any]] = []
         self._lock = threading.RLock()
@@ -275,9 +290,51 @@ class ResultStore:
         atomic_write_bytes(self.folder / SCHEMA_FILE, lambda f: pq.write_table(schema.empty_table(), f))
         self._schema = schema
 
+    def recover_journal(self) -> int:
+        """Store the rows a dead writer left in :data:`JOURNAL` (those not stored already); how many.
+
+        Reads whole records up to the first torn or corrupt one (a writer killed mid-record),
+        writes them as a part and removes the journal.  Call only while holding the folder's
+        lock, before this store journals itself.
+        """
+        path = self.folder / JOURNAL
+        if self._journal is not None or not path.exists():
+            return 0
+        rows = []
+        data = path.read_bytes()
+        at = 0
+        while at + _RECORD.size <= len(data):
+            n, crc = _RECORD.unpack_from(data, at)
+            body = data[at + _RECORD.size:at + _RECORD.size + n]
+            if len(body) < n or zlib.crc32(body) != crc:
+                break
+            rows.extend(pickle.loads(body))
+            at += _RECORD.size + n
+        stored = {(r.case_id, r.model) for r in self.stored_rows()} if rows else set()
+        rows = [r for r in rows if (r.get("case_id"), r.get("model")) not in stored]
+        if rows:
+            with self._lock:
+                self._buffer.extend(rows)
+                self.flush()
+        path.unlink()
+        _fsync_dir(self.folder)
+        return len(rows)
+
+    def _append_journal(self, rows: list[dict[str, Any]]) -> None:
+        body = pickle.dumps(rows, protocol=pickle.HIGHEST_PROTOCOL)
+        rec = memoryview(_RECORD.pack(len(body), zlib.crc32(body)) + body)
+        # one write of a few kB to a regular file; a torn tail (killed mid-write) is skipped by
+        # recovery, and an interrupt handled here ends in a flush that empties the journal anyway
+        while rec:
+            rec = rec[os.write(self._journal, rec):]
+
     def add(self, rows: list[dict[str, Any]]) -> None:
         """Buffer the rows of one unit (a case's models); flushes when a limit is reached."""
         with self._lock:
+            if self._journaling:
+                if self._journal is None:
+                    self._journal = os.open(self.folder / JOURNAL, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o644)
+                self._append_journal(rows)
             self._buffer.extend(rows)
             due = len(self._buffer) >= self.flush_rows or time.monotonic() - self._last_flush >= self.flush_seconds
         if due:
@@ -315,6 +372,9 @@ class ResultStore:
             with deferred_interrupts():  # the part on disk and the buffer emptied: both or neither
                 atomic_write_bytes(path, lambda f: pq.write_table(table, f))
                 del self._buffer[:len(rows)]
+                if self._journal is not None and not self._buffer:
+                    # killed before this: the journal's rows are stored already (recovery skips them)
+                    os.ftruncate(self._journal, 0)
             return path
 
     def remove_rows(self, keys: Iterable[tuple[str, str]]) -> int:
@@ -345,6 +405,11 @@ class ResultStore:
 
     def close(self) -> None:
         self.flush()
+        if self._journal is not None:
+            os.close(self._journal)
+            self._journal = None
+            if not self._buffer:
+                (self.folder / JOURNAL).unlink(missing_ok=True)
 
 
 def read_columns(folder: str | Path, columns: list[str]):
