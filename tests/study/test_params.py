@@ -31,3 +31,17 @@ def test_case_id_depends_only_on_values():
     assert canonical_json(a) == canonical_json(b)
     assert case_id_for(a) == case_id_for(b)
     assert case_id_for(a) != case_id_for({"robot": {"x": 1.0, "y": 3}, "load": {}})
+
+
+def test_flatten_params_memo_keys_shared_sections_by_identity():
+    from workbench.study.params import flatten_params
+
+    robot = {"preset": "steel_rod", "disks": [0.1, 0.2]}
+    memo: dict = {}
+    a = flatten_params({"robot": robot, "load": {"tensions": [1.0, 0.0]}}, memo)
+    b = flatten_params({"robot": robot, "load": {"tensions": [2.0, 0.0]}}, memo)
+    assert a == flatten_params({"robot": robot, "load": {"tensions": [1.0, 0.0]}})
+    assert b["p.load.tensions"] == "[2.0,0.0]" and b["p.robot.disks"] == "[0.1,0.2]"
+    assert len(memo) == 1  # only the shared robot section is memoised
+    other = {"preset": "steel_rod", "disks": [0.3]}  # another dict: converted, not taken from the memo
+    assert flatten_params({"robot": other}, memo)["p.robot.disks"] == "[0.3]"

@@ -26,12 +26,30 @@ def case_id_for(params: dict[str, Any]) -> str:
     return hashlib.sha256(canonical_json(params).encode()).hexdigest()[:16]
 
 
-def flatten_params(params: dict[str, dict[str, Any]]) -> dict[str, Any]:
-    """``{"robot": {"length": 0.8}}`` -> ``{"p.robot.length": 0.8}``; lists become JSON strings."""
+def _flat_section(section: str, d: Mapping[str, Any]) -> dict[str, Any]:
+    return {f"p.{section}.{k}": canonical_json(v) if isinstance(v, (list, tuple, dict)) else v for k, v in d.items()}
+
+
+def flatten_params(params: dict[str, dict[str, Any]], memo: dict[int, tuple] | None = None,
+                   shared: tuple[str, ...] = ("robot",)) -> dict[str, Any]:
+    """``{"robot": {"length": 0.8}}`` -> ``{"p.robot.length": 0.8}``; lists become JSON strings.
+
+    ``memo`` (optional, the caller's dict): the flat cells of the ``shared`` sections' dicts seen
+    before, by identity (the dict is kept in the memo, so its id cannot be reused).  For section
+    dicts shared between cases and never changed, e.g. a memoised robot's parameters
+    (:func:`~workbench.study.build.resolve_case`), which then are not converted to JSON once per case.
+    """
     out: dict[str, Any] = {}
     for section, d in params.items():
-        for k, v in d.items():
-            out[f"p.{section}.{k}"] = canonical_json(v) if isinstance(v, (list, tuple, dict)) else v
+        if memo is None or section not in shared:
+            out.update(_flat_section(section, d))
+            continue
+        hit = memo.get(id(d))
+        if hit is None or hit[0] is not d or hit[1] != section:
+            if len(memo) >= 64:
+                memo.clear()
+            hit = memo[id(d)] = (d, section, _flat_section(section, d))
+        out.update(hit[2])
     return out
 
 
