@@ -45,3 +45,15 @@ def test_flatten_params_memo_keys_shared_sections_by_identity():
     assert len(memo) == 1  # only the shared robot section is memoised
     other = {"preset": "steel_rod", "disks": [0.3]}  # another dict: converted, not taken from the memo
     assert flatten_params({"robot": other}, memo)["p.robot.disks"] == "[0.3]"
+
+
+def test_case_id_from_sections_is_case_id_for():
+    from workbench.study.params import case_id_from_sections
+
+    params = {"robot": {"preset": "steel_rod", "offsets": [0.01, 0.02], "name": "é"},
+              "load": {"tensions": [1.5, 0.0], "mode": "tension"}, "derived": {}}
+    given = {sec: canonical_json(d) for sec, d in params.items() if sec != "load"}
+    assert case_id_from_sections(params, given) == case_id_for(params)
+    assert case_id_from_sections(params, {}) == case_id_for(params)
+    wrong = {"robot": canonical_json({"preset": "other"})}  # the caller's JSON is what is hashed
+    assert case_id_from_sections(params, wrong) != case_id_for(params)
