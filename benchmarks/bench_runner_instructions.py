@@ -5,16 +5,19 @@
 Runs ``run_study`` with the isolated executor on 0 ms cases (the busy-wait model of
 ``bench_runner.py`` with no spin) under ``valgrind --tool=callgrind --trace-children=yes`` for two
 case counts and prints the instructions per extra case of the runner process and of its sandbox
-child, ``(Ir(N2) - Ir(N1)) / (N2 - N1)``.  Instruction counts do not depend on the machine's load
-(the wall and CPU clocks of ``bench_runner.py`` do, by +-30 % on this shared machine), so two
-trees (``--root``, e.g. a ``git worktree`` of another commit) can be compared exactly; the runner
-process's count includes parsing and expanding the study (which ``bench_runner.py`` does not time).
+child, ``(Ir(N2) - Ir(N1)) / (N2 - N1)``.  Instruction counts depend far less on the machine's load
+than the wall and CPU clocks of ``bench_runner.py`` (+-30 % on this shared machine), so two trees
+(``--root``, e.g. a ``git worktree`` of another commit) can be compared in one run; not exactly:
+the store's flush timer (every 2 s) and the 1 s polls run more often when the run is slow
+(repeated runs of one tree differed by up to 0.3 M per case in the child).  ``PYTHONHASHSEED=0``.
+The runner process's count includes parsing and expanding the study (which ``bench_runner.py`` does not time).
 Takes about a minute per tree; needs ``valgrind`` on the PATH.
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import re
 import subprocess
 import sys
@@ -43,7 +46,8 @@ def count(root: Path, n: int) -> tuple[int, int]:
         with open(log, "w") as err:
             subprocess.run(["valgrind", "--tool=callgrind", "--trace-children=yes",
                             f"--callgrind-out-file={d}/cg.%p", sys.executable, str(script), str(root), str(n)],
-                           check=True, stdout=subprocess.DEVNULL, stderr=err)
+                           check=True, stdout=subprocess.DEVNULL, stderr=err,
+                           env={**os.environ, "PYTHONHASHSEED": "0"})
         text = log.read_text()
     counts = {int(p): int(c.replace(",", "")) for p, c in re.findall(r"==(\d+)== Collected : ([\d,]+)", text)}
     first = min(counts)  # the runner process starts first
