@@ -31,3 +31,29 @@ def test_case_id_depends_only_on_values():
     assert canonical_json(a) == canonical_json(b)
     assert case_id_for(a) == case_id_for(b)
     assert case_id_for(a) != case_id_for({"robot": {"x": 1.0, "y": 3}, "load": {}})
+
+
+def test_flatten_params_memo_keys_shared_sections_by_identity():
+    from workbench.study.params import flatten_params
+
+    robot = {"preset": "steel_rod", "disks": [0.1, 0.2]}
+    memo: dict = {}
+    a = flatten_params({"robot": robot, "load": {"tensions": [1.0, 0.0]}}, memo)
+    b = flatten_params({"robot": robot, "load": {"tensions": [2.0, 0.0]}}, memo)
+    assert a == flatten_params({"robot": robot, "load": {"tensions": [1.0, 0.0]}})
+    assert b["p.load.tensions"] == "[2.0,0.0]" and b["p.robot.disks"] == "[0.1,0.2]"
+    assert len(memo) == 1  # only the shared robot section is memoised
+    other = {"preset": "steel_rod", "disks": [0.3]}  # another dict: converted, not taken from the memo
+    assert flatten_params({"robot": other}, memo)["p.robot.disks"] == "[0.3]"
+
+
+def test_case_id_from_sections_is_case_id_for():
+    from workbench.study.params import case_id_from_sections
+
+    params = {"robot": {"preset": "steel_rod", "offsets": [0.01, 0.02], "name": "é"},
+              "load": {"tensions": [1.5, 0.0], "mode": "tension"}, "derived": {}}
+    given = {sec: canonical_json(d) for sec, d in params.items() if sec != "load"}
+    assert case_id_from_sections(params, given) == case_id_for(params)
+    assert case_id_from_sections(params, {}) == case_id_for(params)
+    wrong = {"robot": canonical_json({"preset": "other"})}  # the caller's JSON is what is hashed
+    assert case_id_from_sections(params, wrong) != case_id_for(params)

@@ -108,6 +108,7 @@ class _Memo(dict):
 
 
 _ROBOTS = _Memo()
+_FLAT_ROBOTS: dict[int, tuple] = {}  # flat ``p.robot.*`` cells of the memoised robots' parameters (flatten_params)
 
 
 def _robot_memo() -> dict[str, Any]:
@@ -132,7 +133,7 @@ def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str
     except Exception as e:  # noqa: BLE001 - recorded as the case's failure reason
         yield from failed_rows(case_id, params, models, f"building the case failed: {_reason(e)}")
         return
-    flat = flatten_params(ran)
+    flat = flatten_params(ran, _FLAT_ROBOTS)  # a memoised robot's cells are converted once
     cc_reference = CCReference(model_lookup, robot, load, options)
     for name in models:
         t0 = time.perf_counter()

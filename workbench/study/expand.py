@@ -17,7 +17,7 @@ from typing import Any, Protocol
 
 import numpy as np
 
-from .params import case_id_for, flatten_params
+from .params import canonical_json, case_id_for, case_id_from_sections, flatten_params
 from .schema import SAMPLED_BLOCKS
 
 __all__ = ["Case", "expand", "count_cases", "case_id_for", "flatten_params", "sweep_blocks"]
@@ -126,6 +126,7 @@ def count_cases(study: SweepSpec) -> int:
 def expand(study: SweepSpec) -> list[Case]:
     """All cases of ``study``, in a deterministic order (blocks' Cartesian product)."""
     cases = []
+    base_json = {sec: canonical_json(d) for sec, d in study.base.items()}  # sections no sweep touches: once
     for i, combo in enumerate(itertools.product(*sweep_blocks(study))):
         swept: dict[str, Any] = {}
         for part in combo:
@@ -135,5 +136,7 @@ def expand(study: SweepSpec) -> list[Case]:
         for path, value in swept.items():
             section, _, key = path.partition(".")
             params[section][key] = value
-        cases.append(Case(case_id=case_id_for(params), index=i, params=params, swept=swept))
+        touched = {path.partition(".")[0] for path in swept}
+        fixed = {sec: j for sec, j in base_json.items() if sec not in touched}
+        cases.append(Case(case_id=case_id_from_sections(params, fixed), index=i, params=params, swept=swept))
     return cases

@@ -13,7 +13,8 @@ import json
 import math
 from typing import Any, Mapping
 
-__all__ = ["canonical_json", "case_id_for", "flatten_params", "unflatten_params", "section_params"]
+__all__ = ["canonical_json", "case_id_for", "case_id_from_sections", "flatten_params", "unflatten_params",
+           "section_params"]
 
 
 def canonical_json(obj: Any) -> str:
@@ -26,12 +27,39 @@ def case_id_for(params: dict[str, Any]) -> str:
     return hashlib.sha256(canonical_json(params).encode()).hexdigest()[:16]
 
 
-def flatten_params(params: dict[str, dict[str, Any]]) -> dict[str, Any]:
-    """``{"robot": {"length": 0.8}}`` -> ``{"p.robot.length": 0.8}``; lists become JSON strings."""
+def _flat_section(section: str, d: Mapping[str, Any]) -> dict[str, Any]:
+    return {f"p.{section}.{k}": canonical_json(v) if isinstance(v, (list, tuple, dict)) else v for k, v in d.items()}
+
+
+def case_id_from_sections(params: Mapping[str, Any], section_json: Mapping[str, str]) -> str:
+    """:func:`case_id_for` of ``params`` (a dict of sections), taking ``section_json[sec]`` as the
+    canonical JSON of section ``sec`` where given (the caller vouches that it is; e.g. sections
+    that every case of a sweep shares, converted once).  Byte-identical to ``case_id_for(params)``."""
+    parts = [f"{json.dumps(sec)}:{section_json[sec] if sec in section_json else canonical_json(params[sec])}"
+             for sec in sorted(params)]
+    return hashlib.sha256(("{" + ",".join(parts) + "}").encode()).hexdigest()[:16]
+
+
+def flatten_params(params: dict[str, dict[str, Any]], memo: dict[int, tuple] | None = None,
+                   shared: tuple[str, ...] = ("robot",)) -> dict[str, Any]:
+    """``{"robot": {"length": 0.8}}`` -> ``{"p.robot.length": 0.8}``; lists become JSON strings.
+
+    ``memo`` (optional, the caller's dict): the flat cells of the ``shared`` sections' dicts seen
+    before, by identity (the dict is kept in the memo, so its id cannot be reused).  For section
+    dicts shared between cases and never changed, e.g. a memoised robot's parameters
+    (:func:`~workbench.study.build.resolve_case`), which then are not converted to JSON once per case.
+    """
     out: dict[str, Any] = {}
     for section, d in params.items():
-        for k, v in d.items():
-            out[f"p.{section}.{k}"] = canonical_json(v) if isinstance(v, (list, tuple, dict)) else v
+        if memo is None or section not in shared:
+            out.update(_flat_section(section, d))
+            continue
+        hit = memo.get(id(d))
+        if hit is None or hit[0] is not d or hit[1] != section:
+            if len(memo) >= 64:
+                memo.clear()
+            hit = memo[id(d)] = (d, section, _flat_section(section, d))
+        out.update(hit[2])
     return out
 
 

@@ -75,10 +75,17 @@ def non_finite_cells(row: Mapping[str, Any]) -> list[str]:
         if t.size and not np.isfinite(t).all() and not np.isnan(t).all():
             bad.append("tendon_tensions")
     bad += [k for k in ("length_change", "tip_twist") if k in row and not math.isfinite(row[k])]
-    bad += [k for k in row if str(k).startswith("series.") and _not_finite(row[k])]
-    bad += [k for k in row if str(k).startswith("x.") and not str(k).startswith("x.disc_")
-            and not math.isfinite(float(row[k]))]
-    return bad
+    series: list[str] = []
+    extras: list[str] = []
+    for k in row:  # one pass over the (mostly ``p.*``) keys: a row has ~140 of them
+        if not isinstance(k, str) or k[:1] not in "sx":
+            continue
+        if k.startswith("series."):
+            if _not_finite(row[k]):
+                series.append(k)
+        elif k.startswith("x.") and not k.startswith("x.disc_") and not math.isfinite(float(row[k])):
+            extras.append(k)
+    return bad + series + extras
 
 
 def fail_non_finite(row: dict[str, Any]) -> dict[str, Any]:

@@ -220,6 +220,7 @@ def run_cases(
     run_opts = kind.run_options(spec, **options)
     cases = kind.expand(spec)
     recorded = {c.case_id: kind.recorded_params(spec, c) for c in cases}
+    flat_memo: dict[int, tuple] = {}  # shared robot sections flattened once (flatten_params)
     executor = executor or SerialExecutor()
     limits = limits if limits is not None else (kind.limits(spec) if hasattr(kind, "limits") else CaseLimits())
     folder = Path(folder)
@@ -231,7 +232,7 @@ def run_cases(
         raise
     try:
         session = RunSession.open(
-            folder, spec, cases, (flatten_params(p) for p in recorded.values()),
+            folder, spec, cases, (flatten_params(p, flat_memo) for p in recorded.values()),
             getattr(executor, "name", type(executor).__name__), models=kind.models(spec),
             separable=getattr(kind, "separable_models", True), resume=resume, retry_failed=retry_failed,
             force=force, progress=progress, flush_rows=kind.flush_rows if flush_rows is None else flush_rows,
