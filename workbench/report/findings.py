@@ -58,7 +58,7 @@ def _headline_sentence(study: ResultSet, h: Headline) -> str:
     if not h.cc_pair and "target" in (h.reference, h.model):
         return s + " (against the commanded target: the error bar is the model's own estimate, the target has none)."
     if not h.cc_pair:
-        return s + " (a difference between physics models: the error bar is the sum of both models' estimates)."
+        return s + " (neither side is the CC model: the error bar is the sum of both sides' estimates)."
     if not h.converged:
         return s + ". NOT CONVERGED: the discretisation error bar exceeds 10 % of the error."
     nc = f"; {h.n_not_converged} of {h.n_cases} cases are not converged" if h.n_not_converged else \
