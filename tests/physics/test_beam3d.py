@@ -334,6 +334,6 @@ def test_dynamic_series_shapes_and_start_from_equilibrium():
 def test_dynamic_command_function_equals_command_at_bit_for_bit(ramps):
     # the pre-step's plain-float commands must be exactly TendonActuation.command_at (same arithmetic)
     act = TendonActuation("length", (0.01, -0.02, 0.005), start_times=(3.0, 0.0, 1.5), ramp_durations=ramps)
-    command = beam3d._command_function(act, 2.5)
+    command = act.command_function(2.5)
     for t in np.linspace(-1.0, 12.0, 2601):
         assert np.array_equal(command(t), act.command_at(t, 2.5)), t

@@ -284,21 +284,6 @@ def _kept_frames(times: np.ndarray, frames: list) -> dict[str, np.ndarray]:
     return backbone_series(times[keep], [frames[i] for i in keep]) if keep else {}
 
 
-def _command_function(act, default_ramp: float):
-    """``act.command_at(t, default_ramp)`` for scalar ``t`` in plain floats (the same arithmetic, so
-    the same bits; numpy's per-call overhead was most of the Python step cost, issue 18)."""
-    n = len(act.values)
-    t0 = act.start_times or (0.0,) * n
-    T = act.ramp_durations or (float(default_ramp),) * n
-    terms = tuple(zip(act.values, t0, T))
-
-    def command(t: float) -> np.ndarray:
-        t = float(t)
-        return np.array([v * (min(max((t - a) / d, 0.0), 1.0) if d > 0 else float(t >= a)) for v, a, d in terms])
-
-    return command
-
-
 def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bool, stations: np.ndarray):
     """Static equilibrium at t = 0, then generalised-alpha; returns (accepted, attempts, n_steps, times, series,
     stress extras over the recorded states).
@@ -327,7 +312,7 @@ def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bo
     n_out = int(round(load.duration / out_dt)) + 1
     rec = _Recorder(system, n_t, stations, frame_stride(n_out))
 
-    command = _command_function(act, load.ramp_time) if drive else None
+    command = act.command_function(load.ramp_time) if drive else None
 
     def pre_step(mbs, t):
         # Exudyn calls this with t = the END time of the step about to be solved;

@@ -102,6 +102,24 @@ class TendonActuation:
         frac = np.where(T > 0, np.clip((tt - t0) / np.where(T > 0, T, 1.0), 0.0, 1.0), (tt >= t0).astype(float))
         return frac * v
 
+    def command_function(self, default_ramp: float):
+        """:meth:`command_at` for one scalar ``t`` at a time, in plain floats: ``f(t) -> (n_tendons,)``.
+
+        The same arithmetic, so the same bits, without numpy's per-call overhead (most of the Python
+        cost of a dynamic step's pre-step user function; issue 18).  Checked bit for bit against
+        :meth:`command_at` by ``tests/physics/test_beam3d.py``.
+        """
+        n = len(self.values)
+        t0 = self.start_times or (0.0,) * n
+        T = self.ramp_durations or (float(default_ramp),) * n
+        terms = tuple(zip(self.values, t0, T))
+
+        def command(t: float) -> np.ndarray:
+            t = float(t)
+            return np.array([v * (min(max((t - a) / d, 0.0), 1.0) if d > 0 else float(t >= a)) for v, a, d in terms])
+
+        return command
+
 
 @dataclass(frozen=True)
 class LoadCase:
