@@ -303,6 +303,10 @@ def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bo
     ti = sim.timeIntegration
     ti.newton.numericalDifferentiation.forODE2Connectors = True
     ti.newton.useModifiedNewton = True
+    # up to 15 (not Exudyn's 8) modified-Newton iterations before a new Jacobian: each Jacobian costs
+    # ~20 iterations (the eyelet ropes' numerical part, ~4 ms of 4.7 ms at 40 el.); the wire delay's
+    # 10 s took 913 -> 534 Jacobians, 10.9 -> 8.6 s, the same answer to 7 digits (benchmarks/README.md)
+    ti.newton.maxModifiedNewtonIterations = 15
     # sparse LU: the banded beam system (~7 (n_el + 1) coordinates) factorises ~15x faster than dense
     # at 40 elements (benchmarks/README.md, "Wire delay"); same answer to solver precision
     sim.linearSolver.solverType = exu.LinearSolverType.EigenSparse
