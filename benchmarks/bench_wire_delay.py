@@ -19,12 +19,15 @@ Named on the command line (40 elements / 2.5 ms unless ``half_``): ``num9`` / ``
 Jacobian term numerical, relative epsilon 1e-9 / 1e-7), ``full`` (no modified Newton), ``jacstep``
 (a Jacobian every step), ``num9full``, ``contract3`` / ``contract8`` (modified-Newton contractivity),
 ``anaconn`` (analytic connector Jacobians), ``ana_c8``, ``threads2`` (two threads), ``half_num9``,
-``half_anaconn``, ``half_ana_c8``, ``half_c8``, ``half_threads2``, ``40_5ms_num9``.
+``half_anaconn``, ``half_ana_c8``, ``half_c8``, ``half_threads2``, ``40_5ms_num9``, ``mnewton8`` /
+``mnewton20`` (at most 8 -- Exudyn's default, the setting before the fourth session -- or 20 modified-Newton
+iterations per Jacobian; beam3d commits 15).
 
 Run from the repository root (minutes)::
 
     python benchmarks/bench_wire_delay.py
     python benchmarks/bench_wire_delay.py committed half full contract8
+    python benchmarks/bench_wire_delay.py committed mnewton8   # the fourth session's change, in one run
 """
 
 from __future__ import annotations
@@ -71,6 +74,15 @@ def _contractivity(c: float):
 
     def tweak(sim) -> None:
         sim.timeIntegration.newton.modifiedNewtonContractivity = c
+
+    return tweak
+
+
+def _modified_iterations(n: int):
+    """Modified Newton: at most ``n`` iterations per Jacobian (beam3d commits 15; Exudyn's default is 8)."""
+
+    def tweak(sim) -> None:
+        sim.timeIntegration.newton.maxModifiedNewtonIterations = n
 
     return tweak
 
@@ -137,6 +149,9 @@ def main() -> None:
         "half_ana_c8": ("half, analytic connectors, contractivity 0.8 (20 el, 5 ms)", opts(20, 5e-3, b),
                         _both(_analytic_connectors, _contractivity(0.8))),
         "half_c8": ("half, contractivity 0.8 (20 el, 5 ms)", opts(20, 5e-3, b), _contractivity(0.8)),
+        "mnewton8": ("modified Newton 8 its per Jacobian (40 el, 2.5 ms)", opts(40, 2.5e-3, b), _modified_iterations(8)),
+        "mnewton20": ("modified Newton 20 its per Jacobian (40 el, 2.5 ms)", opts(40, 2.5e-3, b),
+                      _modified_iterations(20)),
         "threads2": ("2 threads (40 el, 2.5 ms)", opts(40, 2.5e-3, b), _threads2),
         "half_threads2": ("half, 2 threads (20 el, 5 ms)", opts(20, 5e-3, b), _threads2),
         "half_num9": ("half, numerical eps 1e-9 (20 el, 5 ms)", opts(20, 5e-3, b), _numerical(1e-9)),
