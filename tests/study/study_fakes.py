@@ -177,6 +177,11 @@ def die_on_one(x):
     yield x * x
 
 
+def lengths(x):
+    """Task for executor tests: yields ``len(x)``."""
+    yield len(x)
+
+
 def sleepy(x):
     """Task for executor tests: yields x, then sleeps x seconds, then yields -x."""
     yield x

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import study_fakes as fakes
 from workbench.study import DaskExecutor
-from workbench.study.sandbox import Sandbox
+from workbench.study.sandbox import _AHEAD_BYTES, Sandbox
 
 
 def test_a_unit_that_kills_the_child_is_blamed_alone_and_the_rest_of_its_chunk_runs():
@@ -15,6 +15,20 @@ def test_a_unit_that_kills_the_child_is_blamed_alone_and_the_rest_of_its_chunk_r
     assert [i for i, _ in outs] == [0, 1, 2, 3]
     assert [o.rows for _, o in outs] == [[0, 0], [1], [2, 4], [3, 9]]
     assert [o.crash.kind if o.crash else None for _, o in outs] == [None, "killed", None, None]
+
+
+def test_messages_sent_ahead_keep_every_unit_answered_once_in_order_across_a_crash():
+    # 2 units per message: [0, 1] [2, 3] [4, 5]; [2, 3] is already in the pipe when unit 1 kills the
+    # child, so 2 and 3 (and 4, 5) must be answered by a fresh child
+    with Sandbox(memory=0) as box:
+        outs = list(box.run_many(fakes.die_on_one, [0, 1, 2, 3, 4, 5], chunk=2))
+        assert [i for i, _ in outs] == [0, 1, 2, 3, 4, 5]
+        assert [o.rows for _, o in outs] == [[0, 0], [1], [2, 4], [3, 9], [4, 16], [5, 25]]
+        assert [o.crash.kind if o.crash else None for _, o in outs] == [None, "killed", None, None, None, None]
+        # a message too large to send ahead waits until the child is idle, and still arrives
+        big = [b"x" * (_AHEAD_BYTES + 1), b"y" * (_AHEAD_BYTES + 1)]
+        outs = list(box.run_many(fakes.lengths, big, chunk=1))
+        assert [o.rows for _, o in outs] == [[_AHEAD_BYTES + 1], [_AHEAD_BYTES + 1]]
 
 
 def test_the_time_limit_applies_to_each_unit_of_a_chunk():

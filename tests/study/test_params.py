@@ -57,3 +57,19 @@ def test_case_id_from_sections_is_case_id_for():
     assert case_id_from_sections(params, {}) == case_id_for(params)
     wrong = {"robot": canonical_json({"preset": "other"})}  # the caller's JSON is what is hashed
     assert case_id_from_sections(params, wrong) != case_id_for(params)
+
+
+def test_canonical_json_of_a_float_list_is_the_encoders_bytes():
+    import json
+
+    import numpy as np
+    import pytest
+
+    rng = np.random.default_rng(0)
+    samples = [[float(x) for x in rng.normal(size=n) * 10.0 ** rng.integers(-30, 30, size=n)] for n in (1, 3, 17)]
+    samples += [[-0.0, 0.0, 5e-324, 1e16, 0.1 + 0.2], [1e308, 1e308], [1.0, 2], [True, 1.0], []]
+    for v in samples:
+        assert canonical_json(v) == json.dumps(v, sort_keys=True, separators=(",", ":"), allow_nan=False)
+    for bad in ([1.0, float("nan")], [float("inf")]):
+        with pytest.raises(ValueError):
+            canonical_json(bad)

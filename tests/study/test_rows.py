@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from workbench.study.rows import fail_non_finite, failed_rows, non_finite_cells
 
 
@@ -45,3 +47,13 @@ def test_failed_rows_one_per_model_with_extra_cells():
     assert rows[0] == {"case_id": "c1", "model": "a", "p.robot.length": 0.8, "robot_length": 0.8,
                        "status": "failed", "error": "boom", "failure": "model", "wall_time": 0.0}
     assert math.isnan(failed_rows("c1", {}, ("a",), "crash")[0]["wall_time"])
+
+
+def test_the_finite_check_of_list_cells_matches_numpys():
+    from workbench.study.rows import _not_finite
+
+    nan, inf = float("nan"), float("inf")
+    cases = [[0.0, 1.0], [1e308, 1e308], [1.0, nan], [inf, -inf], [[1.0, nan]], [[1.0, 2.0]], [], (1.0, nan), 2.0, nan]
+    for c in cases:
+        assert _not_finite(c) == (not np.isfinite(np.asarray(c, dtype=float)).all()), c
+    assert _not_finite(None) is False

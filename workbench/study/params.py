@@ -18,7 +18,13 @@ __all__ = ["canonical_json", "case_id_for", "case_id_from_sections", "flatten_pa
 
 
 def canonical_json(obj: Any) -> str:
-    """Deterministic JSON (sorted keys, exact float repr) used for hashes."""
+    """Deterministic JSON (sorted keys, exact float repr) used for hashes.
+
+    A flat list of finite floats (the common swept value: tensions, lengths) is written without
+    the encoder, byte-identical to it (``tests/study/test_params.py``).
+    """
+    if type(obj) is list and obj and all(type(v) is float for v in obj) and math.isfinite(sum(obj)):
+        return "[" + ",".join(map(float.__repr__, obj)) + "]"
     return json.dumps(obj, sort_keys=True, separators=(",", ":"), allow_nan=False)
 
 

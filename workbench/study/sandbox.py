@@ -42,6 +42,8 @@ from .outcomes import Crash, Outcome, crash_from_exit
 __all__ = ["Sandbox", "child_main", "default_memory_cap"]
 
 _STARTUP_SECONDS = 300.0
+#: largest message sent to a busy child (a Linux pipe holds 64 KiB; the message must fit whole)
+_AHEAD_BYTES = 32 * 1024
 
 
 class _StartFailed(RuntimeError):
@@ -145,39 +147,83 @@ class Sandbox:
         return [out for _, out in self.run_many(fn, [payload], seconds)][0]
 
     def run_many(self, fn: Callable[[Any], Any], payloads: Sequence[Any],
-                 seconds: float | None = None) -> Iterator[tuple[int, Outcome]]:
+                 seconds: float | None = None, chunk: int | None = None) -> Iterator[tuple[int, Outcome]]:
         """Run ``fn(p)`` for every ``p`` of ``payloads`` in the child, one after another; yield ``(index, Outcome)``.
 
-        One message carries the whole chunk (``fn`` is pickled once), the child streams every
-        row back and ends each unit with its own message, so the per-unit cost is one row
-        message and one end message.  ``seconds`` limits each unit: its clock starts when the
-        end of the unit before it has been read (the first: when the child is up).  A unit that
-        kills the child or runs out of time is blamed alone; the units after it are sent to a
-        fresh child.  Outcomes come in payload order, one per payload.  Leaving the iteration
-        early kills the child (it would still be running the chunk).
+        The units go to the child ``chunk`` per message (default: all in one; ``fn`` is pickled
+        once per message), the child streams every row back and ends each unit with its own
+        message, so the per-unit cost is one row message and one end message.  The next message
+        is sent as soon as the child has begun the one before (its first unit answered), so the
+        child finds it waiting when it finishes and never idles on the parent: on a 2-core
+        machine the parent's storing of rows then overlaps the child's cases (messages larger
+        than :data:`_AHEAD_BYTES` wait until the child is idle: a pipe write must not block while
+        the child streams rows nobody reads).  ``seconds`` limits each unit: its clock starts when
+        the end of the unit before it has been read (the first: when the child is up).  A unit that
+        kills the child or runs out of time is blamed alone; the units after it (of its message
+        and of one already sent) go to a fresh child.  Outcomes come in payload order, one per
+        payload.  Leaving the iteration early kills the child (it would still be running them).
+        Checked by ``tests/study/test_chunks.py``.
         """
         import cloudpickle
 
+        size = max(1, len(payloads) if chunk is None else int(chunk))
         todo = list(range(len(payloads)))
         while todo:
-            data = cloudpickle.dumps((fn, [payloads[i] for i in todo]))
-            crash = self._send(data)
+            messages = [todo[k:k + size] for k in range(0, len(todo), size)]
+            crash = self._send(cloudpickle.dumps((fn, [payloads[i] for i in messages[0]])))
             if crash is not None:
                 for i in todo:
                     yield i, Outcome([], crash)
                 return
+            sent = 1
             done = 0
             finished = False
             try:
-                for out in self._collect_many(len(todo), seconds):
-                    i = todo[done]
-                    done += 1
-                    yield i, out
+                for m, idx in enumerate(messages):
+                    if m == sent:  # not sent ahead (too large): the child is idle now
+                        crash = self._send(cloudpickle.dumps((fn, [payloads[i] for i in idx])))
+                        if crash is not None:
+                            for i in todo[done:]:
+                                yield i, Outcome([], crash)
+                            return
+                        sent += 1
+                    dead = False
+                    for k, i in enumerate(idx):
+                        out, state = self._collect(seconds)
+                        if state == "abort":  # the child could not read this message: its units fail alike
+                            for j in idx[k:]:
+                                done += 1
+                                yield j, out
+                            break
+                        done += 1
+                        yield i, out
+                        if state == "dead":
+                            dead = True
+                            break
+                        if k == 0 and sent == m + 1 < len(messages):
+                            sent += self._send_ahead(cloudpickle.dumps((fn, [payloads[j] for j in messages[sent]])))
+                    if dead:
+                        break
                 finished = True
             finally:
                 if not finished and self._proc is not None and done < len(todo):
                     self._discard()  # the caller stopped listening: the child is mid-chunk
             todo = todo[done:]
+
+    def _send_ahead(self, data: bytes) -> int:
+        """Queue the next message for a child that is busy with the one before; 1 if sent, 0 if it must wait.
+
+        The child has read the message before (it answered a unit of it), so the pipe is empty and a
+        message of at most :data:`_AHEAD_BYTES` fits without blocking.  A child that died meanwhile
+        is noticed by the next collect (its EOF), not here.
+        """
+        if len(data) > _AHEAD_BYTES:
+            return 0
+        try:
+            self._tx.send_bytes(data)
+        except (BrokenPipeError, OSError):
+            pass  # the units are resent to a fresh child after the collect sees the death
+        return 1
 
     def _send(self, data: bytes) -> Crash | None:
         """Send one chunk to a live child (started or restarted as needed); why not, if it cannot be."""
@@ -195,18 +241,6 @@ class Sandbox:
             except (BrokenPipeError, OSError):  # the idle child had died: start another once
                 self._discard()
         return Crash("crash", "the case's worker process could not be started")
-
-    def _collect_many(self, n: int, seconds: float | None) -> Iterator[Outcome]:
-        """The outcomes of the ``n`` units of the chunk just sent; stops after a unit that ended the child."""
-        for k in range(n):
-            out, state = self._collect(seconds)
-            if state == "abort":  # the child could not read the chunk: every unit of it fails alike
-                for _ in range(k, n):
-                    yield out
-                return
-            yield out
-            if state == "dead":
-                return
 
     def _collect(self, seconds: float | None) -> tuple[Outcome, str]:
         """One unit's outcome and the child's state: ``"ok"`` (serves the rest of the chunk), ``"dead"``, ``"abort"``."""
