@@ -86,3 +86,24 @@ def test_compare_table_columns_present_without_estimates():
     ])
     cmp = compare_table(df)
     assert bool(cmp["not_converged"].iloc[0]) and math.isnan(cmp["disc_error"].iloc[0])  # no estimate
+
+
+def test_an_exempt_side_is_flagged_and_reports_say_exempt_not_plus_minus_zero():
+    from workbench.report.findings import _pm
+    from workbench.report.headline import Headline
+    from workbench.study.estimate import EXEMPT_STATUS
+
+    cc = {"model": "cc", "robot_length": 1.0}
+    links = {"model": "spring_link", "robot_length": 1.0, "x.disc_tip_error": 0.0, "disc_status": EXEMPT_STATUS}
+    m = convergence_metrics(cc, links, {"tip_error": 2e-3})
+    assert m["disc_exempt"] and m["disc_error"] == 0.0 and not m["not_converged"]
+    assert not convergence_metrics(cc, {**links, "disc_status": "ok"}, {"tip_error": 2e-3})["disc_exempt"]
+
+    def headline(disc_pct, exempt):
+        return Headline(reference="cc", model="spring_link", error=2e-3, error_pct=0.2, disc=disc_pct / 100,
+                        disc_pct=disc_pct, final_pct=float("nan"), case_id="c", converged=True, n_cases=1,
+                        n_not_converged=0, dynamic=False, cc_pair=True, disc_exempt=exempt)
+
+    assert "exempt from the error estimate" in _pm(headline(0.0, True)) and "±" not in _pm(headline(0.0, True))
+    assert _pm(headline(0.0, False)).endswith("± 0 % L")
+    assert _pm(headline(0.01, True)).endswith("± 0.01 % L (one side exempt)")

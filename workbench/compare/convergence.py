@@ -11,6 +11,11 @@ Each physics row carries the estimate of its own discretisation error (``x.disc_
     row's estimate (its ``x.disc_cc_error`` when the model provides the estimate of the CC error
     itself, as the series-parallel worker does); for two physics models the sum of both; NaN when
     a physics row has no estimate.
+``disc_exempt``
+    True when a side of the pair is exempt from the estimate (its ``disc_status`` starts with
+    ``exempt``: ``[solver] error_estimate_exempt``, the discretisation *is* the robot, e.g. a
+    jointed trunk's links); its part of ``disc_error`` is 0, and reports say "exempt" rather
+    than "± 0".
 ``not_converged`` (CC pairs only)
     ``disc_error > 0.1 judged_error`` (the error bar exceeds 10 % of the error it judges), unless
     ``judged_error + disc_error <= floor`` with the agreement floor :data:`AGREEMENT_FLOOR` x L: then
@@ -53,8 +58,12 @@ def _disc(row: Mapping[str, Any], cc_pair: bool) -> float:
     return float("nan")
 
 
+def _exempt(row: Mapping[str, Any]) -> bool:
+    return str(row.get("disc_status") or "").startswith("exempt")
+
+
 def convergence_metrics(ref: Mapping[str, Any], row: Mapping[str, Any], metrics: Mapping[str, float]) -> dict[str, Any]:
-    """``judged_error``, ``disc_error`` [m], ``disc_error_pct`` [% L], ``disc_fraction`` and ``not_converged``
+    """``judged_error``, ``disc_error`` [m], ``disc_error_pct`` [% L], ``disc_fraction``, ``disc_exempt`` and ``not_converged``
     of one compared pair (see the module docstring); ``metrics`` are the pair's tip errors."""
     cc_pair = is_cc_pair(ref.get("model"), row.get("model"))
     peak = metrics.get("tip_error_max_over_time", float("nan"))
@@ -71,5 +80,6 @@ def convergence_metrics(ref: Mapping[str, Any], row: Mapping[str, Any], metrics:
         "disc_error": disc,
         "disc_error_pct": 100.0 * disc / L if math.isfinite(L) and L > 0 else float("nan"),
         "disc_fraction": frac,
+        "disc_exempt": _exempt(ref) or _exempt(row),
         "not_converged": bool(cc_pair and not converged),
     }

@@ -41,7 +41,12 @@ def _esc(text) -> str:
 
 
 def _pm(h: Headline) -> str:
-    bar = "no error estimate" if not np.isfinite(h.disc_pct) else f"± {fmt(h.disc_pct)} % L"
+    if not np.isfinite(h.disc_pct):
+        bar = "no error estimate"
+    elif h.disc_exempt and h.disc_pct == 0.0:
+        bar = "(exempt from the error estimate: the model's discretisation is the robot's own structure)"
+    else:
+        bar = f"± {fmt(h.disc_pct)} % L" + (" (one side exempt)" if h.disc_exempt else "")
     return f"{fmt(h.error_pct)} % L ({fmt(1e3 * h.error)} mm) {bar}"
 
 

@@ -34,6 +34,8 @@ class Headline:
         Largest judged error [m] and [% L] over the baseline cases.
     disc, disc_pct : float
         Its discretisation error bar [m], [% L] (NaN: no estimate).
+    disc_exempt : bool
+        A side of the pair is exempt from the estimate (:mod:`workbench.compare.convergence`).
     final_pct : float
         Dynamics: the tip error at the end of that case [% L] (NaN for statics).
     case_id : str
@@ -59,6 +61,7 @@ class Headline:
     n_not_converged: int
     dynamic: bool
     cc_pair: bool
+    disc_exempt: bool = False
 
 
 def sensitivity_keys(study: ResultSet) -> list[str]:
@@ -146,8 +149,16 @@ def headlines(study: ResultSet, cmp: pd.DataFrame, pairs: Sequence[tuple[str, st
             final_pct=_final_pct(study, ref, m, row["case_id"]) if dynamic else float("nan"),
             case_id=str(row["case_id"]), converged=not bool(row["not_converged"]), n_cases=int(np.isfinite(e).sum()),
             n_not_converged=int(nc[np.isfinite(e)].sum()), dynamic=bool(dynamic), cc_pair=is_cc_pair(ref, m),
+            disc_exempt=bool(row.get("disc_exempt", False)),
         ))
     return out
+
+
+def _bar_cell(g: pd.DataFrame, i: int) -> float | str:
+    """The summary table's error-bar cell: the bar [% L], or ``exempt`` where an exempt side makes it 0."""
+    bar = float(g["disc_error_pct"].iloc[i])
+    exempt = "disc_exempt" in g and bool(g["disc_exempt"].iloc[i])
+    return "exempt" if exempt and bar == 0.0 else bar
 
 
 def summary_columns(g: pd.DataFrame) -> dict[str, Any]:
@@ -166,6 +177,6 @@ def summary_columns(g: pd.DataFrame) -> dict[str, Any]:
     cc = is_cc_pair(str(g["reference"].iloc[0]), str(g["model"].iloc[0]))
     return {
         "largest judged error [% L]": 100.0 * float(e[i]) / L,
-        "± discretisation [% L]": float(g["disc_error_pct"].iloc[i]),
+        "± discretisation [% L]": _bar_cell(g, i),
         "not converged": f"{int(g['not_converged'].astype(bool).sum())} of {len(g)}" if cc else "n/a (no CC)",
     }
