@@ -107,3 +107,20 @@ def test_an_exempt_side_is_flagged_and_reports_say_exempt_not_plus_minus_zero():
     assert "exempt from the error estimate" in _pm(headline(0.0, True)) and "±" not in _pm(headline(0.0, True))
     assert _pm(headline(0.0, False)).endswith("± 0 % L")
     assert _pm(headline(0.01, True)).endswith("± 0.01 % L (one side exempt)")
+
+
+def test_a_headline_case_is_titled_by_its_own_models_row():
+    # spring_link ran 128 links where the case's other rows say 64 elements (n_elements_by_model):
+    # the title of a spring_link finding must show the 128
+    import pandas as pd
+
+    from workbench.report import findings
+
+    class Study:
+        axes = ["p.solver.n_elements"]
+        labels: dict = {}
+        ok = pd.DataFrame({"case_id": ["a", "a"], "model": ["ancf", "spring_link"], "p.solver.n_elements": [64, 128]})
+
+    assert "128" in findings._case_text(Study(), "a", "spring_link")
+    assert "64" in findings._case_text(Study(), "a", "ancf")
+    assert "64" in findings._case_text(Study(), "a")

@@ -25,6 +25,7 @@ import numpy as np
 import pandas as pd
 
 from .. import registry
+from ..compare.convergence import CC_MODELS
 from .assumptions import assumption_rows
 from .context import PageContext, Section
 from .errorbars import sensitivity_figures
@@ -50,14 +51,18 @@ def _pm(h: Headline) -> str:
     return f"{fmt(h.error_pct)} % L ({fmt(1e3 * h.error)} mm) {bar}"
 
 
-def _case_text(study: ResultSet, case_id: str) -> str:
+def _case_text(study: ResultSet, case_id: str, model: str | None = None) -> str:
+    """The case's title from ``model``'s row where it has one (its ``p.solver.n_elements`` is the
+    resolution that model ran at, ``[solver] n_elements_by_model``), else from the case's first row."""
     rows = study.ok[study.ok["case_id"] == case_id]
+    if model is not None and "model" in rows and (rows["model"] == model).any():
+        rows = rows[rows["model"] == model]
     return _case_title(rows.iloc[0].to_dict(), study.axes, study.labels) if len(rows) else case_id[:8]
 
 
 def _headline_sentence(study: ResultSet, h: Headline) -> str:
     what = "peak tip error over time" if h.dynamic else "largest tip error"
-    s = f"{pair_label(h.reference, h.model)}: {what} {_pm(h)} ({_case_text(study, h.case_id)})"
+    s = f"{pair_label(h.reference, h.model)}: {what} {_pm(h)} ({_case_text(study, h.case_id, h.reference if h.model in CC_MODELS else h.model)})"
     if h.dynamic and np.isfinite(h.final_pct):
         s += f"; at the end of that case {fmt(h.final_pct)} % L"
     if not h.cc_pair and "target" in (h.reference, h.model):
@@ -90,7 +95,7 @@ def stress_findings(study: ResultSet) -> list[str]:
             r = numeric(rows["x.stress_ratio"])
             worst = rows.iloc[int(np.nanargmax(r))]
             bad = int(np.sum(r > 1.0))
-            text += f"; stress / strength up to {fmt(np.nanmax(r))} ({_case_text(study, worst['case_id'])})"
+            text += f"; stress / strength up to {fmt(np.nanmax(r))} ({_case_text(study, worst['case_id'], m)})"
             if bad:
                 text += (f". INADMISSIBLE hardware in {bad} of {int(np.isfinite(r).sum())} cases: the assumed "
                          f"backbone or tendons would yield or break there, so these results are an elastic "
