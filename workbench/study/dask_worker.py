@@ -20,7 +20,7 @@ from distributed import get_worker
 from distributed.diagnostics.plugin import WorkerPlugin
 
 from .outcomes import CaseLimits, Outcome
-from .sandbox import Sandbox
+from .sandbox import Sandbox, prestart
 
 __all__ = ["PLUGIN_NAME", "SandboxPlugin", "run_chunk", "run_units"]
 
@@ -45,7 +45,7 @@ class SandboxPlugin(WorkerPlugin):
         self._spares: list[tuple[threading.Thread, Sandbox]] = []
         for _ in range(max(1, int(getattr(worker.state, "nthreads", 1) or 1))):
             box = Sandbox(None)
-            t = threading.Thread(target=_prestart, args=(box,), name="workbench-sandbox-start", daemon=True)
+            t = threading.Thread(target=prestart, args=(box,), name="workbench-sandbox-start", daemon=True)
             t.start()
             self._spares.append((t, box))
 
@@ -76,13 +76,6 @@ class SandboxPlugin(WorkerPlugin):
         with self._lock:
             self._boxes[key] = box
         return box
-
-
-def _prestart(box: Sandbox) -> None:
-    try:
-        box._start()
-    except Exception:  # noqa: BLE001 - the first unit starts (and reports) it again
-        box._discard()
 
 
 def run_units(fn: Callable[[Any], Any], payloads: Sequence[Any], limits: CaseLimits) -> list[Outcome]:

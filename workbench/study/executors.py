@@ -39,7 +39,7 @@ import uuid
 from typing import Any, Callable, Iterator, Protocol, Sequence
 
 from .outcomes import CaseLimits, Crash, ExecutorStartError, InfrastructureError, Outcome
-from .sandbox import Sandbox
+from .sandbox import Sandbox, prestart
 
 __all__ = ["DaskExecutor", "Executor", "IsolatedExecutor", "SerialExecutor", "WorkerCrash"]
 
@@ -118,16 +118,30 @@ class IsolatedExecutor:
 
     def __init__(self) -> None:
         self._box: Sandbox | None = None
+        self._starting: threading.Thread | None = None
 
     def __enter__(self) -> "IsolatedExecutor":
+        # the child (default memory cap) imports in the background while the runner expands the
+        # study and opens its session; a run with another cap replaces it (imap_unordered)
+        self._box = Sandbox(None)
+        self._starting = threading.Thread(target=prestart, args=(self._box,), name="workbench-sandbox-start",
+                                          daemon=True)
+        self._starting.start()
         return self
 
+    def _started(self) -> None:
+        if self._starting is not None:
+            self._starting.join()
+            self._starting = None
+
     def __exit__(self, *exc: Any) -> None:
+        self._started()
         if self._box is not None:
             self._box.__exit__(*exc)
             self._box = None
 
     def imap_unordered(self, fn, payloads, limits=_NO_LIMITS, chunk_size=1):
+        self._started()
         want = Sandbox(limits.memory)
         if self._box is None or self._box.memory != want.memory:
             if self._box is not None:

@@ -39,7 +39,7 @@ from typing import Any, Callable, Iterator, Sequence
 
 from .outcomes import Crash, Outcome, crash_from_exit
 
-__all__ = ["Sandbox", "child_main", "default_memory_cap"]
+__all__ = ["Sandbox", "child_main", "default_memory_cap", "prestart"]
 
 _STARTUP_SECONDS = 300.0
 #: largest message sent to a busy child (a Linux pipe holds 64 KiB; the message must fit whole)
@@ -265,6 +265,15 @@ class Sandbox:
                 self._discard()
                 return Outcome(rows, Crash("timeout", f"stopped after max_case_seconds = {seconds:g} s "
                                                       f"(the case was still running)")), "dead"
+
+
+def prestart(box: Sandbox) -> None:
+    """Start ``box``'s child ahead of its first unit (run in a background thread while the caller
+    prepares); a failure is left for the first unit, which starts the child again and reports it."""
+    try:
+        box._start()
+    except Exception:  # noqa: BLE001
+        box._discard()
 
 
 # ------------------------------------------------------------------------------------------
