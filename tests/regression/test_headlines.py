@@ -19,7 +19,7 @@ from workbench.compare.table import compare_table
 from workbench.report.findings import opening_sections
 from workbench.report.headline import headlines
 from workbench.report.load import load_results
-from workbench.report.style import STYLE
+from workbench.report.style import STYLE, fmt
 
 pytestmark = pytest.mark.regression
 
@@ -65,4 +65,8 @@ def test_headlines_converged_and_four_sections(path, small_study_run):
     for key, html in parts.items():
         text = re.sub(r"<[^>]+>", " ", html).strip()
         assert len(text) > 20, f"{path.stem}: section {key} is empty: {html!r}"
-    assert "no error estimate" not in parts["findings"] and "± " in parts["findings"]  # every headline has its bar
+    # every headline has its bar, or says that its model is exempt from the estimate (and is)
+    assert "no error estimate" not in parts["findings"]
+    for h in heads:
+        said = "exempt from the error estimate" if h.disc_exempt and h.disc_pct == 0.0 else f"± {fmt(h.disc_pct)} % L"
+        assert said in parts["findings"], (path.stem, h.model, said)
