@@ -194,11 +194,10 @@ def _dask_rows(w: int, spins, small, large, n: int, repeats: int) -> list[tuple]
     from distributed import LocalCluster
 
     from workbench.study import DaskExecutor
+    from workbench.study.executors import DASK_SETTINGS
 
     path = f"runner dask {w} worker" + ("s" if w > 1 else "")
-    with dask.config.set({"distributed.scheduler.worker-saturation": 1.0,
-                          "distributed.scheduler.allowed-failures": 1,
-                          "distributed.scheduler.work-stealing": False}):
+    with dask.config.set(DASK_SETTINGS):  # the cluster the executor would start itself
         t0 = time.perf_counter()
         cluster = LocalCluster(n_workers=w, threads_per_worker=1, processes=True, dashboard_address=":0",
                                silence_logs=logging.CRITICAL)

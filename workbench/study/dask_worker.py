@@ -37,6 +37,9 @@ class SandboxPlugin(WorkerPlugin):
     """
 
     name = PLUGIN_NAME
+    #: a later run on the same cluster keeps the workers' running sandboxes (Dask skips registering
+    #: a plugin of this name again): a run against a persistent scheduler pays no child start-up
+    idempotent = True
 
     def setup(self, worker: Any) -> None:
         # created on the worker (a lock cannot travel to it)
