@@ -71,8 +71,12 @@ def _headline_sentence(study: ResultSet, h: Headline) -> str:
         return s + " (neither side is the CC model: the error bar is the sum of both sides' estimates)."
     if not h.converged:
         return s + ". NOT CONVERGED: the discretisation error bar exceeds 10 % of the error."
-    nc = f"; {h.n_not_converged} of {h.n_cases} cases are not converged" if h.n_not_converged else \
-        f"; all {h.n_cases} cases converged (error bar at most 10 % of their error)"
+    if h.n_not_converged:
+        nc = f"; {h.n_not_converged} of {h.n_cases} cases are not converged"
+    elif h.disc_exempt and h.disc_pct == 0.0:
+        nc = f"; {h.n_cases} cases compared"  # no bar to judge: "converged" would claim a check that did not run
+    else:
+        nc = f"; all {h.n_cases} cases converged (error bar at most 10 % of their error)"
     return s + nc + "."
 
 
