@@ -4,6 +4,7 @@ follows the measured time per unit within its bounds."""
 
 from __future__ import annotations
 
+import pytest
 import study_fakes as fakes
 from workbench.study import DaskExecutor
 from workbench.study.sandbox import _AHEAD_BYTES, Sandbox
@@ -31,9 +32,10 @@ def test_messages_sent_ahead_keep_every_unit_answered_once_in_order_across_a_cra
         assert [o.rows for _, o in outs] == [[_AHEAD_BYTES + 1], [_AHEAD_BYTES + 1]]
 
 
-def test_the_time_limit_applies_to_each_unit_of_a_chunk():
+@pytest.mark.parametrize("chunk", [None, 1])  # one message; a message per unit, the next one queued
+def test_the_time_limit_applies_to_each_unit_of_a_chunk(chunk):
     with Sandbox(memory=0) as box:
-        outs = dict(box.run_many(fakes.sleepy, [0.0, 30, 0.6, 0.6], seconds=1.0))
+        outs = dict(box.run_many(fakes.sleepy, [0.0, 30, 0.6, 0.6], seconds=1.0, chunk=chunk))
     assert outs[1].crash.kind == "timeout" and outs[1].rows == [30]
     # 0.6 s each: together longer than the limit, each within it
     assert [outs[i].rows for i in (0, 2, 3)] == [[0.0, -0.0], [0.6, -0.6], [0.6, -0.6]]
