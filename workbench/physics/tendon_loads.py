@@ -174,13 +174,18 @@ def solve_length_controlled(
     information survives changes of the slack/taut set -- updating the residual Jacobian
     instead cycles between slack and taut for stiff tendons); tensions are projected onto
     ``T >= 0``; steps are backtracked (halved, at most 8 times) until the residual in length
-    units ``|r l0 / EA_t|`` decreases.  With no external loads and the exact compliance
+    units ``|r l0 / EA_t|`` decreases.  A step that does not halve that residual rebuilds the
+    compliance by forward differences (:func:`_fd_compliance`, ``n`` more equilibria): stiff
+    antagonistic tendons that are both taut otherwise creep for hundreds of solves (Hannan &
+    Walker's trunk at ``EA_t = 1.6e6 N``: 50 iterations, 226 equilibria, not converged).  With no external loads and the exact compliance
     (:func:`tendon_path_compliance`, continuum tendon) the first step is exact.
 
     Parameters
     ----------
     equilibrium : callable
-        ``(n,) tensions [N] -> (n,) path lengths [m]``; raises on a failed solve.
+        ``(n,) tensions [N] -> (n,) path lengths [m]``; raises on a failed solve (a trial step
+        whose solve fails is halved like one that does not decrease the residual; the error
+        propagates when the eighth halving fails too).
     rest_lengths : (n,) array_like
         ``l0`` [m].
     axial_stiffness : (n,) array_like
@@ -233,9 +238,16 @@ def solve_length_controlled(
         dT = np.linalg.solve(J, -r)
         merit = np.linalg.norm(r * l0 / ea)  # residual in length units [m]
         alpha = 1.0
+        failure: Exception | None = None
         for _ in range(8):  # backtracking on the merit (stiff antagonistic tendons overshoot)
             T_new = np.maximum(0.0, T + alpha * dT)
-            l_new = equilibrium(T_new)
+            try:
+                l_new = equilibrium(T_new)
+            except Exception as err:  # noqa: BLE001 - no equilibrium for so large a step: a shorter one
+                failure, alpha = err, 0.5 * alpha
+                solves += 1
+                continue
+            failure = None
             solves += 1
             s = T_new - T
             if np.dot(s, s) > 0:
@@ -245,11 +257,33 @@ def solve_length_controlled(
             if np.linalg.norm(r_new * l0 / ea) < (1.0 - 1e-4 * alpha) * merit:
                 break
             alpha *= 0.5
+        if failure is not None:  # even the shortest step had no equilibrium
+            raise failure
+        if np.linalg.norm(r_new * l0 / ea) > 0.5 * merit:
+            # poor contraction (stiff co-contracting tendons: the secant compliance misses the stiff
+            # mode and the iteration creeps): the compliance anew by forward differences at T_new
+            C = _fd_compliance(equilibrium, T_new, l_new)
+            solves += n + 1
+            l_new = equilibrium(T_new)  # the system back in the state the loop continues from
         T, l = T_new, l_new
     raise RuntimeError(
         f"length-controlled tendon solve did not converge in {max_iterations} iterations "
         f"(tensions {T.tolist()} N)"
     )
+
+
+def _fd_compliance(equilibrium: Callable[[np.ndarray], np.ndarray], T: np.ndarray, l: np.ndarray) -> np.ndarray:
+    """``dl/dT`` [m/N] at tensions ``T`` (path lengths ``l``) by forward differences, one equilibrium per tendon.
+
+    The step is ``1e-4 (1 + T_i)`` N (``T + h >= 0`` always; the lengths are smooth in the
+    prescribed tensions)."""
+    C = np.empty((l.size, T.size))
+    for i in range(T.size):
+        h = 1e-4 * (1.0 + T[i])
+        Th = T.copy()
+        Th[i] += h
+        C[:, i] = (equilibrium(Th) - l) / h
+    return C
 
 
 @dataclass(frozen=True)
