@@ -66,3 +66,46 @@ def test_ramp_halves_on_failure_and_respects_cap():
     with pytest.raises(RuntimeError, match="max_load_steps=3"):
         ramp_load(apply, solve, lambda: state["x"], lambda x: state.update(x=x), max_steps=3,
                   failure=ArithmeticError) if state.update(x=0.0) is None else None
+
+
+def test_stiff_co_contracting_cables_of_the_hannan_walker_trunk_converge():
+    # Hannan & Walker's line, snapshot 1, at the sensitivity value EA_t = 1.6e6 N: both cables of a section
+    # are taut and stiff; the secant (Broyden) compliance alone crept for 50 iterations / 226 equilibria and
+    # failed (before the forward-difference rebuild); now the row is ok and obeys the tendon law
+    from workbench.study import SWEEP
+    from workbench.study.evaluate import evaluate_case
+
+    from pathlib import Path
+
+    study = SWEEP.load(str(Path(__file__).resolve().parents[2] / "studies" / "hannan_walker.toml"))
+    case = next(c for c in SWEEP.expand(study) if c.params["robot"]["tendon_stiffness"] == 1.6e6
+                and c.params["scenario"]["shape"] == "line" and c.params["scenario"]["sample"] == 1)
+    row = evaluate_case(case.case_id, case.params, ["ancf"])[0]
+    assert row["status"] == "ok", row["error"]
+    assert max(row["tendon_tensions"]) > 1000.0  # stiff co-contraction: kN tensions
+
+
+def test_a_step_whose_equilibrium_fails_is_shortened_and_a_persistent_failure_propagates():
+    L, c, EA = 1.0, 1e-5, 1e5
+
+    refused = []
+
+    def eq(T):
+        if np.max(T) > 800.0:  # the structure has no equilibrium under so large a tension
+            refused.append(T.copy())
+            raise ArithmeticError("no equilibrium")
+        return L - c * T
+
+    l0 = np.array([0.99, 0.995])
+    # a compliance estimate 100x too soft makes the first step overshoot (~1000 N; the answer is ~502 N)
+    info = solve_length_controlled(eq, l0, EA, -0.01 * c * np.eye(2), tol=1e-12)
+    assert refused, "the test must exercise a failed trial step"
+    assert info.tensions == pytest.approx(EA * (eq(info.tensions) - l0) / l0, rel=1e-9)
+
+    def broken(T):
+        if np.any(T > 0):
+            raise ArithmeticError("no equilibrium")
+        return L - c * T
+
+    with pytest.raises(ArithmeticError):
+        solve_length_controlled(broken, l0, EA, -c * np.eye(2), tol=1e-12)
