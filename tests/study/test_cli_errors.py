@@ -102,7 +102,9 @@ def test_a_listening_non_dask_server_is_one_line_and_leaves_no_folder(tmp_path):
                            text=True, timeout=120)
     finally:
         srv.close()
-    assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, r.stderr
+    # the error is one line (the study's own stress warnings, printed before any run, are not errors)
+    errors = [ln for ln in r.stderr.strip().splitlines() if not ln.startswith("warning:")]
+    assert r.returncode == 2 and len(errors) == 1, r.stderr
     assert "cannot start Dask on tcp://127.0.0.1" in r.stderr and "nothing was run" in r.stderr
     assert not out.exists()
 

@@ -89,6 +89,8 @@ _STAGE_TOLERANCE = 1e-3
 #: ``numericalDifferentiation.relativeEpsilon`` of the static Jacobian (Exudyn's default 1e-7 leaves
 #: forward-difference errors in the stiff entries that are as large as the soft bending stiffness).
 _FD_EPSILON = 1e-9
+#: modified-Newton iterations per Jacobian in damped dynamics (Exudyn: 8; undamped runs keep 8); see ``_dynamic``
+MODIFIED_NEWTON_ITERATIONS = 15
 
 
 def _static_settings(options: SolverOptions, jacobian: str = "numerical", tolerance: float | None = None):
@@ -303,10 +305,12 @@ def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bo
     ti = sim.timeIntegration
     ti.newton.numericalDifferentiation.forODE2Connectors = True
     ti.newton.useModifiedNewton = True
-    # up to 15 (not Exudyn's 8) modified-Newton iterations before a new Jacobian: each Jacobian costs
-    # ~20 iterations (the eyelet ropes' numerical part, ~4 ms of 4.7 ms at 40 el.); the wire delay's
-    # 10 s took 913 -> 534 Jacobians, 10.9 -> 8.6 s, the same answer to 7 digits (benchmarks/README.md)
-    ti.newton.maxModifiedNewtonIterations = 15
+    # damped: up to 15 (not Exudyn's 8) modified-Newton iterations before a new Jacobian: each Jacobian
+    # costs ~20 iterations (the eyelet ropes' numerical part, ~4 ms of 4.7 ms at 40 el.); the wire delay's
+    # 10 s took 913 -> 534 Jacobians, 10.9 -> 8.6 s, the same answer to 7 digits (benchmarks/README.md).
+    # Undamped runs keep Exudyn's 8: their answer depends on the iteration path (the undamped arm's
+    # compensated case moves by 3 mm at 12; tests/regression golden wire_delay_arm)
+    ti.newton.maxModifiedNewtonIterations = MODIFIED_NEWTON_ITERATIONS if options.damping > 0 else 8
     # sparse LU: the banded beam system (~7 (n_el + 1) coordinates) factorises ~15x faster than dense
     # at 40 elements (benchmarks/README.md, "Wire delay"); same answer to solver precision
     sim.linearSolver.solverType = exu.LinearSolverType.EigenSparse
