@@ -177,8 +177,9 @@ def solve_length_controlled(
     units ``|r l0 / EA_t|`` decreases.  A step that does not halve that residual rebuilds the
     compliance by forward differences (:func:`_fd_compliance`, ``n`` more equilibria): stiff
     antagonistic tendons that are both taut otherwise creep for hundreds of solves (Hannan &
-    Walker's trunk at ``EA_t = 1.6e6 N``: 50 iterations, 226 equilibria, not converged).  With no external loads and the exact compliance
-    (:func:`tendon_path_compliance`, continuum tendon) the first step is exact.
+    Walker's trunk at ``EA_t = 1.6e6 N``: 50 iterations, 226 equilibria, not converged).  With
+    no external loads and the exact compliance (:func:`tendon_path_compliance`, continuum
+    tendon) the first step is exact.
 
     Parameters
     ----------

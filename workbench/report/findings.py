@@ -44,7 +44,7 @@ def _esc(text) -> str:
 def _pm(h: Headline) -> str:
     if not np.isfinite(h.disc_pct):
         bar = "no error estimate"
-    elif h.disc_exempt and h.disc_pct == 0.0:
+    elif h.exempt_only:
         bar = "(exempt from the error estimate: the model's discretisation is the robot's own structure)"
     else:
         bar = f"± {fmt(h.disc_pct)} % L" + (" (one side exempt)" if h.disc_exempt else "")
@@ -62,7 +62,8 @@ def _case_text(study: ResultSet, case_id: str, model: str | None = None) -> str:
 
 def _headline_sentence(study: ResultSet, h: Headline) -> str:
     what = "peak tip error over time" if h.dynamic else "largest tip error"
-    s = f"{pair_label(h.reference, h.model)}: {what} {_pm(h)} ({_case_text(study, h.case_id, h.reference if h.model in CC_MODELS else h.model)})"
+    physics = h.reference if h.model in CC_MODELS else h.model  # its row records its own resolution
+    s = f"{pair_label(h.reference, h.model)}: {what} {_pm(h)} ({_case_text(study, h.case_id, physics)})"
     if h.dynamic and np.isfinite(h.final_pct):
         s += f"; at the end of that case {fmt(h.final_pct)} % L"
     if not h.cc_pair and "target" in (h.reference, h.model):
@@ -73,7 +74,7 @@ def _headline_sentence(study: ResultSet, h: Headline) -> str:
         return s + ". NOT CONVERGED: the discretisation error bar exceeds 10 % of the error."
     if h.n_not_converged:
         nc = f"; {h.n_not_converged} of {h.n_cases} cases are not converged"
-    elif h.disc_exempt and h.disc_pct == 0.0:
+    elif h.exempt_only:
         nc = f"; {h.n_cases} cases compared"  # no bar to judge: "converged" would claim a check that did not run
     else:
         nc = f"; all {h.n_cases} cases converged (error bar at most 10 % of their error)"

@@ -63,6 +63,11 @@ class Headline:
     cc_pair: bool
     disc_exempt: bool = False
 
+    @property
+    def exempt_only(self) -> bool:
+        """No bar at all because of an exempt side (the bar is 0): reports say "exempt", not "± 0"."""
+        return self.disc_exempt and self.disc_pct == 0.0
+
 
 def sensitivity_keys(study: ResultSet) -> list[str]:
     """``[report] sensitivity`` as result columns (``p.<section>.<key>``) present in the table."""

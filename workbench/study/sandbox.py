@@ -166,22 +166,19 @@ class Sandbox:
         """
         import cloudpickle
 
+        def message(idx: list[int]) -> bytes:
+            return cloudpickle.dumps((fn, [payloads[i] for i in idx]))
+
         size = max(1, len(payloads) if chunk is None else int(chunk))
         todo = list(range(len(payloads)))
         while todo:
             messages = [todo[k:k + size] for k in range(0, len(todo), size)]
-            crash = self._send(cloudpickle.dumps((fn, [payloads[i] for i in messages[0]])))
-            if crash is not None:
-                for i in todo:
-                    yield i, Outcome([], crash)
-                return
-            sent = 1
-            done = 0
+            sent = done = 0
             finished = False
             try:
                 for m, idx in enumerate(messages):
-                    if m == sent:  # not sent ahead (too large): the child is idle now
-                        crash = self._send(cloudpickle.dumps((fn, [payloads[i] for i in idx])))
+                    if m == sent:  # the child is idle: the first message, or one too large to send ahead
+                        crash = self._send(message(idx))
                         if crash is not None:
                             for i in todo[done:]:
                                 yield i, Outcome([], crash)
@@ -201,7 +198,7 @@ class Sandbox:
                             dead = True
                             break
                         if k == 0 and sent == m + 1 < len(messages):
-                            sent += self._send_ahead(cloudpickle.dumps((fn, [payloads[j] for j in messages[sent]])))
+                            sent += self._send_ahead(message(messages[sent]))
                     if dead:
                         break
                 finished = True
