@@ -7,10 +7,11 @@ which measure the machine, aside) and each ``report.html`` byte for byte.
 
 Usage::
 
-    python -m tests.regression.diff_runs run ROOT [--studies a,b] [--workers 2] [--no-report]
+    python -m tests.regression.diff_runs run ROOT [--studies a,b] [--workers 2] [--no-report] [--from DIR]
     python -m tests.regression.diff_runs report DATA_ROOT OUT_ROOT   # reports of stored runs
     python -m tests.regression.diff_runs diff OLD_ROOT NEW_ROOT [--what data|reports|both]
 
+``--from tests/regression/studies`` runs the regression-size copies instead of ``studies/``.
 ``run`` writes ``ROOT/data/<study>`` and ``ROOT/reports/<study>``.  Reports carry the run's
 provenance (host, start time, commit), so to diff reports of two code versions build both from
 the *same* data root with ``report`` and diff those.  ``diff`` exits 1 on any difference and
@@ -30,18 +31,18 @@ import pandas as pd
 _TIMING = {"wall_time"}
 
 
-def _studies(names: str | None) -> list[Path]:
-    files = sorted(Path("studies").glob("*.toml"))
+def _studies(names: str | None, folder: Path = Path("studies")) -> list[Path]:
+    files = sorted(folder.glob("*.toml"))
     if names:
         want = set(names.split(","))
         files = [f for f in files if f.stem in want]
     return files
 
 
-def cmd_run(root: Path, names: str | None, workers: int, report: bool) -> int:
-    """Run each study into ``root/data/<stem>`` (and build ``root/reports/<name>``)."""
+def cmd_run(root: Path, names: str | None, workers: int, report: bool, folder: Path = Path("studies")) -> int:
+    """Run each study of ``folder`` into ``root/data/<stem>`` (and build ``root/reports/<name>``)."""
     rc = 0
-    for f in _studies(names):
+    for f in _studies(names, folder):
         out = root / "data" / f.stem
         cmd = [sys.executable, "-m", "workbench", "run", str(f), "--out", str(out), "--progress", "off",
                "--reports-dir", str(root / "reports")] + ([] if report else ["--no-report"])
@@ -135,6 +136,7 @@ def main(argv=None) -> int:
     r.add_argument("--studies")
     r.add_argument("--workers", type=int, default=2)
     r.add_argument("--no-report", action="store_true")
+    r.add_argument("--from", dest="folder", type=Path, default=Path("studies"))
     rp = sub.add_parser("report")
     rp.add_argument("data_root", type=Path)
     rp.add_argument("out_root", type=Path)
@@ -144,7 +146,7 @@ def main(argv=None) -> int:
     d.add_argument("--what", choices=("data", "reports", "both"), default="both")
     a = p.parse_args(argv)
     if a.cmd == "run":
-        return cmd_run(a.root, a.studies, a.workers, not a.no_report)
+        return cmd_run(a.root, a.studies, a.workers, not a.no_report, a.folder)
     if a.cmd == "report":
         return cmd_report(a.data_root, a.out_root)
     return cmd_diff(a.old, a.new, a.what)
