@@ -56,7 +56,7 @@ def cmd_run(root: Path, names: str | None, workers: int, report: bool, folder: P
 def cmd_report(data_root: Path, out_root: Path) -> int:
     from workbench.report import build_report
 
-    for d in sorted(p for p in (data_root / "data").iterdir() if p.is_dir()):
+    for d in sorted(p for p in (data_root / "data").iterdir() if p.is_dir() and not p.name.startswith("_")):
         print(build_report(d, out_root / "reports" / d.name), flush=True)
     return 0
 
@@ -108,7 +108,8 @@ def diff_tables(old: Path, new: Path, limit: int = 10) -> list[str]:
 def cmd_diff(old_root: Path, new_root: Path, what: str) -> int:
     bad = 0
     for sub in ("data", "reports") if what == "both" else (what,):
-        old_dirs = sorted(p.name for p in (old_root / sub).iterdir() if p.is_dir()) if (old_root / sub).exists() else []
+        old_dirs = (sorted(p.name for p in (old_root / sub).iterdir() if p.is_dir() and not p.name.startswith("_"))
+                    if (old_root / sub).exists() else [])
         for name in old_dirs:
             o, n = old_root / sub / name, new_root / sub / name
             if not n.exists():
