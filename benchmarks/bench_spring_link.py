@@ -15,7 +15,7 @@ Two reference cases on the 0.8 m / 6 mm steel rod (EI = 13.36 N m^2):
 
 For every spring-link N (4..64) it prints wall time (best of ``--repeats``) and tip error for the
 planar and the spatial chain, built from rigid bodies (the registered model) and as an
-``ObjectKinematicTree`` (:mod:`workbench.physics._spring_link_tree`); then, for each N, the cheapest ANCF mesh (1..64 elements) that is at
+``ObjectKinematicTree`` (:mod:`workbench.physics.spring_link.tree`); then, for each N, the cheapest ANCF mesh (1..64 elements) that is at
 least as accurate, and the time ratio spring-link / ANCF measured in this run.  A further block
 times the eyelet tendon variants (constant-force rope chain and length-controlled reeving) at N =
 16, for the rigid-body and the kinematic-tree backend (3-D: Cardan joints, torsion locked).
@@ -30,7 +30,7 @@ import numpy as np
 
 from workbench.models import get_model
 from workbench.models.result import SolverOptions
-from workbench.physics._spring_link_tree import tree_tip_position
+from workbench.physics.spring_link.tree import tree_tip_position
 from workbench.physics.spring_link import SpringLinkParams, solve
 from workbench.reference.elastica import clamped_elastica
 from workbench.robot import LoadCase, TendonActuation

@@ -256,7 +256,7 @@ def _report_dir(folder: Path, reports_dir: str | Path = "reports") -> Path:
 
 def _build_report(data_dir: Path, out_dir: Path) -> str:
     """Build the HTML report of ``data_dir`` into ``out_dir``; what to print as its location."""
-    from .report import build_report
+    from .report.build import build_report
 
     print(f"building report {out_dir} ...", file=sys.stderr, flush=True)
     out = build_report(data_dir, out_dir)

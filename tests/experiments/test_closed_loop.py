@@ -159,7 +159,7 @@ def test_kind_loads_validates_and_runs(tmp_path):
     last = closed_loop(robot, n_samples=3)
     row = df[(df["model"] == "plan") & (df["p.scenario.shape"] == "line")].iloc[0]
     np.testing.assert_allclose(json.loads(row["p.load.length_changes"]), last["length_changes"], rtol=0, atol=1e-15)
-    from workbench.report import build_report
+    from workbench.report.build import build_report
 
     html = build_report(tmp_path / "out", tmp_path / "rep", formats=("png",)).read_text()
     for name in ("closed_loop_sweep", "closed_loop_path", "closed_loop_shapes"):

@@ -1,7 +1,4 @@
-"""The fruit-harvester grasp envelope and circle fit (workbench/experiments/fruit_harvester/envelope.py).
-
-Moved from tests/study/test_studies_b_report.py (assertions unchanged); the old import path
-(workbench.report._studies_b) is checked in tests/experiments/test_moved_names.py."""
+"""The fruit-harvester grasp envelope and circle fit (workbench/experiments/fruit_harvester/envelope.py)."""
 
 from __future__ import annotations
 

@@ -82,7 +82,7 @@ def test_centre_controller_saturates_at_the_pressure_limit(shao):
 
 @pytest.mark.slow  # ~5 s alone; the browser test (regression tier) builds this report too
 def test_small_study_report_has_the_scoop_figures(small_study_run, tmp_path):
-    from workbench.report import build_report
+    from workbench.report.build import build_report
     from workbench.study import read_table
 
     from workbench.experiments.fruit_harvester.scoop_notes import ASSUMPTIONS, QUESTION

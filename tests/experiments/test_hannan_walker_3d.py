@@ -71,17 +71,20 @@ def test_eq1_per_plane_reduces_to_the_planar_map():
 
 def _solve_tree_tensions(robot, T):
     """The Exudyn Cardan tree under cable tensions ``T``: (Cardan angles (16, 2), measured rope changes)."""
-    from workbench.physics import spring_link as sl
+    from workbench.models.result import SolverInfo
+    from workbench.physics.spring_link import chain_geometry_from_robot
+    from workbench.physics.spring_link.driver import static_ramp
+    from workbench.physics.spring_link.tree import TreeChain
 
     load = LoadCase(actuation=TendonActuation("tension", tuple(T)))
-    model = sl._Tree(robot, load, EYELETS, sl.chain_geometry_from_robot(robot, 16), spatial=True)
+    model = TreeChain(robot, load, EYELETS, chain_geometry_from_robot(robot, 16), spatial=True)
 
     def apply(lam):
         model.set_external(lam)
         model.set_tendons(lam * np.asarray(T), lam)
 
-    sl._static_ramp(model, EYELETS, cardan.CARDAN, apply)
-    q = model.result(sl.SolverInfo(True)).joint_angles
+    static_ramp(model, EYELETS, cardan.CARDAN, apply)
+    q = model.result(SolverInfo(True)).joint_angles
     measured = model.tendon_lengths() - np.array([t.reference_length for t in model.tendons])
     return q, measured
 

@@ -100,7 +100,7 @@ def test_small_study_rows(small_run):
 
 
 def test_small_study_report_has_the_grasp_figures(small_run, tmp_path):
-    from workbench.report import build_report
+    from workbench.report.build import build_report
 
     out, _ = small_run
     html = build_report(out, tmp_path / "report", formats=()).read_text()

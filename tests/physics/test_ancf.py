@@ -7,7 +7,7 @@ import pytest
 
 from workbench.models.result import ModelFailure, SolverOptions
 from workbench.physics import _ancf_geometry as geo
-from workbench.physics.ancf import PlanarModelError, _problem, _System, run
+from workbench.physics.ancf import PlanarModelError, build_problem, _System, run
 from workbench.reference.elastica import clamped_elastica
 from workbench.robot import CrossSection, LoadCase, Payload, Robot, Section, TendonActuation, TendonGroup
 from workbench.robot.orientation import base_rotation_for
@@ -242,7 +242,7 @@ def test_hermite_and_rigid_marker_offset_match_exudyn():
     robot = rod(tendons=TWO)
     load = LoadCase(actuation=TendonActuation("tension", (400.0, 0.0)), tip_force=(-20.0, 0, 5.0))
     with quiet_exudyn():
-        pb = _problem(robot, load, opts(6))
+        pb = build_problem(robot, load, opts(6))
         sysm = _System(pb, opts(6), "continuum", 0.0)
         sysm.set_external(1.0)
         sysm.set_tensions(np.array([400.0, 0.0]))
@@ -415,7 +415,7 @@ def test_implausible_states_rejected():
     from workbench.physics.ancf import _check_state
 
     with quiet_exudyn():
-        pb = _problem(rod(), LoadCase(), opts(4))
+        pb = build_problem(rod(), LoadCase(), opts(4))
         sysm = _System(pb, opts(4), "continuum", 0.0)
     q = sysm.coords().copy()
     _check_state(sysm, q)  # the reference state is fine

@@ -14,7 +14,7 @@ import numpy as np
 from workbench.models.result import SolverOptions
 from workbench.physics import _ancf_geometry as geo
 from workbench.physics._exudyn import quiet_exudyn
-from workbench.physics.ancf import _problem, _StaticDriver, _System, run
+from workbench.physics.ancf import build_problem, _StaticDriver, _System, run
 from workbench.physics.tendon_loads import ramp_load, tendon_rest_lengths
 from workbench.robot import CrossSection, LoadCase, Robot, Section, TendonActuation, TendonGroup
 from workbench.robot.orientation import base_rotation_for
@@ -32,7 +32,7 @@ def _reeving_equilibrium(robot, load, options):
     import exudyn as exu
     from exudyn.itemInterface import MarkerBodyRigid, ObjectConnectorReevingSystemSprings, ObjectGround
 
-    pb = _problem(robot, load, options)
+    pb = build_problem(robot, load, options)
     act = load.actuation
     with quiet_exudyn():
         sysm = _System(pb, options, "continuum", 0.0)  # plain rod: tendon curvature stays 0

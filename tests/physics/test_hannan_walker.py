@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from workbench.models.result import SolverOptions
-from workbench.physics.hannan_walker_trajectory import (
+from workbench.experiments.hannan_walker.replay import (
     cable_changes_from_joint_angles,
     joint_angles_from_cable_changes,
     replay_hannan_walker,
@@ -25,7 +25,7 @@ def test_preset_geometry_matches_paper():
     assert [s.tendons.offset for s in r.sections] == pytest.approx([0.0508, 0.04445, 0.0381, 0.03175])
     assert r.n_tendons == 8 and hannan_walker(planar=False).n_tendons == 16
     # joint spring k = EI / ds with ds = l / 4: the chain of 16 links has the preset's springs
-    from workbench.physics._spring_link_geometry import chain_geometry_from_robot
+    from workbench.physics.spring_link.geometry import chain_geometry_from_robot
 
     geo = chain_geometry_from_robot(r, 16)
     assert geo.stiffness == pytest.approx(np.repeat([120.0, 80.0, 50.0, 25.0], 4))
@@ -49,21 +49,24 @@ def test_cable_map_small_angle_and_round_trip():
 
 def test_cable_map_equals_chain_geometry():
     """Eq. (1) summed over joints equals the rope length measured on the Exudyn chain's eyelets."""
-    from workbench.physics import spring_link as sl
-    from workbench.physics._spring_link_geometry import chain_geometry_from_robot
+    from workbench.models.result import SolverInfo
+    from workbench.physics.spring_link.driver import static_ramp
+    from workbench.physics.spring_link.params import SpringLinkParams
+    from workbench.physics.spring_link.planar import PlanarChain
+    from workbench.physics.spring_link.geometry import chain_geometry_from_robot
 
     robot = hannan_walker(gravity=0.0)
     T = np.array([300.0, 0, 0, 100.0, 200.0, 0, 0, 50.0])
     load = LoadCase(actuation=TendonActuation("tension", tuple(T)))
     opts = SolverOptions(n_elements=16, tendon_model="eyelets")
-    model = sl._Planar(robot, load, opts, chain_geometry_from_robot(robot, 16))
+    model = PlanarChain(robot, load, opts, chain_geometry_from_robot(robot, 16))
 
     def apply(lam):
         model.set_external(lam)
         model.set_tendons(lam * T, lam)
 
-    sl._static_ramp(model, opts, sl.SpringLinkParams(), apply)
-    q = model.result(sl.SolverInfo(True)).joint_angles[:, 0]
+    static_ramp(model, opts, SpringLinkParams(), apply)
+    q = model.result(SolverInfo(True)).joint_angles[:, 0]
     assert np.abs(q).max() > 0.02  # a real bend, both directions
     measured = model.tendon_lengths() - np.array([t.reference_length for t in model.tendons])
     assert cable_changes_from_joint_angles(q, robot) == pytest.approx(measured, abs=1e-12)

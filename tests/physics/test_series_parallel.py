@@ -145,7 +145,7 @@ def test_fig6_tilts_of_45_degrees_about_mid_height_round_trip(axis, sign):
     lengths returns the pose to 1e-6 m, and the legs stay in the mild-force regime (no leg near
     buckling: all axial forces < 1 kN, measured leg compression <= 0.41 kN; about the platform centre the IK
     branch folds at 26.8 deg, see test_rx_limit_is_a_fold_of_the_ik_branch)."""
-    from workbench.motion.worker import module_target
+    from workbench.experiments.series_parallel.worker import module_target
 
     T = module_target(GEO.height, ("rx", "ry")[axis], sign * math.radians(45.0), 0.5)
     assert T[2, 3] < GEO.height  # the platform swings down and sideways, as in bending
@@ -162,13 +162,13 @@ def test_fig6_tilts_of_45_degrees_about_mid_height_round_trip(axis, sign):
 def test_segment_distance_is_exact():
     """Closed-form segment-segment distance: known cases, and never above a dense sampling of the
     two segments, nor more than its grid error below it (random, parallel and degenerate pairs)."""
-    from workbench.physics.series_parallel import _segment_distances
+    from workbench.physics.series_parallel.gap import segment_distances
 
     z = np.zeros(3)
     ex, ey, ez = np.eye(3)
-    assert _segment_distances(z, ex, ey, ey + ex) == pytest.approx(1.0)  # parallel, offset 1
-    assert _segment_distances(z, ex, 0.5 * ex + ez - ey, 0.5 * ex + ez + ey) == pytest.approx(1.0)  # skew, crossing
-    assert _segment_distances(z, ex, 2 * ex, 3 * ex) == pytest.approx(1.0)  # collinear, end to end
+    assert segment_distances(z, ex, ey, ey + ex) == pytest.approx(1.0)  # parallel, offset 1
+    assert segment_distances(z, ex, 0.5 * ex + ez - ey, 0.5 * ex + ez + ey) == pytest.approx(1.0)  # skew, crossing
+    assert segment_distances(z, ex, 2 * ex, 3 * ex) == pytest.approx(1.0)  # collinear, end to end
     rng = np.random.default_rng(7)
     u = np.linspace(0.0, 1.0, 1001)
     for k in range(60):
@@ -177,7 +177,7 @@ def test_segment_distance_is_exact():
             Q1 = Q0 + 0.7 * (P1 - P0)
         if k % 5 == 0:
             Q1 = Q0.copy()
-        d = float(_segment_distances(P0, P1, Q0, Q1))
+        d = float(segment_distances(P0, P1, Q0, Q1))
         A, B = P0 + u[:, None] * (P1 - P0), Q0 + u[:, None] * (Q1 - Q0)
         brute = float(np.min(np.linalg.norm(A[:, None] - B[None], axis=-1)))
         grid = 1e-3 * (np.linalg.norm(P1 - P0) + np.linalg.norm(Q1 - Q0))
@@ -315,28 +315,30 @@ def test_rx_limit_is_a_fold_of_the_ik_branch():
     """
     from scipy.spatial.transform import Rotation
 
-    from workbench.physics import series_parallel as sp
+    from workbench.physics.series_parallel.branch import ik_jacobian
+    from workbench.physics.series_parallel.newton import ik_newton
+    from workbench.physics.series_parallel.predictor import hermite_lengths
 
     H = home_pose(GEO)
     S = np.diag([1.0, 1.0, 1.0] + [1.0 / GEO.platform_radius] * 3)
     kw = dict(w=None, g=None, n_el=8, length_tolerance=1e-10, leg_tolerance=1e-11, fd_step=1e-7, counter=[0])
     lams = [0.1, 0.2, 0.3, 0.4, 0.45, 0.5, 0.53, 0.56, 0.58, 0.585, 0.59, 0.5925, 0.595]
     angles = [0.785 * lam for lam in lams]
-    L, legs, L_prev, a_prev, a_cur, T_cur = sp._hermite_lengths(GEO, H), None, None, None, 0.0, H
+    L, legs, L_prev, a_prev, a_cur, T_cur = hermite_lengths(GEO, H), None, None, None, 0.0, H
     dets, L1 = [], []
     for a in angles:
         T = H.copy()
         T[:3, :3] = Rotation.from_rotvec([a, 0.0, 0.0]).as_matrix()
         if L_prev is None:
-            Lg = L + (sp._hermite_lengths(GEO, T) - sp._hermite_lengths(GEO, T_cur))
+            Lg = L + (hermite_lengths(GEO, T) - hermite_lengths(GEO, T_cur))
         else:
             Lg = L + (L - L_prev) * (a - a_cur) / (a_cur - a_prev)
-        Ln, legs_n, ok, _, _, msg = sp._ik_newton(GEO, T, Lg, legs, legs0_L=L, max_iterations=30, **kw)
+        Ln, legs_n, ok, _, _, msg = ik_newton(GEO, T, Lg, legs, legs0_L=L, max_iterations=30, **kw)
         assert ok, f"rx = {math.degrees(a):.2f} deg: {msg}"
         if legs is not None:
             L_prev, a_prev = L, a_cur
         L, legs, a_cur, T_cur = Ln, legs_n, a, T
-        dets.append(np.linalg.det(S @ sp._ik_jacobian(GEO, T, L, legs)))
+        dets.append(np.linalg.det(S @ ik_jacobian(GEO, T, L, legs)))
         L1.append(L[1])
     dets = np.array(dets)
     assert np.all(dets < 0), dets  # one branch, no sign change before the fold

@@ -309,7 +309,7 @@ def test_axial_springs_do_not_change_pure_bending():
 @pytest.mark.parametrize("dimension", ["2d", "3d"])
 def test_kinematic_tree_variant_matches_rigid_body_chain(dimension):
     """The ObjectKinematicTree chain timed in the benchmark solves the same model."""
-    from workbench.physics._spring_link_tree import tree_tip_position
+    from workbench.physics.spring_link.tree import tree_tip_position
 
     robot = steel_rod(n_sections=2, gravity=9.81, base_orientation="horizontal")
     load = LoadCase(actuation=TendonActuation("tension", (100.0, 0.0, 0.0, 50.0)))

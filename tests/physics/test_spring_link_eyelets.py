@@ -12,8 +12,9 @@ import pytest
 from workbench.models.cc import actuation_from_arc
 from workbench.models.result import SolverOptions
 from workbench.physics import ancf
-from workbench.physics._spring_link_geometry import chain_geometry_from_robot
-from workbench.physics.spring_link import _tendons, run
+from workbench.physics.spring_link.geometry import chain_geometry_from_robot
+from workbench.physics.spring_link import run
+from workbench.physics.spring_link.routing import route_tendons
 from workbench.robot import LoadCase
 from workbench.robot.presets import build_preset
 
@@ -37,7 +38,7 @@ def test_eyelets_sit_at_the_disk_stations(disks, n_links):
     """One rope eyelet per disk (plus the base plate), wherever the disks fall on the links."""
     robot = _rod(0.02, disks)
     geo = chain_geometry_from_robot(robot, n_links)
-    (t, _) = _tendons(robot, geo, "eyelets")
+    (t, _) = route_tendons(robot, geo, "eyelets")
     expected = np.concatenate([[0.0], robot.disk_stations()])
     assert t.eye_link.shape == expected.shape
     on_ground = t.eye_link < 0

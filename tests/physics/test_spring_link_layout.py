@@ -1,4 +1,4 @@
-"""Spring-link package layout: old import paths, the chain hooks, the static load ramp's steps."""
+"""Spring-link package layout: imports without Exudyn, the chain hooks, the static load ramp's steps."""
 
 from __future__ import annotations
 
@@ -8,48 +8,34 @@ import sys
 import numpy as np
 import pytest
 
-from workbench.models.result import ModelFailure, SolverOptions
+from workbench.models.result import ModelFailure, SolverInfo, SolverOptions
+from workbench.physics.spring_link import SpringLinkParams, run
+from workbench.physics.spring_link.driver import static_ramp
 from workbench.robot import LoadCase
 from workbench.robot.presets.steel_rod import steel_rod
 
 
-def test_old_import_paths_are_the_moved_objects():
-    import workbench.physics._spring_link_geometry as old_geo
-    import workbench.physics._spring_link_tree as old_tree
-    from workbench.physics import spring_link as sl
-    from workbench.physics.spring_link import driver, geometry, routing, tree
-
-    assert old_geo.chain_geometry_from_robot is geometry.chain_geometry_from_robot is sl.chain_geometry_from_robot
-    assert old_geo.ChainGeometry is geometry.ChainGeometry
-    assert old_tree.tree_tip_position is tree.tree_tip_position
-    assert "Deprecated" in old_geo.__doc__ and "Deprecated" in old_tree.__doc__
-    assert sl.solve is driver.solve and sl.run is driver.run and sl._static_ramp is driver._static_ramp
-    assert sl._tendons is routing._tendons
-    for name in ("SpringLinkParams", "is_planar", "_Planar", "_Spatial", "_PlanarTree", "SolverInfo"):
-        assert hasattr(sl, name), name
-
-
 def test_package_imports_without_exudyn():
     """The study layer imports spring-link helpers; Exudyn is imported only when a chain is built."""
-    code = ("import sys, workbench.physics.spring_link, workbench.physics._spring_link_geometry, "
-            "workbench.physics._spring_link_tree; print('exudyn' in sys.modules)")
+    code = ("import sys, workbench.physics.spring_link, workbench.physics.spring_link.geometry, "
+            "workbench.physics.spring_link.tree; print('exudyn' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
 
 
 def test_every_chain_provides_the_hooks():
-    from workbench.physics.spring_link.chain import _Chain
-    from workbench.physics.spring_link.planar import _Planar
-    from workbench.physics.spring_link.spatial import _Spatial
-    from workbench.physics.spring_link.tree import _Tree
+    from workbench.physics.spring_link.chain import Chain
+    from workbench.physics.spring_link.planar import PlanarChain
+    from workbench.physics.spring_link.spatial import SpatialChain
+    from workbench.physics.spring_link.tree import TreeChain
 
-    for cls in (_Planar, _Spatial, _Tree):
-        assert issubclass(cls, _Chain)
+    for cls in (PlanarChain, SpatialChain, TreeChain):
+        assert issubclass(cls, Chain)
         for hook in ("_build", "_eyelet_marker", "_continuum_items", "_set_continuum"):
-            assert getattr(cls, hook) is not getattr(_Chain, hook), (cls.__name__, hook)
-    assert _Planar.link_states is not _Chain.link_states and _Spatial.link_frames is not _Chain.link_frames
-    assert _Tree.link_states is not _Chain.link_states and _Tree.link_frames is not _Chain.link_frames
-    assert _Planar.rigid_bodies and _Spatial.rigid_bodies and not _Tree.rigid_bodies
+            assert getattr(cls, hook) is not getattr(Chain, hook), (cls.__name__, hook)
+    assert PlanarChain.link_states is not Chain.link_states and SpatialChain.link_frames is not Chain.link_frames
+    assert TreeChain.link_states is not Chain.link_states and TreeChain.link_frames is not Chain.link_frames
+    assert PlanarChain.rigid_bodies and SpatialChain.rigid_bodies and not TreeChain.rigid_bodies
 
 
 def test_ramp_policies():
@@ -61,16 +47,15 @@ def test_ramp_policies():
     assert _TIP_RAMP == RampPolicy(first_increment=1.0, growth=2.0, grow_after=1, cap="one", min_increment=None)
 
 
-# The tests below use only names the original module had (spring_link._Planar, _static_ramp, ...),
-# so the step sequences they pin were checked against the code before the package existed.
+# The step sequences pinned below were checked against the code before the package existed.
 def _chain(max_load_steps=200):
-    from workbench.physics import spring_link as sl
-    from workbench.physics._spring_link_geometry import chain_geometry_from_robot
+    from workbench.physics.spring_link.geometry import chain_geometry_from_robot
+    from workbench.physics.spring_link.planar import PlanarChain
 
     robot = steel_rod()
     load = LoadCase(tip_torque=(0.0, 5.0, 0.0))
     opts = SolverOptions(n_elements=4, max_load_steps=max_load_steps)
-    return sl, sl._Planar(robot, load, opts, chain_geometry_from_robot(robot, 4)), opts
+    return PlanarChain(robot, load, opts, chain_geometry_from_robot(robot, 4)), opts
 
 
 def _recording_apply(model, fail):
@@ -89,35 +74,35 @@ def _recording_apply(model, fail):
 
 
 def test_static_ramp_halves_on_failure_and_doubles_after_each_success():
-    sl, model, opts = _chain()
+    model, opts = _chain()
     # the first two trials above 0.3 fail: 1 (x), 0.5 (x), 0.25, 0.75, 1
     apply, trials = _recording_apply(model, lambda lam, t: lam > 0.3 and sum(x > 0.3 for x in t) <= 2)
-    steps, its = sl._static_ramp(model, opts, sl.SpringLinkParams(), apply)
+    steps, its = static_ramp(model, opts, SpringLinkParams(), apply)
     assert trials == [1.0, 0.5, 0.25, 0.75, 1.0]
     assert steps == 5 and its > 0
     # the failed trials left no trace: the result is the one of a direct solve
-    direct = sl.run(model.robot, model.load, opts)
-    assert np.abs(model.result(sl.SolverInfo(True)).positions - direct.positions).max() < 1e-9
+    direct = run(model.robot, model.load, opts)
+    assert np.abs(model.result(SolverInfo(True)).positions - direct.positions).max() < 1e-9
 
 
 def test_static_ramp_failures_keep_their_messages():
-    sl, model, opts = _chain()
+    model, opts = _chain()
     apply, trials = _recording_apply(model, lambda lam, t: True)
     with pytest.raises(ModelFailure, match=r"^spring_link: static solve failed near load factor 0$"):
-        sl._static_ramp(model, opts, sl.SpringLinkParams(), apply)
+        static_ramp(model, opts, SpringLinkParams(), apply)
     assert trials[:3] == [1.0, 0.5, 0.25] and len(trials) == 20  # halved 20 times: 2**-20 < 1e-6
-    sl, model, opts = _chain(max_load_steps=3)
+    model, opts = _chain(max_load_steps=3)
     apply, trials = _recording_apply(model, lambda lam, t: lam > 0.3)
-    # on the rigid-body chain (``_Planar``) the message names the numerical cause and the solver key
+    # on the rigid-body chain (``PlanarChain``) the message names the numerical cause and the solver key
     with pytest.raises(ModelFailure, match=r"^spring_link: static load ramp exceeded options.max_load_steps=3 "
                                            r"\(reached load factor 0\.25\); the rigid-body chain's static Newton "
                                            r".*solver\.spring_link_backend = \"tree\" or \"auto\"\)$"):
-        sl._static_ramp(model, opts, sl.SpringLinkParams(), apply)
+        static_ramp(model, opts, SpringLinkParams(), apply)
     assert trials == [1.0, 0.5, 0.25]
 
 
 def test_static_ramp_propagates_a_non_positive_rest_length():
-    sl, model, opts = _chain()
+    model, opts = _chain()
     calls = []
 
     def apply(lam):
@@ -125,5 +110,5 @@ def test_static_ramp_propagates_a_non_positive_rest_length():
         raise ModelFailure("spring_link: tendon rest length -0.1 m <= 0 (command -0.9 m too short)")
 
     with pytest.raises(ModelFailure, match="rest length"):
-        sl._static_ramp(model, opts, sl.SpringLinkParams(), apply)
+        static_ramp(model, opts, SpringLinkParams(), apply)
     assert calls == [1.0]

@@ -54,7 +54,7 @@ def cmd_run(root: Path, names: str | None, workers: int, report: bool, folder: P
 
 
 def cmd_report(data_root: Path, out_root: Path) -> int:
-    from workbench.report import build_report
+    from workbench.report.build import build_report
 
     for d in sorted(p for p in (data_root / "data").iterdir() if p.is_dir() and not p.name.startswith("_")):
         print(build_report(d, out_root / "reports" / d.name), flush=True)

@@ -6,7 +6,7 @@ import json
 import re
 
 from synth_study import write_study
-from workbench.report import build_report
+from workbench.report.build import build_report
 
 
 def _block(html: str, name: str):

@@ -12,7 +12,7 @@ import re
 import pandas as pd
 import pytest
 
-from workbench.report import build_report
+from workbench.report.build import build_report
 from workbench.study import SerialExecutor, load_study, run_study
 
 STUDY = """

@@ -8,7 +8,7 @@ import subprocess
 import pytest
 
 from synth_study import write_study
-from workbench.report import build_report
+from workbench.report.build import build_report
 
 CHROMIUM = next((shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome") if shutil.which(n)), None)
 

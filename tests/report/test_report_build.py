@@ -11,7 +11,8 @@ import pandas as pd
 import pytest
 
 from synth_study import write_study
-from workbench.report import build_report, load_study
+from workbench.report.build import build_report
+from workbench.report.load import load_study
 
 
 class _Collector(HTMLParser):

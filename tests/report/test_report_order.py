@@ -16,7 +16,7 @@ import numpy as np
 import pyarrow.parquet as pq
 
 from tests.regression.golden import STUDIES_DIR
-from workbench.report import build_report
+from workbench.report.build import build_report
 
 
 def _shuffled_copy(src: Path, dst: Path, seed: int) -> Path:

@@ -13,10 +13,11 @@ import pytest
 
 from synth_study import write_runner_study, write_study
 from workbench import registry
-from workbench.report import ResultSet, Study, load_results, load_study
+from workbench.report.load import ResultSet, Study, load_results, load_study
 from workbench.report.build import study_figure_sets
 from workbench.report.command import main
-from workbench.report.figures import GENERIC_FIGURES, model_color, model_label
+from workbench.report.figures import GENERIC_FIGURES
+from workbench.report.style import model_color, model_label
 from workbench.report.style import _FALLBACK
 
 

@@ -18,7 +18,7 @@ import pytest
 
 from browser import CHROMIUM, open_report
 from tests.regression.golden import SLOW_SMALL_STUDIES, small_study_paths
-from workbench.report import build_report
+from workbench.report.build import build_report
 
 ROOT = Path(__file__).resolve().parents[2]
 ARTIFACTS = Path(os.environ.get("WORKBENCH_ARTIFACTS", ROOT / "build" / "artifacts")) / "browser"

@@ -8,7 +8,7 @@ import os
 import pytest
 
 from synth_study import write_study
-from workbench.report import build_report
+from workbench.report.build import build_report
 from workbench.report import build as build_mod
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pandas as pd
 
-from workbench.report.style import _case_title, axis_label, short_label, value_text
+from workbench.report.style import case_title, axis_label, short_label, value_text
 from workbench.report.units import UNITS, label_of, unit_groups, unit_of
 
 
@@ -29,7 +29,7 @@ def test_study_labels_win_and_unknown_keys_keep_their_name():
 def test_case_titles_carry_units():
     assert value_text("p.robot.payload_mass", 0.1) == "0.1 kg"
     assert short_label("p.robot.payload_mass") == "payload mass"
-    title = _case_title({"p.robot.payload_mass": 0.1, "p.scenario.shape": "line"},
+    title = case_title({"p.robot.payload_mass": 0.1, "p.scenario.shape": "line"},
                         ["p.robot.payload_mass", "p.scenario.shape"], {})
     assert title == "payload mass = 0.1 kg, trajectory = line"
 
@@ -40,5 +40,5 @@ def test_motion_amplitude_unit_depends_on_the_motion():
     groups = unit_groups(df, "p.motion.value")
     assert set(groups) == {"m", "rad"}
     assert list(groups["m"]) == [0, 2] and list(groups["rad"]) == [1, 3]
-    title = _case_title({"p.motion.value": 0.5, "p.motion.shape": "rx"}, ["p.motion.value", "p.motion.shape"], {})
+    title = case_title({"p.motion.value": 0.5, "p.motion.shape": "rx"}, ["p.motion.value", "p.motion.shape"], {})
     assert title == "motion amplitude = 0.5 rad, motion = rx"

@@ -10,7 +10,9 @@ import pytest
 
 from workbench.study import StudyError, expand, load_study
 from workbench.study.evaluate import build_load, build_robot, evaluate_case
-from workbench.study.scenarios import SCENARIOS, hannan_walker_line, load_with_scenario, scenario_parameters, wire_delay
+from workbench.experiments.hannan_walker.scenario import hannan_walker_line
+from workbench.experiments.wire_delay.scenario import wire_delay
+from workbench.study.scenarios import SCENARIOS, load_with_scenario, scenario_parameters
 
 WD = textwrap.dedent("""\
     [study]
@@ -144,14 +146,14 @@ def test_wire_delay_cylindrical_section_mean_wire_change_is_zero():
 
 
 def test_wire_delay_virtual_compression_at_three_seconds():
-    from workbench.physics.wire_delay import arc_from_wire_lengths_tronconic, wire_lengths_tronconic
+    from workbench.experiments.wire_delay.analysis import arc_from_wire_lengths_tronconic, wire_lengths_from_arc_tronconic
 
     robot = build_robot({"preset": "cojocaru_tronconic", "n_sections": 1})
     load = build_load(robot, load_with_scenario(robot, {"mode": "length"}, {"name": "wire_delay", **scenario_parameters("wire_delay"), "delay": 3.0}))
     sec = robot.sections[0]
     g = sec.tendons
     sigma = np.asarray(g.angles)
-    L0 = wire_lengths_tronconic(0.0, 0.0, sec.length, g.offset, g.offset_tip, sigma)
+    L0 = wire_lengths_from_arc_tronconic(0.0, 0.0, sec.length, g.offset, g.offset_tip, sigma)
     Lcmd = L0 + load.actuation.command_at(3.0, load.ramp_time)
     _, _, e = arc_from_wire_lengths_tronconic(Lcmd, sec.length, g.offset, g.offset_tip, sigma)
     assert -0.02 < float(e) / sec.length < -0.015  # the paper's "approximately 2 %" (-1.78 %)
@@ -164,7 +166,7 @@ def test_wire_delay_virtual_compression_at_three_seconds():
 @pytest.mark.parametrize("shape", ["line", "grasp"])
 def test_hannan_walker_line_commands_put_the_cc_tip_on_the_line(shape):
     from workbench.kinematics import planar_forward_kinematics
-    from workbench.physics.hannan_walker_trajectory import joint_angles_from_cable_changes
+    from workbench.experiments.hannan_walker.replay import joint_angles_from_cable_changes
 
     robot = build_robot({"preset": "hannan_walker"})
     ell = robot.section_lengths

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import _series
+from ._series import dsinc, dversinc, sinc, sinc_given_sin
 from ._checks import as_float, broadcast_named, require_nonnegative, section_arrays
 
 __all__ = ["section_transform", "forward_kinematics", "backbone_points", "jacobian"]
@@ -43,7 +43,7 @@ def _section_soa(kappa, phi, ell):
     den = 1.0 / (1.0 + t2)
     sh = 2.0 * t * den  # sin(theta/2)
     ch = (1.0 - t2) * den  # cos(theta/2)
-    sc = _series.sinc_given_sin(h, sh)
+    sc = sinc_given_sin(h, sh)
     S = 2.0 * sh * ch  # sin(theta)
     V = 2.0 * sh * sh  # 1 - cos(theta), no cancellation
     C = 1.0 - V
@@ -116,7 +116,7 @@ def _chain_tip_block(K, P, L, out):
     out.reshape(-1, 16)[...] = tmp.T
 
 
-def _chain_tip(kappa, phi, ell):
+def chain_tip(kappa, phi, ell):
     """Tip frame of sections along the last axis (already broadcast, float, checked)."""
     shape = kappa.shape[:-1]
     n = kappa.shape[-1]
@@ -185,7 +185,7 @@ def section_transform(kappa, phi, ell) -> np.ndarray:
     return _pack_soa(R, p, k.shape)
 
 
-def _check_sections(kappa, phi, ell):
+def check_sections(kappa, phi, ell):
     k, f, ll = section_arrays(kappa=kappa, phi=phi, ell=ell)
     require_nonnegative("ell", ll)
     return k, f, ll
@@ -233,9 +233,9 @@ def forward_kinematics(kappa, phi, ell, s=None) -> np.ndarray:
     >>> np.allclose(T, np.eye(4))
     True
     """
-    k, f, ll = _check_sections(kappa, phi, ell)
+    k, f, ll = check_sections(kappa, phi, ell)
     if s is None:
-        return _chain_tip(k, f, ll)
+        return chain_tip(k, f, ll)
     s = _check_stations(s, ll)
     return _frames_at(k, f, ll, s)
 
@@ -297,10 +297,10 @@ def _local_derivatives(K, P, L):
     c = np.cos(P)
     s = np.sin(P)
     z = np.zeros_like(theta)
-    lg = L * sh * _series.sinc(h)  # (1 - cos theta)/kappa
+    lg = L * sh * sinc(h)  # (1 - cos theta)/kappa
     L2 = L * L
-    dg = _series.dversinc(theta)
-    df = _series.dsinc(theta)
+    dg = dversinc(theta)
+    df = dsinc(theta)
     v = np.stack(
         [
             np.stack([L2 * c * dg, L2 * s * dg, L2 * df], axis=-1),  # d/dkappa
@@ -352,11 +352,11 @@ def jacobian(kappa, phi, ell) -> np.ndarray:
     ``kappa = 0`` the ``phi`` columns vanish (the bending plane is undefined): the map is
     rank deficient there, as for any (kappa, phi) parametrisation.
     """
-    K, P, L = _check_sections(kappa, phi, ell)
-    return _jacobian(K, P, L)
+    K, P, L = check_sections(kappa, phi, ell)
+    return jacobian_unchecked(K, P, L)
 
 
-def _jacobian(K, P, L):
+def jacobian_unchecked(K, P, L):
     """:func:`jacobian` without input checks (inputs broadcast, float, ``(..., n)``)."""
     batch = K.shape[:-1]
     n = K.shape[-1]

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import _series
+from ._series import dsinc, dversinc, sinc, versinc
 from ._checks import as_float, require_nonnegative, section_arrays
 
 __all__ = [
@@ -44,8 +44,8 @@ def _planar_chain(k, ll):
     w = k * ll
     Om = np.cumsum(w, axis=-1)
     Om_prev = Om - w
-    lx = -ll * _series.versinc(w)  # (cos w - 1)/kappa
-    ly = ll * _series.sinc(w)  # sin w / kappa
+    lx = -ll * versinc(w)  # (cos w - 1)/kappa
+    ly = ll * sinc(w)  # sin w / kappa
     c, s = np.cos(Om_prev), np.sin(Om_prev)
     dx = c * lx - s * ly
     dy = s * lx + c * ly
@@ -73,10 +73,10 @@ def planar_forward_kinematics(kappa, ell) -> np.ndarray:
         ``w_j = kappa_j l_j`` (evaluated without dividing by ``kappa``).
     """
     k, ll = _check(kappa, ell)
-    return _planar_fk(k, ll)
+    return planar_fk_unchecked(k, ll)
 
 
-def _planar_fk(k, ll):
+def planar_fk_unchecked(k, ll):
     """:func:`planar_forward_kinematics` without input checks."""
     ends, Om, _, _ = _planar_chain(k, ll)
     W = Om[..., -1]
@@ -128,16 +128,16 @@ def planar_jacobian(kappa, ell) -> np.ndarray:
     identical for ``kappa != 0`` and smooth through ``kappa = 0``.
     """
     k, ll = _check(kappa, ell)
-    return _planar_jac(k, ll)
+    return planar_jacobian_unchecked(k, ll)
 
 
-def _planar_jac(k, ll):
+def planar_jacobian_unchecked(k, ll):
     """:func:`planar_jacobian` without input checks."""
     ends, Om, Om_prev, w = _planar_chain(k, ll)
     tip = ends[..., -1:, :]
     l2 = ll * ll
-    ax = -l2 * _series.dversinc(w)
-    ay = l2 * _series.dsinc(w)
+    ax = -l2 * dversinc(w)
+    ay = l2 * dsinc(w)
     c, s = np.cos(Om_prev), np.sin(Om_prev)
     lever = tip - ends  # (..., n, 2)
     jx = c * ax - s * ay - ll * lever[..., 1]

@@ -27,8 +27,8 @@ from typing import Callable
 import numpy as np
 
 from ._checks import as_float, require_positive, section_arrays
-from .arc import _chain_tip, _check_sections, _jacobian, forward_kinematics
-from .planar import _planar_fk, _planar_jac, planar_forward_kinematics
+from .arc import chain_tip, check_sections, jacobian_unchecked, forward_kinematics
+from .planar import planar_fk_unchecked, planar_jacobian_unchecked, planar_forward_kinematics
 
 __all__ = [
     "IKResult",
@@ -272,8 +272,8 @@ def planar_inverse_kinematics(
         raise ValueError(f"kappa_d must have shape {k0.shape}; got {q_d.shape}")
     _check_solver_opts(gain, null_gain, singular_threshold, tol, max_iter, max_step)
     # inputs are checked above; the loop uses the unchecked kernels
-    fk = lambda q: _planar_fk(q, ll)[:2, 3]  # noqa: E731
-    jac = lambda q: _planar_jac(q, ll)  # noqa: E731
+    fk = lambda q: planar_fk_unchecked(q, ll)[:2, 3]  # noqa: E731
+    jac = lambda q: planar_jacobian_unchecked(q, ll)  # noqa: E731
     q0 = k0.copy()
     if target_velocity is not None:
         v = _check_target(target_velocity, 2)
@@ -325,7 +325,7 @@ def spatial_inverse_kinematics(
     IKResult
         ``q`` has shape (2, n): ``q[0]`` curvatures, ``q[1]`` angles wrapped to ``(-pi, pi]``.
     """
-    k0, p0, ll = _check_sections(kappa0, phi0, ell)
+    k0, p0, ll = check_sections(kappa0, phi0, ell)
     if k0.ndim != 1:
         raise ValueError(f"kappa0, phi0 and ell must have shape (n,); got {k0.shape}")
     if np.any(ll <= 0):
@@ -342,10 +342,10 @@ def spatial_inverse_kinematics(
     cols = np.concatenate([3 * np.arange(n), 3 * np.arange(n) + 1])  # kappa_i, then phi_i
 
     def fk(q):
-        return _chain_tip(q[:n], q[n:], ll)[:3, 3]
+        return chain_tip(q[:n], q[n:], ll)[:3, 3]
 
     def jac(q):
-        return _jacobian(q[:n], q[n:], ll)[:3, cols]
+        return jacobian_unchecked(q[:n], q[n:], ll)[:3, cols]
 
     select = np.concatenate([np.ones(n), np.zeros(n)])
     q, ok, it, r, why = _resolved_rate(

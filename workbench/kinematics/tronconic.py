@@ -44,7 +44,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _series
+from ._series import dsinc, sinc
 from ._checks import as_float, broadcast_named, require_positive
 from .tendons import arc_from_tendon_lengths
 
@@ -107,7 +107,7 @@ def wire_lengths_tronconic(theta, alpha, H, D1, D2) -> np.ndarray:
     a = 0.5 * D1[..., None] * cos_n
     b = 0.5 * D2[..., None] * cos_n
     t = th[..., None]
-    sc = _series.sinc(0.5 * t)
+    sc = sinc(0.5 * t)
     return np.sqrt((a - b) ** 2 / (sc * sc) + (H[..., None] + a * t) * (H[..., None] + b * t))
 
 
@@ -146,8 +146,8 @@ def wire_length_jacobian(theta, alpha, H, D1, D2) -> np.ndarray:
     da, db = 0.5 * D1[..., None] * s, 0.5 * D2[..., None] * s  # d/dalpha (d alpha_n/d alpha = -1)
     t = th[..., None]
     Hh = H[..., None]
-    sc = _series.sinc(0.5 * t)
-    dsc = _series.dsinc(0.5 * t)
+    sc = sinc(0.5 * t)
+    dsc = dsinc(0.5 * t)
     dQ_dt = -((a - b) ** 2) * dsc / sc**3 + a * (Hh + b * t) + b * (Hh + a * t)
     dQ_da = 2.0 * (a - b) * (da - db) / sc**2 + t * (da * (Hh + b * t) + db * (Hh + a * t))
     return np.stack([dQ_dt, dQ_da], axis=-1) / (2.0 * L[..., None])

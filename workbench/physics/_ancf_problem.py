@@ -1,6 +1,6 @@
 """The planar ANCF problem: robot and load mapped into Exudyn's plane (pure numpy; private).
 
-Description half of :mod:`workbench.physics.ancf` (which re-exports every name here).  The robot
+Description half of :mod:`workbench.physics.ancf` (which builds its system from :func:`build_problem`).  The robot
 bends in its base x-z plane; Exudyn's plane ``(X, Y)`` is (base z, base x), so the backbone starts
 along Exudyn +X and a rotation about Exudyn +Z is a rotation about base +y.  Only tendons at
 ``sigma = 0`` (offset ``+d`` along base x, Exudyn +Y) or ``sigma = pi`` (``-d``), within 1e-9 rad,
@@ -54,7 +54,7 @@ class _Tendon:
 
 
 @dataclass(frozen=True)
-class _Problem:
+class AncfProblem:
     L: float
     s_nodes: np.ndarray  # (n+1,)
     EI: np.ndarray  # (n,)
@@ -81,7 +81,7 @@ def _tendon_sign(sigma: float, index: int) -> float:
     )
 
 
-def _problem(robot: Robot, load: LoadCase, options: SolverOptions) -> _Problem:
+def build_problem(robot: Robot, load: LoadCase, options: SolverOptions) -> AncfProblem:
     check_model_inputs(robot, load, options)
     L = robot.length
     F = np.asarray(load.tip_force)
@@ -131,7 +131,7 @@ def _problem(robot: Robot, load: LoadCase, options: SolverOptions) -> _Problem:
         d1 = grp.offset if grp.offset_tip is None else grp.offset_tip
         eyes = tuple(float(x) for x in disks[disks <= ends[j] * (1 + 1e-12)])
         tendons.append(_Tendon(sign, end, grp.offset, d1, grp.axial_stiffness, eyes))
-    return _Problem(
+    return AncfProblem(
         L=L, s_nodes=s_nodes, EI=np.array(EI), EA=np.array(EA), mu=np.array(mu),
         gravity=np.array([g[2], g[0]]), tip_force=np.array([F[2], F[0]]), tip_torque=float(M[1]),
         payload=robot.payload.mass, tendons=tuple(tendons), g_out=float(g[1]), cross_sections=tuple(sections),

@@ -1,7 +1,7 @@
 """Mesh, frame convention and tendon routes of the spatial beam models (pure numpy).
 
-Used by :mod:`workbench.physics.beam3d` (which re-exports ``element_layout``, ``tendon_routes``
-and ``R_BASE_MODEL``) and :mod:`workbench.physics.ancf3d`.  Checked through
+Used by :mod:`workbench.physics.beam3d` (through :mod:`workbench.physics._beam3d_system`) and
+:mod:`workbench.physics.ancf3d`.  Checked through
 ``tests/physics/test_beam3d*.py`` and ``test_ancf3d.py``.
 """
 

@@ -1,6 +1,6 @@
 """The assembled Exudyn system of one ``beam3d`` solve (private; see :mod:`workbench.physics.beam3d`).
 
-:class:`_System` builds the geometrically exact beam in the model frame (beam axis = model x,
+:class:`Beam3DSystem` builds the geometrically exact beam in the model frame (beam axis = model x,
 ``R_BASE_MODEL``), its clamp, masses, loads and eyelet tendons, and offers the setters the load
 ramp and the dynamics drive (tendon commands, load factor) and the readers of the results (base
 frame).  Built per call from plain parameters; nothing is kept between calls.  Checked by
@@ -44,7 +44,7 @@ def beam_section(cs, damping: float, axial_shear_scale: float = 1.0) -> "exu.Bea
     ``GA = CrossSection.GA`` or ``100 EA`` if None (shear-rigid limit); rotary inertia
     ``mu EI/EA diag(2, 1, 1)`` (solid homogeneous section).  The damping matrix is ignored by
     Exudyn 1.13.6 (``test_exudyn_ge_beam_ignores_section_damping``): beam3d's damping is added by
-    :meth:`_System._add_section_dampers` instead.
+    :meth:`Beam3DSystem._add_section_dampers` instead.
     ``axial_shear_scale`` multiplies EA and GA in the stiffness (not in the inertia): < 1 only in
     the predictor stages of the static solve (:func:`workbench.physics.beam3d._ramp_static`).
     """
@@ -59,7 +59,7 @@ def beam_section(cs, damping: float, axial_shear_scale: float = 1.0) -> "exu.Bea
     return bs
 
 
-class _System:
+class Beam3DSystem:
     """The assembled Exudyn system of one beam3d solve, with its load setters and result readers.
 
     Parameters

@@ -82,7 +82,7 @@ def settings(
     -------
     exudyn.SimulationSettings
         ``settings(tol, it, n, absolute_tolerance=1e-14, adaptive=n > 1, minimum_step_size=1e-3,
-        sensors_active=False)`` equals ``_series_parallel_exudyn._settings(tol, it, n)`` field by field
+        sensors_active=False)`` equals ``series_parallel._systems._settings(tol, it, n)`` field by field
         (``tests/physics/test_exudyn_helpers.py``).
     """
     s = exu.SimulationSettings()

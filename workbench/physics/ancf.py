@@ -1,7 +1,7 @@
 """Planar tendon-driven backbone as a chain of 2-D ANCF cable elements (Exudyn).
 
 Model ``"ancf"``: ``run(robot, load, options) -> PhysicsResult``.  Description -> system ->
-drivers: :func:`_problem` (``_ancf_problem``, pure numpy: the robot in Exudyn's plane, base
+drivers: :func:`build_problem` (``_ancf_problem``, pure numpy: the robot in Exudyn's plane, base
 (z, x) = Exudyn (X, Y)), :class:`_System` (the assembled Exudyn system), :class:`_StaticDriver`
 and :func:`_dynamic`.
 
@@ -50,9 +50,10 @@ import numpy as np
 
 from ..models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ..robot import LoadCase, Robot
-from . import _ancf_geometry as geo
+from ._ancf_geometry import (arc_length, centreline, element_lengths, gauss_points, hermite, locate,
+                             offset_curve_length, offset_points)
 from ..models.backbone_frames import backbone_series, frame_stride
-from ._ancf_problem import PlanarModelError, _Problem, _problem, _Tendon, _tendon_sign  # noqa: F401 (re-exported)
+from ._ancf_problem import AncfProblem, PlanarModelError, build_problem
 from .tendon_loads import (
     ramp_load,
     solve_length_controlled,
@@ -72,8 +73,8 @@ class _System:
 
     Parameters
     ----------
-    pb : _Problem
-        The planar problem (:func:`_problem`).
+    pb : AncfProblem
+        The planar problem (:func:`build_problem`).
     options : SolverOptions
         Unused here (kept for the callers' signature).
     tendon_model : {"continuum", "eyelets"}
@@ -81,7 +82,7 @@ class _System:
         Rayleigh ``beta`` [s] of the elements.
     """
 
-    def __init__(self, pb: _Problem, options: SolverOptions, tendon_model: str, damping: float):
+    def __init__(self, pb: AncfProblem, options: SolverOptions, tendon_model: str, damping: float):
         import exudyn as exu
 
         self.exu = exu
@@ -92,7 +93,7 @@ class _System:
         ground = self._add_cable(damping)
         self._add_loads()
         self._add_tendons(ground)
-        self.quad = geo.gauss_points(pb.s_nodes, 6)
+        self.quad = gauss_points(pb.s_nodes, 6)
         self._T = np.full(len(pb.tendons), np.nan)
         self._ext = np.nan
         self.mbs.Assemble()
@@ -163,7 +164,7 @@ class _System:
             if self.tendon_model == "eyelets":
                 prev = mbs.AddMarker(MarkerBodyPosition(bodyNumber=ground, localPosition=[0.0, float(td.y(0.0)), 0.0]))
                 segs = []
-                elem, x = geo.locate(sn, np.array(td.eyelets))
+                elem, x = locate(sn, np.array(td.eyelets))
                 for s_e, e_i, x_i in zip(td.eyelets, elem, x):
                     m = mbs.AddMarker(MarkerBodyRigid(bodyNumber=self.elements[int(e_i)],
                                                       localPosition=[float(x_i), float(td.y(s_e)), 0.0]))
@@ -227,16 +228,16 @@ class _System:
             if self.tendon_model == "continuum" and td.d0 == td.d1:
                 # constant offset: (r + y n)' = (|r'| - y theta') t, so l = int |r'| - y (theta_e - theta_0)
                 if el_len is None:
-                    el_len = geo.element_lengths(qn, pb.s_nodes, quad=self.quad)
+                    el_len = element_lengths(qn, pb.s_nodes, quad=self.quad)
                     th = np.unwrap(np.arctan2(qn[..., 3], qn[..., 2]), axis=-1)
                 k = int(np.argmin(np.abs(pb.s_nodes - td.end)))
                 arc = el_len[..., :k].sum(axis=-1)
                 out.append(arc - float(td.y(0.0)) * (th[..., k] - th[..., 0]))
             elif self.tendon_model == "continuum":
-                out.append(geo.offset_curve_length(qn, pb.s_nodes, td.end, td.y, td.dy, quad=self.quad))
+                out.append(offset_curve_length(qn, pb.s_nodes, td.end, td.y, td.dy, quad=self.quad))
             else:
                 st = np.array(td.eyelets)
-                pts = geo.offset_points(qn, pb.s_nodes, st, td.y(st))
+                pts = offset_points(qn, pb.s_nodes, st, td.y(st))
                 anchor = np.array([0.0, float(td.y(0.0))])
                 pts = np.concatenate([np.broadcast_to(anchor, pts.shape[:-2] + (1, 2)), pts], axis=-2)
                 out.append(np.sum(np.linalg.norm(np.diff(pts, axis=-2), axis=-1), axis=-1))
@@ -340,20 +341,20 @@ def _compliance(sysm: _System) -> np.ndarray:
     pb = sysm.pb
     sn = pb.s_nodes
     s = np.linspace(0.0, pb.L, 40 * (sn.size - 1) + 1)
-    elem, _ = geo.locate(sn, s)
+    elem, _ = locate(sn, s)
     y = np.array([t.y(s) for t in pb.tendons])
     return tendon_path_compliance(s, pb.EI[elem], pb.EA[elem], y, [t.end for t in pb.tendons])
 
 
 def _frame_and_positions(sysm: _System, qn: np.ndarray, stations: np.ndarray):
-    r, t = geo.centreline(qn, sysm.pb.s_nodes, stations)
+    r, t = centreline(qn, sysm.pb.s_nodes, stations)
     pos = np.zeros(r.shape[:-1] + (3,))
     pos[..., 0] = r[..., 1]
     pos[..., 2] = r[..., 0]
     return pos, t
 
 
-def _backbone_stress(pb: _Problem, qn: np.ndarray):
+def _backbone_stress(pb: AncfProblem, qn: np.ndarray):
     """Backbone stress at five points per element of the states ``qn`` (..., n+1, 4) and the strengths there.
 
     Axial strain ``|r'| - 1`` and bending ``theta' = (r' x r'') / |r'|^2`` of the material (the
@@ -368,7 +369,7 @@ def _backbone_stress(pb: _Problem, qn: np.ndarray):
     n = pb.s_nodes.size - 1
     elem = np.repeat(np.arange(n), 5)
     x = np.tile(np.linspace(0.0, 1.0, 5), n) * np.diff(pb.s_nodes)[elem]
-    _, dr, ddr = geo.hermite(qn, pb.s_nodes, elem, x)
+    _, dr, ddr = hermite(qn, pb.s_nodes, elem, x)
     nrm2 = np.sum(dr * dr, axis=-1)
     eps = np.sqrt(nrm2) - 1.0
     kap = (dr[..., 0] * ddr[..., 1] - dr[..., 1] * ddr[..., 0]) / nrm2
@@ -376,7 +377,7 @@ def _backbone_stress(pb: _Problem, qn: np.ndarray):
     return combined_stress(pb.EA[elem] * eps, pb.EI[elem] * kap, A, W), Y
 
 
-def _stress(pb: _Problem, robot: Robot, qn: np.ndarray, tensions: np.ndarray) -> dict[str, float]:
+def _stress(pb: AncfProblem, robot: Robot, qn: np.ndarray, tensions: np.ndarray) -> dict[str, float]:
     from ..models.stress import stress_extras
 
     bs = _backbone_stress(pb, qn)
@@ -430,7 +431,7 @@ def run(
     from ._exudyn import quiet_exudyn
 
     t_wall = _time.perf_counter()
-    pb = _problem(robot, load, options)
+    pb = build_problem(robot, load, options)
     if initial_state not in ("static", "reference"):
         raise ValueError(f"initial_state must be 'static' or 'reference', got {initial_state!r}")
     act = load.actuation
@@ -449,7 +450,7 @@ def run(
             T, tendon_it, q, times, series, stress = _dynamic(sysm, drv, load, options, initial_state, robot)
     qn = sysm.node_coords(q)
     pos, tang = _frame_and_positions(sysm, qn, stations)
-    length_change = float(geo.arc_length(qn, pb.s_nodes, quad=sysm.quad)) - pb.L
+    length_change = float(arc_length(qn, pb.s_nodes, quad=sysm.quad)) - pb.L
     wall = _time.perf_counter() - t_wall
     return PhysicsResult(
         model="ancf",
@@ -537,7 +538,7 @@ def _dynamic_series(sysm: _System, cmd: _Commands, Q: np.ndarray, times: np.ndar
     series = {
         "tip_position": tip[:, 0, :],
         "tendon_tensions": Ts,
-        "length_change": geo.arc_length(qn, pb.s_nodes, quad=sysm.quad) - pb.L,
+        "length_change": arc_length(qn, pb.s_nodes, quad=sysm.quad) - pb.L,
     }
     keep = np.unique(np.r_[np.arange(0, times.size - 1, frame_stride(times.size - 1)), times.size - 1])
     series.update(backbone_series(times[keep], _frame_and_positions(sysm, qn[keep], stations)[0]))

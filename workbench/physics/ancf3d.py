@@ -15,7 +15,7 @@ of :mod:`workbench.physics.beam3d` for those cases.  It raises :class:`ModelFail
 * a payload with a non-zero offset (no tip frame to carry it).
 
 Discretisation: ``options.n_elements`` cable elements distributed over the sections like
-:func:`workbench.physics.beam3d.element_layout`, each with the cross-section at its
+:func:`workbench.physics._beam3d_layout.element_layout`, each with the cross-section at its
 midpoint (EI, EA, mass per length; GJ and GA do not exist in this element).
 ``useReducedOrderIntegration=2`` (Lobatto axial integration; removes most coarse-mesh
 axial locking under large sag, facts note).  Clamp: node-0 position and the two
@@ -49,7 +49,7 @@ from ..models.inputs import check_model_inputs
 from ..models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ..robot import LoadCase, Robot
 from ._stepping import RampExhausted, RampPolicy, RampStalled, ramp
-from .beam3d import element_layout
+from ._beam3d_layout import element_layout
 
 __all__ = ["run"]
 

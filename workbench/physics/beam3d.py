@@ -3,7 +3,7 @@
 Model ``"beam3d"``: ``run(robot, load, options) -> PhysicsResult``.
 
 * Backbone: ``options.n_elements`` ``ObjectBeamGeometricallyExact`` elements on Euler-parameter
-  nodes (``NodeRigidBodyEP``), distributed over the sections by :func:`element_layout` (the count
+  nodes (``NodeRigidBodyEP``), distributed over the sections by :func:`._beam3d_layout.element_layout` (the count
   is ``extras["n_elements"]``), each with the cross-section at its midpoint (tapers piecewise
   constant), stiffness ``diag(EA, GA, GA, GJ, EI, EI)`` (``GA = 100 EA`` if None).  Built in a model
   frame with the beam along model +x: model (x, y, z) = base (z, x, y) (``R_BASE_MODEL``); inputs
@@ -14,7 +14,7 @@ Model ``"beam3d"``: ``run(robot, load, options) -> PhysicsResult``.
 * Tendons (``options.tendon_model == "eyelets"``; ``"continuum"`` raises :class:`ModelFailure`
   for loaded tendons): anchored on the base plate at ``d(0)``, through marker eyelets at every
   disk at ``(d cos sigma, d sin sigma)``, offsets ``TendonGroup.offset_at(s / s_end)``
-  (:func:`tendon_routes`).  Tension mode: zero-stiffness ``ObjectConnectorSpringDamper`` segments
+  (:func:`._beam3d_layout.tendon_routes`).  Tension mode: zero-stiffness ``ObjectConnectorSpringDamper`` segments
   with constant force ``T`` between ``MarkerBodyPosition`` eyelets.  Length mode: one
   ``ObjectConnectorReevingSystemSprings`` per tendon (rigid-marker eyelets), rest length
   ``L_path0 / (1 + T_pre/EA_t) + delta_l``, ``regularizationForce`` 1e-3 N, tensions
@@ -26,7 +26,7 @@ Model ``"beam3d"``: ``run(robot, load, options) -> PhysicsResult``.
 * Dynamic analysis: generalised-alpha from the static equilibrium at t = 0; commands
   ``TendonActuation.command_at(t, load.ramp_time)`` set in a ``preStepUserFunction`` (called with
   the *end* time of the coming step); sparse LU; ``options.damping = beta`` [s]: Kelvin-Voigt damping
-  by inter-node connectors (``_System._add_section_dampers``); series every ``max(time_step, duration
+  by inter-node connectors (``Beam3DSystem._add_section_dampers``); series every ``max(time_step, duration
   / 1000)`` (:func:`workbench.models.result.series_times`).
 * Outputs: ``positions`` by the element's own interpolation at ``options.n_stations`` stations;
   ``tip_frame`` = tip cross-section axes (z along the backbone); ``length_change`` = sum of
@@ -49,10 +49,9 @@ import numpy as np
 from ..models.inputs import check_model_inputs
 from ..models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ..robot import LoadCase, Robot
-from ._beam3d_layout import R_BASE_MODEL, element_layout, tendon_routes
 from ._stepping import RampExhausted, RampPolicy, RampStalled, ramp
 
-__all__ = ["run", "auto_stiffness_stages", "element_layout", "tendon_routes", "R_BASE_MODEL"]
+__all__ = ["run", "auto_stiffness_stages"]
 
 _MIN_INCREMENT = 1e-6
 _STATIC_MAX_ITERATIONS = 50
@@ -381,7 +380,7 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions, *, stiffness_stage
         Continuum tendons requested with loaded tendons, static ramp exhausted, NaN state,
         payload offset in dynamics.
     """
-    from ._beam3d_system import _System
+    from ._beam3d_system import Beam3DSystem
     from ._exudyn import quiet_exudyn
 
     _check(robot, load, options)
@@ -397,7 +396,7 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions, *, stiffness_stage
     act = load.actuation
     n_t = robot.n_tendons
     with quiet_exudyn():
-        system = _System(robot, load, options, mode)
+        system = Beam3DSystem(robot, load, options, mode)
         extras = {"n_elements": float(len(system.elements))}
         if load.analysis == "static":
             final = np.asarray(act.values) if act is not None else np.zeros(n_t)

@@ -28,13 +28,14 @@ from .. import registry
 from ..compare.table import compare_table
 from ..study.store import MANIFEST, array_shapes
 from .casetable import case_table
-from .figures import GENERIC_FIGURES, STYLE, ReportFigure, code_categories, pair_label
+from .figures import GENERIC_FIGURES
 from .findings import opening_sections
 from .headline import baseline_cases, summary_columns
 from .load import ResultSet, load_results, numeric
 from .context import PageContext
 from .page import render_page
 from .sections import esc
+from .style import STYLE, ReportFigure, code_categories, pair_label
 from .viewer import viewer_scenes
 
 __all__ = ["MAX_EMBEDDED_BYTES", "build_report", "default_report_dir", "study_figure_sets"]

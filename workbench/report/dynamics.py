@@ -20,7 +20,7 @@ from matplotlib.figure import Figure
 from ..compare.table import array_cell
 from .load import ResultSet, numeric
 from .units import label_of
-from .style import ReportFigure, _case_title, _val, axis_label, fmt, model_color, model_label, pair_label
+from .style import ReportFigure, case_title, axis_value, axis_label, fmt, model_color, model_label, pair_label
 
 __all__ = ["time_series_figures", "compression_split_figures"]
 
@@ -122,7 +122,7 @@ def _case_figure(study: ResultSet, cid, rows, names: list[str], has_tip: bool) -
     for ax in axs[len(panels):]:
         ax.set_visible(False)
     row0 = next(iter(rows.values()))
-    title = _case_title(row0, study.axes, study.labels)
+    title = case_title(row0, study.axes, study.labels)
     fig.suptitle(title)
     return ReportFigure(f"timeseries_{str(cid)[:12]}", f"Time series, {title}", fig,
                         f"Time histories for {title}; line style distinguishes tendons, colour the model. " + " ".join(texts),
@@ -174,7 +174,7 @@ def compression_split_figures(study: ResultSet, cmp: pd.DataFrame) -> list[Repor
         if axes:
             # every case its own bar: ticks name each swept value (categories by name), one line per axis
             s = s.sort_values(axes, kind="mergesort")
-            ticks = ["\n".join(_val(study, a, float(v)) for a, v in zip(axes, vals))
+            ticks = ["\n".join(axis_value(study, a, float(v)) for a, v in zip(axes, vals))
                      for vals in zip(*(numeric(s[a]) for a in axes))]
             ax.set_xlabel(" / ".join(axis_label(a, study.labels) for a in axes) if len(axes) > 1
                           else axis_label(axes[0], study.labels))

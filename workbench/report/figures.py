@@ -5,10 +5,7 @@ summary) takes a :class:`~.load.ResultSet` and the comparison table of
 :func:`workbench.compare.compare_table`; failed rows never reach a figure.
 :data:`GENERIC_FIGURES` lists them in report order (after the study-specific figure sets of
 ``workbench.registry.FIGURES``).  A new generic figure: a builder in its own module here plus
-its entry in :data:`GENERIC_FIGURES`.
-
-This module also re-exports the shared style and label helpers of :mod:`.style`, so
-``from workbench.report.figures import fmt, model_label, ReportFigure`` keeps working.
+its entry in :data:`GENERIC_FIGURES`.  The shared style and label helpers are in :mod:`.style`.
 """
 
 from __future__ import annotations
@@ -16,39 +13,9 @@ from __future__ import annotations
 from .dynamics import compression_split_figures, time_series_figures
 from .errorbars import error_bar_figures
 from .shapes import shape_overlay_figures
-from .style import (
-    STYLE,
-    THRESHOLDS,
-    ReportFigure,
-    axis_label,
-    code_categories,
-    fmt,
-    model_color,
-    model_label,
-    pair_label,
-    short_label,
-)
 from .sweeps import error_vs_parameter_figures, validity_map_figures
 
-__all__ = [
-    "GENERIC_FIGURES",
-    "STYLE",
-    "THRESHOLDS",
-    "ReportFigure",
-    "model_label",
-    "model_color",
-    "pair_label",
-    "axis_label",
-    "short_label",
-    "fmt",
-    "code_categories",
-    "shape_overlay_figures",
-    "error_vs_parameter_figures",
-    "validity_map_figures",
-    "time_series_figures",
-    "compression_split_figures",
-    "error_bar_figures",
-]
+__all__ = ["GENERIC_FIGURES"]
 
 #: The generic figure builders, in report order.
 GENERIC_FIGURES = (

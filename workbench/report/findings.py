@@ -31,7 +31,7 @@ from .context import PageContext, Section
 from .errorbars import sensitivity_figures
 from .headline import Headline, baseline_cases, headlines, sensitivity_keys
 from .load import ResultSet, numeric
-from .style import ReportFigure, _case_title, fmt, model_label, pair_label
+from .style import ReportFigure, case_title, fmt, model_label, pair_label
 
 __all__ = ["opening_sections", "findings_list", "stress_findings", "question_section", "findings_section",
            "assumptions_section", "sensitivity_section"]
@@ -57,7 +57,7 @@ def _case_text(study: ResultSet, case_id: str, model: str | None = None) -> str:
     rows = study.ok[study.ok["case_id"] == case_id]
     if model is not None and "model" in rows and (rows["model"] == model).any():
         rows = rows[rows["model"] == model]
-    return _case_title(rows.iloc[0].to_dict(), study.axes, study.labels) if len(rows) else case_id[:8]
+    return case_title(rows.iloc[0].to_dict(), study.axes, study.labels) if len(rows) else case_id[:8]
 
 
 def _headline_sentence(study: ResultSet, h: Headline) -> str:

@@ -22,7 +22,7 @@ from matplotlib.figure import Figure
 from ..compare.table import array_cell, row_positions
 from .load import ResultSet, numeric
 from .scene import case_scene, gravity_in, to_frame
-from .style import ReportFigure, _case_title, _ref_pairs, fmt, model_color, model_label, pair_label, point_links
+from .style import ReportFigure, case_title, ref_pairs, fmt, model_color, model_label, pair_label, point_links
 
 __all__ = ["shape_overlay_figures", "backbone_frames", "peak_error_time"]
 
@@ -32,7 +32,7 @@ _PHYS_STYLES = [(5.0, 0.4, "-"), (1.8, 1.0, "-"), (1.5, 1.0, (0, (5, 2))), (1.3,
 
 def _representative_cases(study: ResultSet, cmp: pd.DataFrame) -> tuple[list[str], str]:
     ok = study.ok
-    pairs = _ref_pairs(cmp, study.reference)
+    pairs = ref_pairs(cmp, study.reference)
     order = {c: i for i, c in enumerate(dict.fromkeys(ok["case_id"]))}  # canonical (parameter) order
     if pairs:
         ref, m = pairs[0]
@@ -205,7 +205,7 @@ def _summary(study: ResultSet, cmp: pd.DataFrame, how: str, spatial: bool, known
                f"{frame_txt}{proj}")
     if study.is_dynamic:
         summary += " Dynamic cases: the shape at the stored frame nearest the peak tip error, and at the end."
-    pairs = _ref_pairs(cmp, study.reference)
+    pairs = ref_pairs(cmp, study.reference)
     if pairs:
         ref, m = pairs[0]
         sub = cmp[(cmp["reference"] == ref) & (cmp["model"] == m)]
@@ -247,7 +247,7 @@ def shape_overlay_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFig
             if j == 0:
                 ax.set_ylabel(lb)
             if i == 0:
-                title = _case_title(row0, study.axes, study.labels) + (f"\n{sub}" if sub else "")
+                title = case_title(row0, study.axes, study.labels) + (f"\n{sub}" if sub else "")
                 ax.set_title("\n".join(textwrap.fill(t, width=34) for t in title.split("\n")), fontsize=9)
     known = all(k for *_, k in data)
     _figure_legend(fig, axs, _gravity_legend(data) if study.frame == "world" and known else ([], []))

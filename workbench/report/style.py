@@ -158,12 +158,12 @@ def fmt(x: float) -> str:
     return f"{x:.3g}"
 
 
-def _log_worthy(values: np.ndarray) -> bool:
+def log_worthy(values: np.ndarray) -> bool:
     v = values[np.isfinite(values)]
     return v.size > 1 and np.all(v > 0) and v.max() / v.min() > 20
 
 
-def _is_geometric(values: np.ndarray) -> bool:
+def is_geometric(values: np.ndarray) -> bool:
     v = np.unique(values[np.isfinite(values)])
     if v.size < 3 or np.any(v <= 0):
         return False
@@ -171,7 +171,7 @@ def _is_geometric(values: np.ndarray) -> bool:
     return bool(np.allclose(r, r[0], rtol=0.05) and r[0] > 1.5 and v[-1] / v[0] >= 10)
 
 
-def _ref_pairs(cmp: pd.DataFrame, reference: str) -> list[tuple[str, str]]:
+def ref_pairs(cmp: pd.DataFrame, reference: str) -> list[tuple[str, str]]:
     if cmp.empty:
         return []
     pairs = list(dict.fromkeys(zip(cmp["reference"], cmp["model"])))
@@ -196,7 +196,7 @@ def value_text(col: str, v: Any, labels: Mapping[str, str] | None = None, row: M
     return f"{fmt(float(v))} {unit}".strip()
 
 
-def _case_title(row: Mapping[str, Any], axes: Sequence[str], labels) -> str:
+def case_title(row: Mapping[str, Any], axes: Sequence[str], labels) -> str:
     parts = [f"{short_label(a, labels)} = {value_text(a, row[a], labels, row)}"
              for a in axes[:3] if a in row and row[a] is not None]
     return ", ".join(parts) if parts else f"case {str(row.get('case_id', ''))[:8]}"
@@ -209,7 +209,7 @@ def _isnum(v: Any) -> bool:
         return False
 
 
-def _val(study: ResultSet, col: str, v: float) -> str:
+def axis_value(study: ResultSet, col: str, v: float) -> str:
     """A plotted axis value as text (category name for categorical axes)."""
     cats = study.categories.get(col)
     if cats and np.isfinite(v) and 0 <= int(v) < len(cats):
@@ -217,7 +217,7 @@ def _val(study: ResultSet, col: str, v: float) -> str:
     return fmt(v)
 
 
-def _category_ticks(ax, study: ResultSet, col: str, which: str) -> None:
+def category_ticks(ax, study: ResultSet, col: str, which: str) -> None:
     """Label a categorical axis (values coded 0..n-1 by :func:`code_categories`)."""
     cats = study.categories.get(col)
     if cats:
@@ -233,7 +233,7 @@ def code_categories(study: ResultSet, table: pd.DataFrame) -> pd.DataFrame:
     return out
 
 
-def _slug(col: str) -> str:
+def slug(col: str) -> str:
     s = col[2:] if col.startswith("p.") else col
     return "".join(ch if ch.isalnum() else "_" for ch in s).strip("_")
 

@@ -25,12 +25,12 @@ from .units import UNIT_DEPENDS_ON, label_of, unit_groups
 from .style import (
     THRESHOLDS,
     ReportFigure,
-    _category_ticks,
-    _is_geometric,
-    _log_worthy,
-    _ref_pairs,
-    _slug,
-    _val,
+    category_ticks,
+    is_geometric,
+    log_worthy,
+    ref_pairs,
+    slug,
+    axis_value,
     axis_label,
     fmt,
     model_color,
@@ -121,14 +121,14 @@ def _metric_panel(ax, study: ResultSet, cmp: pd.DataFrame, a: str, pairs, col: s
             texts.append(_below_statement(xs[good], y[good], short_label(a, study.labels), f"{pair_label(ref, m)}: tip error",
                                           study.categories.get(a), val=lambda v: value_text(a, v, study.labels)))
     v = np.concatenate(allv) if allv else np.array([])
-    if _log_worthy(v):
+    if log_worthy(v):
         ax.set_yscale("log")
     elif np.isfinite(v).any() and np.nanmin(v) >= 0:
         ax.set_ylim(bottom=0, top=1.08 * np.nanmax(v) if np.nanmax(v) > 0 else 1)
-    if _is_geometric(numeric(cmp[a])):
+    if is_geometric(numeric(cmp[a])):
         ax.set_xscale("log")
     ax.set_xlabel(axis_label(a, study.labels))
-    _category_ticks(ax, study, a, "x")
+    category_ticks(ax, study, a, "x")
 
 
 def _dependent_unit_column(cmp: pd.DataFrame, a: str) -> str | None:
@@ -174,7 +174,7 @@ def _errors_by_unit(study: ResultSet, cmp: pd.DataFrame, a: str, pairs, metrics,
                         texts.append(f"{v}: max {fmt(np.nanmax(numeric(sub[col])))} % of L")
             ax.set_xlabel(label_of(a, study.labels, unit=unit or "?"))
             ax.set_ylabel(lab)
-            if _log_worthy(numeric(g[col])):
+            if log_worthy(numeric(g[col])):
                 ax.set_yscale("log")
         handles, labs = axs[i, 0].get_legend_handles_labels()
         if len(main) > 1:
@@ -188,7 +188,7 @@ def _errors_by_unit(study: ResultSet, cmp: pd.DataFrame, a: str, pairs, metrics,
                f"({', '.join(u or 'unknown unit' for u in groups)}), one colour per {short_label(dep_col, study.labels)}"
                + (", line style per comparison" if len(main) > 1 else "") + f". {pair_label(*main[0])} tip error: "
                + "; ".join(texts) + ".")
-    return ReportFigure(f"error_vs_{_slug(a)}", f"Errors vs {short_label(a, study.labels)}", fig, summary)
+    return ReportFigure(f"error_vs_{slug(a)}", f"Errors vs {short_label(a, study.labels)}", fig, summary)
 
 
 def _errors_one_axis(study: ResultSet, cmp: pd.DataFrame, a: str, pairs) -> ReportFigure:
@@ -204,7 +204,7 @@ def _errors_one_axis(study: ResultSet, cmp: pd.DataFrame, a: str, pairs) -> Repo
         _metric_panel(ax, study, cmp, a, pairs, col, texts, points)
         ax.set_ylabel(lab)
     axs[0].legend(frameon=False)
-    return ReportFigure(f"error_vs_{_slug(a)}", f"Errors vs {short_label(a, study.labels)}", fig,
+    return ReportFigure(f"error_vs_{slug(a)}", f"Errors vs {short_label(a, study.labels)}", fig,
                         " ".join(texts) or "Errors of each model pair along the sweep.", points=tuple(points))
 
 
@@ -231,8 +231,8 @@ def _colour_lines(axs, study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str
                                       [f"{pair_label(ref, m)}, case {str(c)[:8]}" for c in gg["case_id"]])
         ax.set_title(pair_label(ref, m))
         ax.set_xlabel(axis_label(x_ax, study.labels))
-        _category_ticks(ax, study, x_ax, "x")
-        if _is_geometric(numeric(cmp[x_ax])):
+        category_ticks(ax, study, x_ax, "x")
+        if is_geometric(numeric(cmp[x_ax])):
             ax.set_xscale("log")
     return np.concatenate(allv) if allv else np.array([])
 
@@ -262,12 +262,12 @@ def _errors_two_axes(study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str, 
     fig = Figure(figsize=(3.7 * n + 1.0, 3.5), layout="constrained")
     axs = np.atleast_1d(fig.subplots(1, n, squeeze=False)[0])
     cvals = np.unique(numeric(cmp[c_ax])[np.isfinite(numeric(cmp[c_ax]))])
-    norm = (LogNorm if _is_geometric(cvals) else Normalize)(vmin=cvals.min(), vmax=cvals.max())
+    norm = (LogNorm if is_geometric(cvals) else Normalize)(vmin=cvals.min(), vmax=cvals.max())
     cmap = colormaps["viridis"]
     points: list = []
     v = _colour_lines(axs, study, cmp, x_ax, c_ax, main, norm, cmap, points)
     for ax in axs:
-        if _log_worthy(v):
+        if log_worthy(v):
             ax.set_yscale("log")
         elif np.isfinite(v).any() and np.nanmin(v) >= 0:
             ax.set_ylim(bottom=0)
@@ -281,14 +281,14 @@ def _errors_two_axes(study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str, 
         cb = fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=list(axs), shrink=0.9)
         cb.set_label(axis_label(c_ax, study.labels))
     summary = _two_axes_summary(study, cmp, x_ax, c_ax, main, axes)
-    return ReportFigure(f"error_vs_{_slug(x_ax)}", f"Tip error vs {short_label(x_ax, study.labels)}", fig, summary,
+    return ReportFigure(f"error_vs_{slug(x_ax)}", f"Tip error vs {short_label(x_ax, study.labels)}", fig, summary,
                         points=tuple(points))
 
 
 def error_vs_parameter_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFigure]:
     """One ``error_vs_<axis>`` figure for one swept axis, two (one per axis) for more."""
     axes = list(study.axes)
-    pairs = _ref_pairs(cmp, study.reference)
+    pairs = ref_pairs(cmp, study.reference)
     if not axes or not pairs or cmp.empty:
         return []
     if len(axes) == 1:
@@ -338,7 +338,7 @@ def _validity_text(study: ResultSet, ref: str, m: str, where: str, xs, ys, E, a0
     return (
         f"{pair_label(ref, m)}{where}: CC tip error is below 1 % of L in {fmt(frac[0])} % of the {tot} swept points, "
         f"below 5 % in {fmt(frac[1])} %, below 10 % in {fmt(frac[2])} %; worst {fmt(E[iy, ix])} % at "
-        f"{short_label(a0, study.labels)} = {_val(study, a0, xs[ix])}, {short_label(a1, study.labels)} = {_val(study, a1, ys[iy])}."
+        f"{short_label(a0, study.labels)} = {axis_value(study, a0, xs[ix])}, {short_label(a1, study.labels)} = {axis_value(study, a1, ys[iy])}."
         + _region_statement(xs, ys, E, a0, a1, study)
     )
 
@@ -360,12 +360,12 @@ def _validity_panel(ax, study: ResultSet, cmp: pd.DataFrame, panel, facet, a0: s
     Em = np.ma.masked_invalid(E)
     mesh = ax.pcolormesh(xs, ys, Em, shading="nearest", cmap="magma_r", norm=norm)
     _contours(ax, xs, ys, E, Em)
-    ax.set_xscale("log" if _is_geometric(xs) else "linear")
-    ax.set_yscale("log" if _is_geometric(ys) else "linear")
+    ax.set_xscale("log" if is_geometric(xs) else "linear")
+    ax.set_yscale("log" if is_geometric(ys) else "linear")
     ax.grid(False)
     ax.set_xlabel(axis_label(a0, study.labels))
-    _category_ticks(ax, study, a0, "x")
-    _category_ticks(ax, study, a1, "y")
+    category_ticks(ax, study, a0, "x")
+    category_ticks(ax, study, a1, "y")
     ax.set_title(pair_label(ref, m) + where)
     missing = _mark_missing(ax, xs, ys, E)
     # every cell links to its worst case (the maximum over the other axes)
@@ -384,7 +384,7 @@ def validity_map_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFigu
     if len(axes) < 2 or cmp.empty:
         return []
     a0, a1 = axes[0], axes[1]
-    pairs = [p for p in _ref_pairs(cmp, study.reference) if p[0] == study.reference] or _ref_pairs(cmp, study.reference)
+    pairs = [p for p in ref_pairs(cmp, study.reference) if p[0] == study.reference] or ref_pairs(cmp, study.reference)
     if not pairs:
         return []
     facet = _facet_axis(study, axes)

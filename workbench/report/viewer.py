@@ -20,7 +20,7 @@ from ..compare.table import array_cell, row_positions
 from .load import ResultSet
 from .scene import base_vectors_in, case_scene, gravity_in, to_frame
 from .shapes import backbone_frames
-from .style import _case_title, model_color, model_label
+from .style import case_title, model_color, model_label
 
 __all__ = ["MAX_VIEWER_CASES", "viewer_scenes"]
 
@@ -70,7 +70,7 @@ def _case(study: ResultSet, cid: str, rows: dict[str, dict]) -> dict[str, Any] |
     main = physics[0] if physics else next(iter(models))
     extra = _leg_lines(rows, scene, study.frame)
     return {
-        "id": str(cid), "title": _case_title(row0, study.axes, study.labels) + f"  [{str(cid)[:8]}]",
+        "id": str(cid), "title": case_title(row0, study.axes, study.labels) + f"  [{str(cid)[:8]}]",
         "L": L, "extent": float(max(np.max(np.maximum(hi, base) - np.minimum(lo, base)), 1e-3 * L)), "center": _r(0.5 * (np.minimum(lo, base) + np.maximum(hi, base))), "base": _r(base),
         "gravity": _r(gravity_in(scene, study.frame)), "main": main,
         "e0": _r(base_vectors_in([1.0, 0.0, 0.0], scene, study.frame)),

@@ -12,7 +12,7 @@ from typing import Literal, Sequence
 
 import numpy as np
 
-from .description import Robot, RobotDescriptionError, _vector
+from .description import Robot, RobotDescriptionError, checked_vector
 
 __all__ = ["TendonActuation", "LoadCase"]
 
@@ -152,8 +152,8 @@ class LoadCase:
     ramp_time: float = 1.0
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "tip_force", _vector("LoadCase.tip_force", self.tip_force))
-        object.__setattr__(self, "tip_torque", _vector("LoadCase.tip_torque", self.tip_torque))
+        object.__setattr__(self, "tip_force", checked_vector("LoadCase.tip_force", self.tip_force))
+        object.__setattr__(self, "tip_torque", checked_vector("LoadCase.tip_torque", self.tip_torque))
         if self.analysis not in ("static", "dynamic"):
             raise RobotDescriptionError(f"LoadCase.analysis must be 'static' or 'dynamic', got {self.analysis!r}")
         for name in ("duration", "ramp_time"):

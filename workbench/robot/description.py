@@ -52,7 +52,7 @@ class RobotDescriptionError(ValueError):
     """A robot description is physically or structurally invalid."""
 
 
-def _positive(name: str, value: float, *, allow_zero: bool = False) -> float:
+def checked_positive(name: str, value: float, *, allow_zero: bool = False) -> float:
     try:
         v = float(value)
     except (TypeError, ValueError):
@@ -65,7 +65,7 @@ def _positive(name: str, value: float, *, allow_zero: bool = False) -> float:
     return v
 
 
-def _vector(name: str, value: Sequence[float], n: int = 3) -> tuple[float, ...]:
+def checked_vector(name: str, value: Sequence[float], n: int = 3) -> tuple[float, ...]:
     arr = np.asarray(value, dtype=float)
     if arr.shape != (n,):
         raise RobotDescriptionError(f"{name} must have shape ({n},), got {arr.shape}")
@@ -139,19 +139,19 @@ class CrossSection:
     yield_strength: float | None = None
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "EI", _positive("CrossSection.EI", self.EI))
-        object.__setattr__(self, "EA", _positive("CrossSection.EA", self.EA))
-        object.__setattr__(self, "GJ", _positive("CrossSection.GJ", self.GJ))
+        object.__setattr__(self, "EI", checked_positive("CrossSection.EI", self.EI))
+        object.__setattr__(self, "EA", checked_positive("CrossSection.EA", self.EA))
+        object.__setattr__(self, "GJ", checked_positive("CrossSection.GJ", self.GJ))
         object.__setattr__(
             self,
             "mass_per_length",
-            _positive("CrossSection.mass_per_length", self.mass_per_length, allow_zero=True),
+            checked_positive("CrossSection.mass_per_length", self.mass_per_length, allow_zero=True),
         )
         if self.GA is not None:
-            object.__setattr__(self, "GA", _positive("CrossSection.GA", self.GA))
+            object.__setattr__(self, "GA", checked_positive("CrossSection.GA", self.GA))
         for name in ("diameter", "area", "section_modulus", "yield_strength"):
             if getattr(self, name) is not None:
-                object.__setattr__(self, name, _positive(f"CrossSection.{name}", getattr(self, name)))
+                object.__setattr__(self, name, checked_positive(f"CrossSection.{name}", getattr(self, name)))
 
     @classmethod
     def circular(
@@ -169,9 +169,9 @@ class CrossSection:
         shear coefficient ``kappa_s = 6 (1 + nu) / (7 + 6 nu)``; stress geometry ``A = pi d^2 / 4``,
         ``W = pi d^3 / 32``.
         """
-        d = _positive("diameter", diameter)
-        E = _positive("youngs_modulus", youngs_modulus)
-        rho = _positive("density", density, allow_zero=True)
+        d = checked_positive("diameter", diameter)
+        E = checked_positive("youngs_modulus", youngs_modulus)
+        rho = checked_positive("density", density, allow_zero=True)
         nu = float(poisson_ratio)
         if not (-1.0 < nu < 0.5):
             raise RobotDescriptionError(f"poisson_ratio must be in (-1, 0.5), got {nu}")
@@ -192,7 +192,7 @@ class CrossSection:
 
     def scaled(self, factor: float) -> "CrossSection":
         """Return a copy with every stiffness multiplied by ``factor`` (mass unchanged)."""
-        f = _positive("factor", factor)
+        f = checked_positive("factor", factor)
         return replace(
             self,
             EI=self.EI * f,
@@ -245,13 +245,13 @@ class TendonGroup:
         if not np.all(np.isfinite(ang)):
             raise RobotDescriptionError("TendonGroup.angles must be finite")
         object.__setattr__(self, "angles", tuple(float(a) for a in ang))
-        object.__setattr__(self, "offset", _positive("TendonGroup.offset", self.offset))
+        object.__setattr__(self, "offset", checked_positive("TendonGroup.offset", self.offset))
         object.__setattr__(
-            self, "axial_stiffness", _positive("TendonGroup.axial_stiffness", self.axial_stiffness)
+            self, "axial_stiffness", checked_positive("TendonGroup.axial_stiffness", self.axial_stiffness)
         )
         for name in ("offset_tip", "area", "strength"):
             if getattr(self, name) is not None:
-                object.__setattr__(self, name, _positive(f"TendonGroup.{name}", getattr(self, name)))
+                object.__setattr__(self, name, checked_positive(f"TendonGroup.{name}", getattr(self, name)))
 
     @property
     def count(self) -> int:
@@ -310,8 +310,8 @@ class Section:
     cross_section_tip: CrossSection | None = None
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "length", _positive("Section.length", self.length))
-        object.__setattr__(self, "disk_mass", _positive("Section.disk_mass", self.disk_mass, allow_zero=True))
+        object.__setattr__(self, "length", checked_positive("Section.length", self.length))
+        object.__setattr__(self, "disk_mass", checked_positive("Section.disk_mass", self.disk_mass, allow_zero=True))
         if int(self.n_disks) != self.n_disks or self.n_disks < 1:
             raise RobotDescriptionError(f"Section.n_disks must be a positive integer, got {self.n_disks!r}")
         object.__setattr__(self, "n_disks", int(self.n_disks))
@@ -362,8 +362,8 @@ class Payload:
     offset: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "mass", _positive("Payload.mass", self.mass, allow_zero=True))
-        object.__setattr__(self, "offset", _vector("Payload.offset", self.offset))
+        object.__setattr__(self, "mass", checked_positive("Payload.mass", self.mass, allow_zero=True))
+        object.__setattr__(self, "offset", checked_vector("Payload.offset", self.offset))
 
 
 _IDENTITY = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
@@ -405,8 +405,8 @@ class Robot:
             if not isinstance(s, Section):
                 raise RobotDescriptionError(f"Robot.sections[{i}] must be a Section, got {type(s).__name__}")
         object.__setattr__(self, "sections", secs)
-        object.__setattr__(self, "gravity", _vector("Robot.gravity", self.gravity))
-        object.__setattr__(self, "base_position", _vector("Robot.base_position", self.base_position))
+        object.__setattr__(self, "gravity", checked_vector("Robot.gravity", self.gravity))
+        object.__setattr__(self, "base_position", checked_vector("Robot.base_position", self.base_position))
         R = np.asarray(self.base_rotation, dtype=float)
         if R.shape != (3, 3):
             raise RobotDescriptionError(f"Robot.base_rotation must have shape (3, 3), got {R.shape}")

@@ -36,7 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .description import RobotDescriptionError, _positive
+from .description import RobotDescriptionError, checked_positive
 
 __all__ = ["ChamberLayout", "chamber_forces", "section_loads", "arc_from_pressures", "pressures_from_arc",
            "pressures_for_bend"]
@@ -69,8 +69,8 @@ class ChamberLayout:
         if ang.size < 1 or not np.all(np.isfinite(ang)):
             raise RobotDescriptionError("ChamberLayout.angles must hold at least one finite angle")
         object.__setattr__(self, "angles", tuple(float(a) for a in ang))
-        object.__setattr__(self, "offset", _positive("ChamberLayout.offset", self.offset))
-        object.__setattr__(self, "area", _positive("ChamberLayout.area", self.area))
+        object.__setattr__(self, "offset", checked_positive("ChamberLayout.offset", self.offset))
+        object.__setattr__(self, "area", checked_positive("ChamberLayout.area", self.area))
         mp = float(self.max_pressure)
         if not mp > 0 or math.isnan(mp):
             raise RobotDescriptionError(f"ChamberLayout.max_pressure must be > 0, got {mp}")

@@ -24,9 +24,7 @@ The resolved scenario parameters are part of the case parameters and hence of ``
 Scenario functions are pure (numpy only, no Exudyn).
 
 This module is the mechanism only: the scenarios themselves live with their experiment
-(``workbench/experiments/<study>/scenario.py``) and are found through ``registry.SCENARIOS``;
-``wire_delay`` and ``hannan_walker_line`` stay importable from here (deprecated: import from
-``workbench.experiments.wire_delay.scenario`` / ``workbench.experiments.hannan_walker.scenario``).
+(``workbench/experiments/<study>/scenario.py``) and are found through ``registry.SCENARIOS``.
 Checked by ``tests/study/test_scenarios.py``.
 """
 
@@ -42,8 +40,6 @@ __all__ = [
     "SCENARIO_LOAD_FIELDS",
     "scenario_parameters",
     "load_with_scenario",
-    "wire_delay",
-    "hannan_walker_line",
 ]
 
 #: ``[load]`` fields a scenario may set.
@@ -74,17 +70,6 @@ class _Scenarios(Mapping[str, Callable[..., dict[str, Any]]]):
 
 #: ``[scenario] name`` -> scenario function (resolved from ``registry.SCENARIOS`` when looked up).
 SCENARIOS: Mapping[str, Callable[..., dict[str, Any]]] = _Scenarios()
-
-#: Deprecated names kept importable from here (each is also its registry row's name).
-_MOVED = ("wire_delay", "hannan_walker_line")
-
-
-def __getattr__(name: str) -> Any:
-    """Deprecated: ``wire_delay`` and ``hannan_walker_line`` live in ``workbench/experiments/``."""
-    if name in _MOVED:
-        return SCENARIOS[name]
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
 
 def scenario_parameters(name: str) -> dict[str, Any]:
     """Keyword parameters of scenario ``name`` with their defaults.

@@ -15,7 +15,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from ...compare.table import array_cell, row_positions
-from ...report.figures import ReportFigure, fmt, model_color, model_label
+from ...report.style import ReportFigure, fmt, model_color, model_label
 from ..about import Assumption, StudyAbout, about_summary
 from .worker import CLOSED_SUFFIX, PLAN
 

@@ -17,7 +17,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from ...compare.table import row_positions
-from ...report.figures import ReportFigure, fmt, model_color, model_label
+from ...report.style import ReportFigure, fmt, model_color, model_label
 from ...report.scene import case_scene, to_frame
 from .envelope import HARVESTER_LIMITS, circle_fit, grasp_envelope
 

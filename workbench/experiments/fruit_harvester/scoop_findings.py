@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...report.figures import fmt
+from ...report.style import fmt
 from ..whole_arm_grasp.findings import column, span
 
 __all__ = ["findings"]

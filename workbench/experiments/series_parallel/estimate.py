@@ -16,8 +16,8 @@ estimates (:func:`workbench.models.discretization.estimate_from_values`, the GE 
     As in :func:`workbench.models.discretization.estimate_columns` (orders from the lengths).
 
 ``x.max_stress_backbone`` [Pa] is the largest leg stress (:mod:`workbench.physics.series_parallel.stress`)
-and ``x.stress_ratio`` its ratio to ``ModuleGeometry.yield_strength``.  Checked by
-``tests/motion/test_motion_estimate.py``.
+and ``x.stress_ratio`` its ratio to ``ModuleGeometry.yield_strength``.  Checked by the
+regression tier (``tests/regression/golden/series_parallel.csv`` holds these columns).
 """
 
 from __future__ import annotations

@@ -5,9 +5,9 @@ A case's ``params`` are plain data ``{"motion": {...}, "geometry": {...}, "solve
 ``pivot`` only where a file gives one; ``geometry`` = the study's ``[geometry]`` with the motion's
 own ``geometry`` overrides, a sensitivity sweep of the assumed module); its ``case_id`` is
 :func:`workbench.study.params.case_id_for` of those params, so it depends only on the values, not
-on the order of the motions or the study name.  Was ``workbench/motion/expand.py``.
+on the order of the motions or the study name.
 
-Checked by ``tests/motion/test_motion_spec.py`` (determinism, ids, values).
+Checked by ``tests/experiments/series_parallel/test_spec.py`` (determinism, ids, values).
 """
 
 from __future__ import annotations

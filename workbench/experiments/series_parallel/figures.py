@@ -9,7 +9,7 @@ arc; (b) CC-fit position error vs amplitude per stack shape; (c) single-module I
 error vs amplitude per axis, failed (unreached) poses marked with crosses.  A second figure shows
 the legs along the single-module motions: compression relative to the Euler load, and clearance;
 :mod:`.leg_figures` draws the legs themselves (Huang Figs 6 and 10).
-Checked by ``tests/motion/test_motion_run.py`` and the report tier of ``tests/regression``.
+Checked by ``tests/experiments/series_parallel/test_run.py`` and the report tier of ``tests/regression``.
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from ...report.figures import ReportFigure
+from ...report.style import ReportFigure
 
 __all__ = ["matches", "figures", "motion_figures", "motion_overview_figure", "motion_legs_figure"]
 

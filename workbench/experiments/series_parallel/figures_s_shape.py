@@ -15,7 +15,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from matplotlib.ticker import NullFormatter
 
-from ...report.figures import ReportFigure, fmt
+from ...report.style import ReportFigure, fmt
 from ..about import Assumption, StudyAbout, about_summary
 from .backbone import commanded_curve
 from .worker import stack_targets

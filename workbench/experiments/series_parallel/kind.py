@@ -9,7 +9,7 @@ the CC fit needs the FK result).  Everything else -- run session, manifest, stor
 executors, crash handling, CLI and report -- is the generic pipeline's
 (:func:`workbench.study.runner.run_cases`).
 
-Checked by ``tests/motion/test_motion_run.py`` and ``tests/study/test_kinds.py``.
+Checked by ``tests/experiments/series_parallel/test_run.py`` and ``tests/study/test_kinds.py``.
 """
 
 from __future__ import annotations

@@ -18,7 +18,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from ...compare.table import array_cell
-from ...report.figures import ReportFigure, fmt
+from ...report.style import ReportFigure, fmt
 
 __all__ = ["leg_shape_figures", "module_legs_figure", "stack_legs_figure", "row_legs"]
 

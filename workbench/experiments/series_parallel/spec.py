@@ -18,11 +18,9 @@ Sections (the annotated reference is ``docs/study-format.md``, "Series-parallel 
     [report]    presentation hints (the sweep studies' ReportSection; not in the config hash)
 
 Every problem is collected before one :class:`StudyError` is raised; the geometry is checked by
-building the :class:`~workbench.physics.series_parallel.ModuleGeometry`.  Was
-``workbench/motion/spec.py`` (``MotionStudy``, ``load_motion_study`` and ``is_motion_study``
-remain there as deprecated aliases).
+building the :class:`~workbench.physics.series_parallel.ModuleGeometry`.
 
-Checked by ``tests/motion/test_motion_spec.py``.
+Checked by ``tests/experiments/series_parallel/test_spec.py``.
 """
 
 from __future__ import annotations

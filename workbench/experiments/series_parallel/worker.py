@@ -25,10 +25,9 @@ the nominal arc lengths ``k h``; ``robot_length = n h``; ``length_change`` the c
 polyline (arc, for ``cc_fit``) length through those points; ``tip_twist`` the twist of the top
 platform about the base z axis (swing-twist decomposition) [rad]; ``legs`` (series_parallel rows) the
 FK leg centrelines (n, 6, N+1, 3) [m], base frame.  Non-finite results fail a row
-by the rule of every study kind (:func:`workbench.study.rows.fail_non_finite`).  Was
-``workbench/motion/worker.py``.
+by the rule of every study kind (:func:`workbench.study.rows.fail_non_finite`).
 
-Checked by ``tests/motion/test_motion_run.py`` and ``tests/motion/test_motion_spec.py``.
+Checked by ``tests/experiments/series_parallel/test_run.py`` and ``tests/experiments/series_parallel/test_spec.py``.
 """
 
 from __future__ import annotations
@@ -40,6 +39,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from ...physics.series_parallel import module_inverse, stack_inverse
 from ...study.params import flatten_params
 from ...study.rows import fail_non_finite, failed_rows
 from .backbone import CURVE_SHAPES, backbone_errors
@@ -202,9 +202,6 @@ def _targets(m: Mapping[str, Any], n: int, h: float) -> np.ndarray:
 
 def _inverse(geo, targets: np.ndarray, n: int, sol: Mapping[str, Any]):
     """IK of the targets: ``(lengths (n, 6), success, reason, iterations, residual, leg solves, module IKs)``."""
-    # looked up on the module at call time (tests/motion/test_motion_run.py patches module_inverse)
-    from ...physics.series_parallel import module_inverse, stack_inverse
-
     n_el = int(sol["n_elements"])
     if n == 1:
         ik = module_inverse(geo, targets[0], n_elements=n_el, length_tolerance=sol["length_tolerance"],

@@ -22,7 +22,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from ...compare.table import array_cell, row_positions
-from ...report.figures import ReportFigure, fmt
+from ...report.style import ReportFigure, fmt
 from ...report.headline import baseline_cases
 from .findings import findings
 from .notes import ASSUMPTIONS, QUESTION, SEED_ROWS

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...report.figures import fmt
+from ...report.style import fmt
 
 __all__ = ["findings", "column", "span"]
 

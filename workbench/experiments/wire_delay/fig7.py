@@ -16,7 +16,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ...kinematics import wire_lengths_tronconic
-from ...report.figures import ReportFigure, fmt
+from ...report.style import ReportFigure, fmt
 from ...study.build import build_robot
 from ...study.params import section_params
 from .analysis import wire_geometry

@@ -18,7 +18,7 @@ from matplotlib.figure import Figure
 
 from ...compare.metrics import compression_split
 from ...compare.table import array_cell
-from ...report.figures import ReportFigure, fmt, model_label
+from ...report.style import ReportFigure, fmt, model_label
 from ...study.params import section_params
 from .analysis import cc_reading, commanded_wire_lengths, wire_geometry
 
@@ -33,7 +33,7 @@ def matches(results) -> bool:
     return not ok.empty and "p.scenario.name" in ok and ok["p.scenario.name"].iloc[0] == "wire_delay"
 
 
-def _robot_and_load(row: Mapping[str, Any]):
+def robot_and_load(row: Mapping[str, Any]):
     """The robot, the load case and the scenario parameters a stored row ran with."""
     from ...study.build import build_load, build_robot
     from ...study.scenarios import load_with_scenario
@@ -61,7 +61,7 @@ class _Run:
 
 
 def _run_of_row(r: Mapping[str, Any]) -> _Run:
-    robot, load, scen = _robot_and_load(r)
+    robot, load, scen = robot_and_load(r)
     t = array_cell(r["time"])
     n_t = robot.n_tendons
     cc = cc_reading(commanded_wire_lengths(robot, load.actuation, t, load.ramp_time), wire_geometry(robot))

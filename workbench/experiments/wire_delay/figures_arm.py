@@ -20,10 +20,10 @@ from matplotlib.figure import Figure
 
 from ...compare.table import array_cell
 from ...kinematics import forward_kinematics
-from ...report.figures import ReportFigure, fmt, model_label
+from ...report.style import ReportFigure, fmt, model_label
 from ..about import Assumption, StudyAbout, about_summary
 from .analysis import cc_reading, commanded_wire_lengths, wire_geometry
-from .figures import _robot_and_load
+from .figures import robot_and_load
 
 __all__ = ["ABOUT", "matches", "figures", "decoupled_target_tip", "upper_bend_angle"]
 
@@ -81,7 +81,7 @@ def upper_bend_angle(row: Mapping[str, Any]) -> float:
 
 def _case_series(r: Mapping[str, Any]) -> dict[str, np.ndarray]:
     """Time, tip distance from the decoupled target, largest upper-wire tension of one stored row."""
-    robot, load, _ = _robot_and_load(r)
+    robot, load, _ = robot_and_load(r)
     t = array_cell(r.get("time"))
     tips = array_cell(r.get("series.tip_position"))
     if t is None or tips is None:
@@ -137,7 +137,7 @@ def _shape_panels(ok: pd.DataFrame, cases, models, fig) -> None:
             rad = np.hypot(P[:, 0], P[:, 1]) * np.sign(P[:, 0] + P[:, 1] + 1e-300)
             ax.plot(rad, P[:, 2], ls=styles.get(r["model"], "-"), label=model_label(r["model"]))
         if not g.empty:
-            robot, load, sc = _robot_and_load(g.iloc[0])
+            robot, load, sc = robot_and_load(g.iloc[0])
             tip = decoupled_target_tip(robot, float(sc["theta"]), float(sc["alpha"]) + np.pi)
             ax.plot(np.hypot(tip[0], tip[1]) * np.sign(tip[0] + tip[1]), tip[2], "k*", ms=10, label="decoupled target tip")
         ax.set_title(f"{passive}, delay {fmt(delay)} s", fontsize=9)

@@ -21,7 +21,7 @@ import numpy as np
 
 from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ...robot import LoadCase, Robot
-from .._ancf_problem import PlanarModelError, _problem
+from .._ancf_problem import PlanarModelError, build_problem
 
 __all__ = ["planar_setup", "tendon_strains", "section_tendon_strains", "chamber_strains", "without_tendons",
            "section_of_elements", "run"]
@@ -35,7 +35,7 @@ def without_tendons(robot: Robot) -> Robot:
 def planar_setup(robot: Robot, options: SolverOptions, load: LoadCase | None = None):
     """``(pb, half_width)``: the planar problem (mesh, stiffness, gravity in Exudyn's plane) and the
     half diameter [m] of every element (0 where the description gives no diameter)."""
-    pb = _problem(robot, load if load is not None else LoadCase(), options)
+    pb = build_problem(robot, load if load is not None else LoadCase(), options)
     sec, frac = section_of_elements(robot, pb.s_nodes)
     hw = np.array([0.5 * (robot.sections[j].cross_section_at(f).diameter or 0.0) for j, f in zip(sec, frac)])
     return pb, hw

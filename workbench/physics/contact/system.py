@@ -1,6 +1,6 @@
 """The Exudyn system of a planar backbone (2-D ANCF cable) with prescribed strains and a rigid circle.
 
-Built per call from plain data (:class:`~workbench.physics._ancf_problem._Problem`: mesh, EI, EA,
+Built per call from plain data (:class:`~workbench.physics._ancf_problem.AncfProblem`: mesh, EI, EA,
 mass per length, gravity and payload in Exudyn's plane, base (z, x) = Exudyn (X, Y)):
 
 * backbone: ``ObjectANCFCable2D`` elements (``useReducedOrderIntegration=2``), clamp = node 0's x,
@@ -38,7 +38,7 @@ from typing import Callable
 import numpy as np
 
 from ...models.result import ModelFailure
-from .. import _ancf_geometry as geo
+from .._ancf_geometry import arc_length, centreline
 from .description import ContactLaw, RigidCircle
 
 __all__ = ["PlanarContactSystem", "to_exudyn", "to_base"]
@@ -59,8 +59,8 @@ class PlanarContactSystem:
 
     Parameters
     ----------
-    pb : _Problem
-        The planar problem (:func:`workbench.physics._ancf_problem._problem`); its tendons are
+    pb : AncfProblem
+        The planar problem (:func:`workbench.physics._ancf_problem.build_problem`); its tendons are
         ignored (actuation comes as prescribed strains).
     half_width : (n_el,) array
         Half the backbone diameter per element [m] (the surface that touches the object).
@@ -322,7 +322,7 @@ class PlanarContactSystem:
         n = self.law.segments
         sn = self.pb.s_nodes
         pts_s = np.concatenate([sn[e] + np.arange(n + 1) * (sn[e + 1] - sn[e]) / n for e in range(sn.size - 1)])
-        r, _ = geo.centreline(self.node_coords(), sn, pts_s)
+        r, _ = centreline(self.node_coords(), sn, pts_s)
         r = r.reshape(sn.size - 1, n + 1, 2)
         c = np.asarray(self.mbs.GetNodeOutput(self.obj_node, self.exu.OutputVariableType.Position))[:2]
         p0, p1 = r[:, :-1], r[:, 1:]
@@ -394,7 +394,7 @@ class PlanarContactSystem:
 
     def positions(self, stations) -> tuple[np.ndarray, np.ndarray]:
         """Backbone points ``(m, 3)`` and unit tangents ``(m, 3)`` in the base frame (``y = 0``) at reference ``stations``."""
-        r, t = geo.centreline(self.node_coords(), self.pb.s_nodes, np.asarray(stations, float))
+        r, t = centreline(self.node_coords(), self.pb.s_nodes, np.asarray(stations, float))
         pos = np.zeros(r.shape[:-1] + (3,))
         tan = np.zeros_like(pos)
         pos[..., 0], pos[..., 2] = r[..., 1], r[..., 0]
@@ -403,7 +403,7 @@ class PlanarContactSystem:
 
     def arc_length(self) -> float:
         """Deformed centreline length [m]."""
-        return float(geo.arc_length(self.node_coords(), self.pb.s_nodes))
+        return float(arc_length(self.node_coords(), self.pb.s_nodes))
 
     def object_centre(self) -> np.ndarray:
         """Centre ``(x, z)`` [m] of the object, base frame."""

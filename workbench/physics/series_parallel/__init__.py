@@ -20,8 +20,9 @@ One file per idea:
 * ``leg.py``        :class:`LegSolution`, :func:`leg_static` (one leg, with continuation);
 * ``newton.py``     the platform balance (Eq 22) and Newton over ``L`` at a fixed pose;
 * ``branch.py``     which IK solution branch a state is on (``det d(balance)/dL``);
-* ``module.py``     :func:`module_forward`, :func:`module_inverse` (one module);
-* ``stack.py``      :func:`stack_forward`, :func:`stack_inverse` (modules in series);
+* ``module.py``     :func:`module_inverse` (one module);
+* ``stack.py``      :func:`stack_forward`, :func:`stack_inverse` (modules in series) and
+  :func:`module_forward` (one module, a one-module stack);
 * ``fit.py``        :func:`fit_constant_curvature`, :func:`arc_points` (the CC arc through the platforms);
 * ``gap.py``        :func:`min_leg_gap` (leg interference);
 * ``_systems.py``   the Exudyn systems (private).
@@ -33,8 +34,8 @@ the chosen study range: ``docs/models.md``, "Series-parallel".  Checked by
 
 from __future__ import annotations
 
-from .fit import ArcFit, _arc_points, arc_points, fit_constant_curvature
-from .gap import _segment_distances, min_leg_gap
+from .fit import ArcFit, arc_points, fit_constant_curvature
+from .gap import min_leg_gap
 from .geometry import (
     ModuleGeometry,
     attachment_points,
@@ -44,11 +45,9 @@ from .geometry import (
     rotation_vector,
 )
 from .leg import LegSolution, leg_static
-from .module import ModuleIK, ModulePose, module_forward, module_inverse
-from .newton import _ik_newton
-from .branch import _ik_jacobian
-from .predictor import _hermite_lengths, leg_lengths_from_pose_hermite
-from .stack import StackIK, StackPose, stack_forward, stack_inverse
+from .module import ModuleIK, module_inverse
+from .predictor import leg_lengths_from_pose_hermite
+from .stack import ModulePose, StackIK, StackPose, module_forward, stack_forward, stack_inverse
 
 __all__ = [
     "ModuleGeometry",

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import least_squares
 
-from .geometry import _check_pose
+from .geometry import check_pose
 
 
 @dataclass(frozen=True)
@@ -101,7 +101,7 @@ def fit_constant_curvature(platform_poses, base_pose=None) -> ArcFit:
     T = np.asarray(platform_poses, dtype=float)
     if T.ndim != 3 or T.shape[1:] != (4, 4) or T.shape[0] < 1:
         raise ValueError(f"platform_poses must have shape (n, 4, 4) with n >= 1, got {T.shape}")
-    B = np.eye(4) if base_pose is None else _check_pose(base_pose, "base_pose")
+    B = np.eye(4) if base_pose is None else check_pose(base_pose, "base_pose")
     T = np.einsum("ij,njk->nik", np.linalg.inv(B), T)
     P = T[:, :3, 3]
     Z = T[:, :3, 2]
@@ -130,6 +130,3 @@ def fit_constant_curvature(platform_poses, base_pose=None) -> ArcFit:
     ang = np.arccos(np.clip(np.sum(ta * Z, axis=1), -1.0, 1.0))
     return ArcFit(float(k), float(phi), s, e, ang, float(np.sqrt(np.mean(e**2))), float(e.max()), float(ang.max()))
 
-
-#: Deprecated: use :func:`arc_points` (the old private name, imported by the series-parallel study worker).
-_arc_points = arc_points

@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 
-def _segment_distances(P0, P1, Q0, Q1) -> np.ndarray:
+def segment_distances(P0, P1, Q0, Q1) -> np.ndarray:
     """Minimum distances between segments ``P0-P1`` and ``Q0-Q1``, broadcast over leading axes.
 
     Closest points of two segments: minimise ``|P(s) - Q(t)|`` over ``s, t in [0, 1]``.  The
@@ -65,7 +65,7 @@ def min_leg_gap(leg_positions, rod_diameter: float) -> tuple[float, tuple[int, i
     best, pair = math.inf, (0, 1)
     for i in range(6):
         for j in range(i + 1, 6):
-            dmin = float(np.min(_segment_distances(A0[i][:, None], A1[i][:, None], A0[j][None], A1[j][None])))
+            dmin = float(np.min(segment_distances(A0[i][:, None], A1[i][:, None], A0[j][None], A1[j][None])))
             if dmin < best:
                 best, pair = dmin, (i, j)
     return best - float(rod_diameter), pair

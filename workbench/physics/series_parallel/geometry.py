@@ -16,7 +16,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ...robot.description import circular_section
-from . import _systems as _ex
+from ._systems import RodParams
 
 
 @dataclass(frozen=True)
@@ -108,10 +108,10 @@ class ModuleGeometry:
         """G = E / (2 + 2 mu) [Pa] (Eq 15)."""
         return self.youngs_modulus / (2.0 + 2.0 * self.poisson_ratio)
 
-    def rod_params(self) -> _ex.RodParams:
+    def rod_params(self) -> RodParams:
         """Section stiffnesses and weight per length of the legs (solid circular rod, no shear factor)."""
         A, I, J = circular_section(self.rod_diameter)
-        return _ex.RodParams(
+        return RodParams(
             EA=self.youngs_modulus * A,
             GA=self.shear_modulus * A,
             EI=self.youngs_modulus * I,
@@ -127,12 +127,12 @@ class ModuleGeometry:
     def mount_transform(self) -> np.ndarray:
         """``(4, 4)`` constant transform platform k <- base k+1 (Eq 29-32)."""
         T = np.eye(4)
-        T[:3, :3] = _rz(math.radians(self.mount_twist_deg))
+        T[:3, :3] = rot_z(math.radians(self.mount_twist_deg))
         T[2, 3] = self.mount_offset
         return T
 
 
-def _rz(t: float) -> np.ndarray:
+def rot_z(t: float) -> np.ndarray:
     c, s = math.cos(t), math.sin(t)
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
@@ -149,7 +149,7 @@ def hole_frames(geometry: ModuleGeometry) -> tuple[np.ndarray, np.ndarray]:
     """
     b = np.radians(geometry.base_angles_deg)
     P = np.stack([geometry.base_radius * np.cos(b), geometry.base_radius * np.sin(b), np.zeros(6)], axis=1)
-    R = np.stack([_rz(t) for t in b])
+    R = np.stack([rot_z(t) for t in b])
     return P, R
 
 
@@ -178,7 +178,7 @@ def home_pose(geometry: ModuleGeometry) -> np.ndarray:
     return T
 
 
-def _check_pose(T, name="pose") -> np.ndarray:
+def check_pose(T, name="pose") -> np.ndarray:
     T = np.asarray(T, dtype=float)
     if T.shape != (4, 4) or not np.all(np.isfinite(T)):
         raise ValueError(f"{name} must be a finite (4, 4) homogeneous transform, got shape {T.shape}")
@@ -188,14 +188,14 @@ def _check_pose(T, name="pose") -> np.ndarray:
     return T
 
 
-def _check_lengths(L) -> np.ndarray:
+def check_lengths(L) -> np.ndarray:
     L = np.asarray(L, dtype=float)
     if L.shape != (6,) or not np.all(np.isfinite(L)) or np.any(L <= 0):
         raise ValueError(f"insertion_lengths must be 6 finite positive lengths [m], shape (6,), got {np.asarray(L).shape}: {L!r}")
     return L
 
 
-def _check_gravity(g):
+def check_gravity(g):
     if g is None:
         return None
     g = np.asarray(g, dtype=float)
@@ -204,7 +204,7 @@ def _check_gravity(g):
     return g
 
 
-def _check_wrench(w):
+def check_wrench(w):
     if w is None:
         return None
     w = np.asarray(w, dtype=float)
@@ -213,7 +213,7 @@ def _check_wrench(w):
     return w
 
 
-def _check_n_elements(n):
+def check_n_elements(n):
     if int(n) != n or n < 1:
         raise ValueError(f"n_elements must be a positive integer, got {n!r}")
     return int(n)
@@ -224,14 +224,14 @@ def rotation_vector(R) -> np.ndarray:
     return Rotation.from_matrix(np.asarray(R, dtype=float)).as_rotvec()
 
 
-def _interp_pose(H, T, slerp, lam):
+def interp_pose(H, T, slerp, lam):
     Tt = np.eye(4)
     Tt[:3, :3] = slerp([lam]).as_matrix()[0]
     Tt[:3, 3] = (1 - lam) * H[:3, 3] + lam * T[:3, 3]
     return Tt
 
 
-def _check_geometries(geometries) -> tuple:
+def check_geometries(geometries) -> tuple:
     gs = tuple(geometries)
     if len(gs) < 1 or not all(isinstance(g, ModuleGeometry) for g in gs):
         raise ValueError("geometries must be a non-empty sequence of ModuleGeometry")

@@ -2,7 +2,7 @@
 
 :func:`leg_static` solves a leg with a prescribed tip pose (the inverse-kinematics leg problem,
 Eq 21, 25, 26; continuation from the straight leg when Newton fails) or a dead tip wrench
-(cantilever).  :func:`_leg_solve` is the leg solve of the module IK (warm start, then a homotopy
+(cantilever).  :func:`leg_solve` is the leg solve of the module IK (warm start, then a homotopy
 from the neighbouring state).  Checked against the Cosserat shooting solver
 (``workbench.reference.cosserat``) in ``tests/physics/test_series_parallel.py``
 (``test_leg_matches_shooting_solver_*``, ``test_leg_with_hole_condition_matches_shooting_solver``).
@@ -16,18 +16,18 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation, Slerp
 
-from .. import _stepping
-from . import _systems as _ex
+from .._stepping import continuation
+from ._systems import LegShape, StaticOutcome, solve_leg_tip_pose, solve_leg_tip_wrench
 from .geometry import (
     ModuleGeometry,
-    _check_gravity,
-    _check_n_elements,
-    _check_pose,
-    _check_wrench,
+    check_gravity,
+    check_n_elements,
+    check_pose,
+    check_wrench,
     attachment_points,
     hole_frames,
 )
-from .predictor import _GL_U, _GL_W, _hermite, _leg_shape
+from .predictor import GL_U, GL_W, hermite_curve, leg_shape
 
 
 @dataclass(frozen=True)
@@ -131,18 +131,18 @@ def leg_static(
         raise ValueError(f"length must be finite and > 0, got {length!r}")
     if (tip_pose is None) == (tip_wrench is None):
         raise ValueError("give exactly one of tip_pose and tip_wrench")
-    n_el = _check_n_elements(n_elements)
-    g = _check_gravity(gravity)
+    n_el = check_n_elements(n_elements)
+    g = check_gravity(gravity)
     rod = geometry.rod_params()
     if tip_pose is not None:
-        T = _check_pose(tip_pose, "tip_pose")
+        T = check_pose(tip_pose, "tip_pose")
         if initial_guess is not None and initial_guess.converged and initial_guess.positions.shape == (n_el + 1, 3):
-            shape = _ex.LegShape(positions=initial_guess.positions.copy(), rotations=initial_guess.rotations.copy())
+            shape = LegShape(positions=initial_guess.positions.copy(), rotations=initial_guess.rotations.copy())
             shape.positions[-1] = T[:3, 3]
             shape.rotations[-1] = T[:3, :3]
         else:
-            shape = _leg_shape(p0, R0, L, T[:3, 3], T[:3, :3], n_el, free_base_twist)
-        out, F, M, P, R = _ex.solve_leg_tip_pose(  # one step: nothing to ramp
+            shape = leg_shape(p0, R0, L, T[:3, 3], T[:3, :3], n_el, free_base_twist)
+        out, F, M, P, R = solve_leg_tip_pose(  # one step: nothing to ramp
             rod, p0, R0, L, T[:3, 3], T[:3, :3], shape, g, tolerance, max_iterations, free_base_twist
         )
         if not out.converged and continuation:
@@ -152,10 +152,10 @@ def leg_static(
     else:
         if free_base_twist:
             raise ValueError("a tip-wrench leg needs a clamped base (free_base_twist=False): the twist would be a free mode")
-        w = _check_wrench(tip_wrench)
+        w = check_wrench(tip_wrench)
         s = np.linspace(0.0, L, n_el + 1)
-        shape = _ex.LegShape(positions=p0 + s[:, None] * R0[:, 2], rotations=np.tile(R0, (n_el + 1, 1, 1)))
-        out, P, R = _ex.solve_leg_tip_wrench(rod, p0, R0, L, w[:3], w[3:], shape, g, tolerance, max_iterations, n_load_steps)
+        shape = LegShape(positions=p0 + s[:, None] * R0[:, 2], rotations=np.tile(R0, (n_el + 1, 1, 1)))
+        out, P, R = solve_leg_tip_wrench(rod, p0, R0, L, w[:3], w[3:], shape, g, tolerance, max_iterations, n_load_steps)
         F, M = (w[:3], w[3:]) if out.converged else (None, None)
     if not out.converged:
         nan = np.full(3, np.nan)
@@ -167,8 +167,8 @@ def _leg_pose_continuation(rod, p0, R0, L, T, n_el, g, tol, max_it, free_twist, 
     """Continuation fallback of :func:`leg_static` for a prescribed tip pose (see there)."""
 
     def hlen(pt, Rt):
-        _, D = _hermite(p0, R0[:, 2], pt, Rt[:, 2], _GL_U)
-        return float(np.sum(_GL_W * np.linalg.norm(D, axis=1)))
+        _, D = hermite_curve(p0, R0[:, 2], pt, Rt[:, 2], GL_U)
+        return float(np.sum(GL_W * np.linalg.norm(D, axis=1)))
 
     slerp = Slerp([0.0, 1.0], Rotation.from_matrix(np.stack([R0, T[:3, :3]])))
     p_start = p0 + L * R0[:, 2]
@@ -187,21 +187,21 @@ def _leg_pose_continuation(rod, p0, R0, L, T, n_el, g, tol, max_it, free_twist, 
         Pg = P + np.outer(s_nodes, pt - P[-1])
         Rg = R.copy()
         Rg[-1] = Rt
-        out, Ft, Mt, Pt, Rr = _ex.solve_leg_tip_pose(
-            rod, p0, R0, Lt, pt, Rt, _ex.LegShape(positions=Pg, rotations=Rg), g, tol, max_it, free_twist
+        out, Ft, Mt, Pt, Rr = solve_leg_tip_pose(
+            rod, p0, R0, Lt, pt, Rt, LegShape(positions=Pg, rotations=Rg), g, tol, max_it, free_twist
         )
         if out.converged:
             P, R, F, M = Pt, Rr, Ft, Mt
         return out.converged
 
-    walk = _stepping.continuation(step, first=0.125, max_step=0.25, min_step=min_step)
+    walk = continuation(step, first=0.125, max_step=0.25, min_step=min_step)
     if not walk.completed:
         reason = f"continuation stalled at {walk.reached:.3f} of the way to the tip pose: {out.reason}"
-        return _ex.StaticOutcome(False, out.iterations, out.residual, reason, out.wall_time), None, None, None, None
+        return StaticOutcome(False, out.iterations, out.residual, reason, out.wall_time), None, None, None, None
     return out, F, M, P, R
 
 
-def _leg_solve(geometry, i, Li, T, gravity, n_el, tol, max_it, guess=None, guess_length=None):
+def leg_solve(geometry, i, Li, T, gravity, n_el, tol, max_it, guess=None, guess_length=None):
     P0, R0 = hole_frames(geometry)
     A = attachment_points(geometry)
     Tt = np.eye(4)
@@ -244,22 +244,22 @@ def _leg_homotopy(geometry, p0, R0, guess, L_start, L_end, T_end, kw, min_step=1
             cur = last
         return last.converged
 
-    walk = _stepping.continuation(step, first=0.25, max_step=0.5, min_step=min_step)
+    walk = continuation(step, first=0.25, max_step=0.5, min_step=min_step)
     return cur if walk.completed else last
 
 
-def _base_reaction_lumped(geometry, i, leg: LegSolution, Li, gravity):
+def base_reaction_lumped(geometry, i, leg: LegSolution, Li, gravity):
     """``n_i(0)``, ``m_i(0)`` (about the hole): force and moment rod i exerts on the base.
 
     Exact for the discrete model: equilibrium of the whole leg under the tip wrench and the rod
     weight lumped at the nodes (as in ``_systems._add_leg``).
     """
     P0, _ = hole_frames(geometry)
-    return _hole_reaction(leg.positions, leg.tip_force, leg.tip_moment, P0[i], Li,
+    return hole_reaction(leg.positions, leg.tip_force, leg.tip_moment, P0[i], Li,
                           geometry.rod_params().weight_per_length, gravity)
 
 
-def _hole_reaction(positions, tip_force, tip_moment, hole, length, weight_per_length, gravity):
+def hole_reaction(positions, tip_force, tip_moment, hole, length, weight_per_length, gravity):
     """Force and moment (about ``hole``) a leg exerts at its hole, from its tip wrench and weight.
 
     ``positions`` ``(N+1, 3)`` are the leg nodes (hole first), ``tip_force``/``tip_moment`` the

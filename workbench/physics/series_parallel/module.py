@@ -1,11 +1,10 @@
-"""Forward and inverse kinematics of one module (Eq 21-28).
+"""Inverse kinematics of one module (Eq 25-28).
 
-Forward kinematics: one static equilibrium solve of six GE-beam legs and the free platform (a
-one-module stack, :func:`workbench.physics.series_parallel.stack.stack_forward`).  Inverse
-kinematics: Newton over ``L`` (``newton.py``), with a fallback continuation along the SE(3) path
+Newton over ``L`` (``newton.py``), with a fallback continuation along the SE(3) path
 from the home pose and a check that the solution stays on the IK branch connected to home
-(``branch.py``).  Checked by ``tests/physics/test_series_parallel.py`` (FK o IK round trips, the
-fold and home-cache tests).
+(``branch.py``).  The forward kinematics of one module is a one-module stack
+(:func:`workbench.physics.series_parallel.stack.module_forward`).  Checked by
+``tests/physics/test_series_parallel.py`` (FK o IK round trips, the fold and home-cache tests).
 """
 
 from __future__ import annotations
@@ -15,56 +14,19 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .branch import _branch_sign, _BranchCheckError, home_reference, walk_from_home
+from .branch import branch_sign, BranchCheckError, home_reference, walk_from_home
 from .geometry import (
     ModuleGeometry,
-    _check_gravity,
-    _check_lengths,
-    _check_n_elements,
-    _check_pose,
-    _check_wrench,
+    check_gravity,
+    check_lengths,
+    check_n_elements,
+    check_pose,
+    check_wrench,
     home_pose,
 )
-from .leg import _base_reaction_lumped
-from .newton import _ik_newton, _resnorm
-from .predictor import _hermite_lengths
-from .stack import stack_forward
-
-
-@dataclass(frozen=True)
-class ModulePose:
-    """Forward kinematics of one module (static equilibrium, Eq 21-24).
-
-    Parameters
-    ----------
-    pose : ndarray, shape (4, 4)
-        Platform pose in the module base frame (base <- platform).
-    tip_forces, tip_moments : ndarray, shape (6, 3)
-        ``n_i(L_i)``, ``m_i(L_i)``: force [N] and moment [N m] the platform exerts on each rod
-        tip, module base frame.
-    leg_positions : ndarray, shape (6, N+1, 3)
-        Leg node positions [m], hole first.
-    converged : bool
-    iterations : int
-        Newton iterations of the static solve.
-    residual : float
-        Max-norm of the platform balance Eq 22 recomputed from the leg tip wrenches (forces in N,
-        moments divided by the platform radius, in N): an independent equilibrium check.
-    reason : str
-        Failure reason, "" when converged.
-    wall_time : float
-        Seconds.
-    """
-
-    pose: np.ndarray
-    tip_forces: np.ndarray
-    tip_moments: np.ndarray
-    leg_positions: np.ndarray
-    converged: bool
-    iterations: int
-    residual: float
-    reason: str = ""
-    wall_time: float = 0.0
+from .leg import base_reaction_lumped
+from .newton import ik_newton, resnorm
+from .predictor import hermite_lengths
 
 
 @dataclass(frozen=True)
@@ -109,58 +71,6 @@ class ModuleIK:
     leg_positions: np.ndarray
     leg_solves: int = 0
     wall_time: float = 0.0
-
-
-def module_forward(
-    geometry: ModuleGeometry,
-    insertion_lengths,
-    wrench=None,
-    gravity=None,
-    *,
-    n_elements: int = 8,
-    initial_pose=None,
-    tolerance: float = 1e-10,
-    max_iterations: int = 50,
-) -> ModulePose:
-    """Forward kinematics of one module: static equilibrium for given insertion lengths (Eq 21-24).
-
-    One Exudyn static solve of six GE-beam legs and the free platform.  The start is a geometric
-    predictor: the platform pose whose cubic-Hermite legs have the given lengths.
-
-    Parameters
-    ----------
-    geometry : ModuleGeometry
-    insertion_lengths : array_like, shape (6,)
-        Free leg lengths hole -> platform L_i [m].
-    wrench : array_like, shape (6,), optional
-        External force [N] and moment [N m] on the platform at its origin, base frame.
-    gravity : array_like, shape (3,), optional
-        Gravitational acceleration in the base frame [m/s^2], e.g. ``(0, 0, -9.81)``; None = off.
-    n_elements : int
-        GE beam elements per leg.
-    initial_pose : array_like, shape (4, 4), optional
-        Starting guess for the predictor (default: home pose).
-    tolerance : float
-        Newton relative tolerance on the step size.
-    max_iterations : int
-        Newton iteration cap.
-
-    Returns
-    -------
-    ModulePose
-    """
-    L = _check_lengths(insertion_lengths)
-    st = stack_forward(
-        [geometry], L[None, :], wrench=wrench, gravity=gravity, n_elements=n_elements,
-        initial_poses=None if initial_pose is None else _check_pose(initial_pose, "initial_pose")[None],
-        tolerance=tolerance, max_iterations=max_iterations, _return_legs=True,
-    )
-    res, F, M, _ = st
-    return ModulePose(
-        pose=res.poses[0], tip_forces=F[0], tip_moments=M[0], leg_positions=res.leg_positions[0],
-        converged=res.converged, iterations=res.iterations, residual=res.residual, reason=res.reason,
-        wall_time=res.wall_time,
-    )
 
 
 def module_inverse(
@@ -232,16 +142,16 @@ def module_inverse(
     ModuleIK
     """
     t_start = time.perf_counter()
-    T = _check_pose(target_pose, "target_pose")
-    w = _check_wrench(wrench)
-    g = _check_gravity(gravity)
-    n_el = _check_n_elements(n_elements)
-    L0 = _hermite_lengths(geometry, T) if initial_lengths is None else _check_lengths(initial_lengths).copy()
+    T = check_pose(target_pose, "target_pose")
+    w = check_wrench(wrench)
+    g = check_gravity(gravity)
+    n_el = check_n_elements(n_elements)
+    L0 = hermite_lengths(geometry, T) if initial_lengths is None else check_lengths(initial_lengths).copy()
     counter = [0]
     kw = dict(w=w, g=g, n_el=n_el, length_tolerance=length_tolerance, leg_tolerance=leg_tolerance, fd_step=fd_step,
               counter=counter)
     direct_cap = max_iterations if path_steps == 0 else min(max_iterations, 8)
-    L, legs, ok, total_its, r, msg = _ik_newton(geometry, T, L0, None, max_iterations=direct_cap, **kw)
+    L, legs, ok, total_its, r, msg = ik_newton(geometry, T, L0, None, max_iterations=direct_cap, **kw)
     cache = {} if home_cache is None else home_cache  # the home reference is solved at most once per call
 
     def home():
@@ -250,9 +160,9 @@ def module_inverse(
     at_home = bool(np.allclose(T, home_pose(geometry), rtol=0.0, atol=1e-12))
     direct_off_branch = False
     try:
-        if ok and check_branch and not at_home and _branch_sign(geometry, T, L, legs, kw, counter) != home().sign:
+        if ok and check_branch and not at_home and branch_sign(geometry, T, L, legs, kw, counter) != home().sign:
             ok, msg, direct_off_branch = False, "", True
-    except _BranchCheckError as e:
+    except BranchCheckError as e:
         ok, msg, path_steps = False, str(e), 0
     if not ok and path_steps != 0:
         walk = walk_from_home(geometry, T, kw, home=home if check_branch else None, path_steps=path_steps,
@@ -271,14 +181,14 @@ def _module_ik(geometry, L, legs, ok, iterations, r, msg, g, n_el, leg_solves, t
     """The :class:`ModuleIK` of a solve: reactions at the holes on success, NaN everywhere on failure."""
     if not ok or legs is None or any(lg is None or not lg.converged for lg in legs):
         nan = np.full((6, 3), np.nan)
-        return ModuleIK(np.full(6, np.nan), False, iterations, float("nan") if r is None else _resnorm(geometry, r),
+        return ModuleIK(np.full(6, np.nan), False, iterations, float("nan") if r is None else resnorm(geometry, r),
                         msg or "IK failed", nan, nan, nan, nan, np.full((6, n_el + 1, 3), np.nan), leg_solves,
                         time.perf_counter() - t_start)
     F = np.stack([lg.tip_force for lg in legs])
     M = np.stack([lg.tip_moment for lg in legs])
-    base = [_base_reaction_lumped(geometry, i, legs[i], L[i], g) for i in range(6)]
+    base = [base_reaction_lumped(geometry, i, legs[i], L[i], g) for i in range(6)]
     return ModuleIK(
-        lengths=L, success=True, iterations=iterations, residual=_resnorm(geometry, r), reason="",
+        lengths=L, success=True, iterations=iterations, residual=resnorm(geometry, r), reason="",
         tip_forces=F, tip_moments=M,
         base_forces=np.stack([b[0] for b in base]), base_moments=np.stack([b[1] for b in base]),
         leg_positions=np.stack([lg.positions for lg in legs]), leg_solves=leg_solves,

@@ -12,10 +12,10 @@ from __future__ import annotations
 import numpy as np
 
 from .geometry import attachment_points
-from .leg import _leg_solve
+from .leg import leg_solve
 
 
-def _balance(geometry, T, F_legs, M_legs, wrench, gravity):
+def platform_balance(geometry, T, F_legs, M_legs, wrench, gravity):
     """Platform balance Eq 22 in the module base frame, returns the (6,) residual [N, N m]."""
     A = attachment_points(geometry)
     p = T[:3, :3] @ A.T + T[:3, 3:4]  # (3, 6)
@@ -31,11 +31,11 @@ def _balance(geometry, T, F_legs, M_legs, wrench, gravity):
     return np.concatenate([rf, rm])
 
 
-def _resnorm(geometry, r):
+def resnorm(geometry, r):
     return float(max(np.max(np.abs(r[:3])), np.max(np.abs(r[3:])) / geometry.platform_radius))
 
 
-def _ik_newton(geometry, T, L, legs0, *, legs0_L=None, w, g, n_el, length_tolerance, leg_tolerance, fd_step, max_iterations, counter):
+def ik_newton(geometry, T, L, legs0, *, legs0_L=None, w, g, n_el, length_tolerance, leg_tolerance, fd_step, max_iterations, counter):
     """Newton over L for a fixed platform pose (Eq 22 with Eq 25-26), backtracking on the residual.
 
     Returns (L, legs, success, iterations, residual vector, message).
@@ -46,13 +46,13 @@ def _ik_newton(geometry, T, L, legs0, *, legs0_L=None, w, g, n_el, length_tolera
         for i in range(6) if only is None else only:
             gl = None if guess_legs is None else guess_legs[i]
             gL = None if guess_L is None else guess_L[i]
-            legs[i] = _leg_solve(geometry, i, Lv[i], T, g, n_el, leg_tolerance, 50, guess=gl, guess_length=gL)
+            legs[i] = leg_solve(geometry, i, Lv[i], T, g, n_el, leg_tolerance, 50, guess=gl, guess_length=gL)
             counter[0] += 1
             if not legs[i].converged:
                 return None, legs, f"leg {i} static solve failed at L = {Lv[i]:.6g} m: {legs[i].reason}"
         F = np.stack([lg.tip_force for lg in legs])
         M = np.stack([lg.tip_moment for lg in legs])
-        return _balance(geometry, T, F, M, w, g), legs, ""
+        return platform_balance(geometry, T, F, M, w, g), legs, ""
 
     r, legs, msg = evaluate(L, legs0, guess_L=legs0_L)
     if r is None:
@@ -75,13 +75,13 @@ def _ik_newton(geometry, T, L, legs0, *, legs0_L=None, w, g, n_el, length_tolera
         except np.linalg.LinAlgError:
             return L, legs, False, it, r, "singular IK Jacobian d(balance)/dL (module at a singular pose)"
         # backtracking: accept the first fraction that lowers the scaled balance residual
-        r0 = _resnorm(geometry, r)
+        r0 = resnorm(geometry, r)
         for frac in (1.0, 0.5, 0.25, 0.125):
             Ln = L + frac * dL
             if np.any(Ln <= 0):
                 continue
             rn, legs_n, msg = evaluate(Ln, legs, guess_L=L)
-            if rn is not None and (_resnorm(geometry, rn) < r0 or frac * np.max(np.abs(dL)) < length_tolerance):
+            if rn is not None and (resnorm(geometry, rn) < r0 or frac * np.max(np.abs(dL)) < length_tolerance):
                 break
         else:
             if not fresh:  # the reused (chord) Jacobian is stale: rebuild it before giving up

@@ -15,16 +15,16 @@ import numpy as np
 from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
-from . import _systems as _ex
-from .geometry import ModuleGeometry, _check_pose, _rz, attachment_points, hole_frames, pose_from_xyz_rotvec
+from ._systems import LegShape
+from .geometry import ModuleGeometry, check_pose, rot_z, attachment_points, hole_frames, pose_from_xyz_rotvec
 
 
-_GL_X, _GL_W = np.polynomial.legendre.leggauss(24)
-_GL_U = 0.5 * (_GL_X + 1.0)
-_GL_W = 0.5 * _GL_W
+_GL_X, GL_W = np.polynomial.legendre.leggauss(24)
+GL_U = 0.5 * (_GL_X + 1.0)
+GL_W = 0.5 * GL_W
 
 
-def _hermite(p0, t0, p1, t1, u, scale=None):
+def hermite_curve(p0, t0, p1, t1, u, scale=None):
     """Cubic Hermite curve with end tangents scaled by ``scale`` (default: the chord); points and derivatives."""
     c = np.linalg.norm(p1 - p0) if scale is None else scale
     u = np.asarray(u)[:, None]
@@ -60,25 +60,25 @@ def leg_lengths_from_pose_hermite(geometry: ModuleGeometry, pose) -> np.ndarray:
     ndarray, shape (6,)
         Predicted insertion lengths [m].
     """
-    T = _check_pose(pose)
-    return _hermite_lengths(geometry, T)
+    T = check_pose(pose)
+    return hermite_lengths(geometry, T)
 
 
-def _hermite_lengths(geometry, T):
+def hermite_lengths(geometry, T):
     P0, R0 = hole_frames(geometry)
     A = attachment_points(geometry)
     out = np.empty(6)
     for i in range(6):
         p1 = T[:3, :3] @ A[i] + T[:3, 3]
-        _, D = _hermite(P0[i], R0[i][:, 2], p1, T[:3, 2], _GL_U)
-        out[i] = np.sum(_GL_W * np.linalg.norm(D, axis=1))
+        _, D = hermite_curve(P0[i], R0[i][:, 2], p1, T[:3, 2], GL_U)
+        out[i] = np.sum(GL_W * np.linalg.norm(D, axis=1))
     return out
 
 
-def _pose_from_lengths_hermite(geometry, L, T_guess):
+def pose_from_lengths_hermite(geometry, L, T_guess):
     def res(x):
         T = T_guess @ pose_from_xyz_rotvec(x[:3], x[3:])
-        return (_hermite_lengths(geometry, T) - L) / geometry.height
+        return (hermite_lengths(geometry, T) - L) / geometry.height
 
     sol = least_squares(res, np.zeros(6), method="lm", xtol=1e-14, ftol=1e-14)
     return T_guess @ pose_from_xyz_rotvec(sol.x[:3], sol.x[3:])
@@ -93,8 +93,8 @@ def _tangent_scale_for_length(p0, t0, p1, t1, length):
     c = float(np.linalg.norm(p1 - p0))
 
     def arc(a):
-        _, D = _hermite(p0, t0, p1, t1, _GL_U, a)
-        return float(np.sum(_GL_W * np.linalg.norm(D, axis=1)))
+        _, D = hermite_curve(p0, t0, p1, t1, GL_U, a)
+        return float(np.sum(GL_W * np.linalg.norm(D, axis=1)))
 
     a0, a1 = c, 1.1 * c
     f0, f1 = arc(a0) - length, arc(a1) - length
@@ -106,11 +106,11 @@ def _tangent_scale_for_length(p0, t0, p1, t1, length):
     return a1 if abs(f1) < 1e-9 * length else c
 
 
-def _leg_shape(p0, R0, length, p1, R1, n_elements, free_twist=True) -> _ex.LegShape:
+def leg_shape(p0, R0, length, p1, R1, n_elements, free_twist=True) -> LegShape:
     """Node positions (equal arc length along the Hermite curve) and parallel-transported frames."""
     u = np.linspace(0.0, 1.0, 401)
     scale = _tangent_scale_for_length(p0, R0[:, 2], p1, R1[:, 2], length)
-    P, D = _hermite(p0, R0[:, 2], p1, R1[:, 2], u, scale)
+    P, D = hermite_curve(p0, R0[:, 2], p1, R1[:, 2], u, scale)
     sp = np.linalg.norm(D, axis=1)
     s = np.concatenate([[0.0], np.cumsum(0.5 * (sp[1:] + sp[:-1]) * np.diff(u))])
     tan = D / sp[:, None]
@@ -128,19 +128,19 @@ def _leg_shape(p0, R0, length, p1, R1, n_elements, free_twist=True) -> _ex.LegSh
     s_nodes = np.linspace(0.0, s[-1], n_elements + 1)
     u_nodes = np.interp(s_nodes, s, u)
     idx = np.clip(np.searchsorted(u, u_nodes), 0, u.size - 1)
-    Pn, _ = _hermite(p0, R0[:, 2], p1, R1[:, 2], u_nodes, scale)
+    Pn, _ = hermite_curve(p0, R0[:, 2], p1, R1[:, 2], u_nodes, scale)
     Rn = np.empty((n_elements + 1, 3, 3))
     for j in range(n_elements + 1):
         frac = 1.0 if free_twist else s_nodes[j] / s[-1]
         Fj = frames[idx[j]]
         # re-align with the exact tangent at u_nodes[j]
-        _, Dj = _hermite(p0, R0[:, 2], p1, R1[:, 2], [u_nodes[j]], scale)
+        _, Dj = hermite_curve(p0, R0[:, 2], p1, R1[:, 2], [u_nodes[j]], scale)
         tj = Dj[0] / np.linalg.norm(Dj[0])
         ax = np.cross(Fj[:, 2], tj)
         sn = np.linalg.norm(ax)
         if sn > 1e-15:
             Fj = Rotation.from_rotvec(ax / sn * math.asin(min(sn, 1.0))).as_matrix() @ Fj
-        Rn[j] = Fj @ _rz(frac * phi)
+        Rn[j] = Fj @ rot_z(frac * phi)
     Rn[-1] = R1 if free_twist else Rn[-1]
     Pn[-1] = p1
-    return _ex.LegShape(positions=Pn, rotations=Rn)
+    return LegShape(positions=Pn, rotations=Rn)

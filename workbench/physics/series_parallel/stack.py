@@ -7,7 +7,8 @@ platform k-1 <- base k, ``T'_k`` the module-local pose, Eq 29); inverse ``T'_k =
 (Eq 31).  Forward: all modules in one Exudyn system, so loads above a module are carried exactly;
 if the solve from the predictor fails, the lengths are walked from the home configuration with a
 secant predictor.  Inverse: module by module from the top down, each module's hole reactions
-applied to the platform below (exact because every platform pose is given).  Checked by the
+applied to the platform below (exact because every platform pose is given).  One module's
+forward kinematics, :func:`module_forward`, is a one-module stack.  Checked by the
 three-module round trips of ``tests/physics/test_series_parallel.py``.
 """
 
@@ -20,35 +21,60 @@ from typing import Sequence
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from .. import _stepping
-from . import _systems as _ex
+from .._stepping import continuation
+from ._systems import LegShape, ModuleSpec, StaticOutcome, solve_stack
 from .geometry import (
     ModuleGeometry,
-    _check_geometries,
-    _check_gravity,
-    _check_lengths,
-    _check_n_elements,
-    _check_pose,
-    _check_wrench,
+    check_geometries,
+    check_gravity,
+    check_lengths,
+    check_n_elements,
+    check_pose,
+    check_wrench,
     attachment_points,
     hole_frames,
     home_pose,
 )
-from .leg import LegSolution, _hole_reaction, leg_static
-from .newton import _resnorm
-from .predictor import _leg_shape, _pose_from_lengths_hermite
+from .leg import LegSolution, hole_reaction, leg_static
+from .module import module_inverse
+from .newton import resnorm
+from .predictor import leg_shape, pose_from_lengths_hermite
 
 
-def _module_inverse(*args, **kwargs):
-    """``module_inverse`` as the package exposes it at call time.
+@dataclass(frozen=True)
+class ModulePose:
+    """Forward kinematics of one module (static equilibrium, Eq 21-24).
 
-    Looked up on ``workbench.physics.series_parallel`` when called (not bound at import), so a
-    patch of that package attribute reaches the stack solvers, as when everything was one module
-    (``tests/physics/test_series_parallel_layout.py::test_stack_inverse_calls_the_package_module_inverse``).
+    Parameters
+    ----------
+    pose : ndarray, shape (4, 4)
+        Platform pose in the module base frame (base <- platform).
+    tip_forces, tip_moments : ndarray, shape (6, 3)
+        ``n_i(L_i)``, ``m_i(L_i)``: force [N] and moment [N m] the platform exerts on each rod
+        tip, module base frame.
+    leg_positions : ndarray, shape (6, N+1, 3)
+        Leg node positions [m], hole first.
+    converged : bool
+    iterations : int
+        Newton iterations of the static solve.
+    residual : float
+        Max-norm of the platform balance Eq 22 recomputed from the leg tip wrenches (forces in N,
+        moments divided by the platform radius, in N): an independent equilibrium check.
+    reason : str
+        Failure reason, "" when converged.
+    wall_time : float
+        Seconds.
     """
-    from . import module_inverse
 
-    return module_inverse(*args, **kwargs)
+    pose: np.ndarray
+    tip_forces: np.ndarray
+    tip_moments: np.ndarray
+    leg_positions: np.ndarray
+    converged: bool
+    iterations: int
+    residual: float
+    reason: str = ""
+    wall_time: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -105,9 +131,9 @@ class StackIK:
     wall_time: float = 0.0
 
 
-def _spec(geometry: ModuleGeometry, L: np.ndarray) -> _ex.ModuleSpec:
+def _spec(geometry: ModuleGeometry, L: np.ndarray) -> ModuleSpec:
     P, R = hole_frames(geometry)
-    return _ex.ModuleSpec(
+    return ModuleSpec(
         hole_positions=P,
         hole_rotations=R,
         attachments=attachment_points(geometry),
@@ -168,21 +194,21 @@ def stack_forward(
     StackPose
     """
     t_start = time.perf_counter()
-    gs = _check_geometries(geometries)
+    gs = check_geometries(geometries)
     n = len(gs)
     Ls = np.asarray(lengths_per_module, dtype=float)
     if Ls.shape != (n, 6):
         raise ValueError(f"lengths_per_module must have shape ({n}, 6), got {Ls.shape}")
     for k in range(n):
-        _check_lengths(Ls[k])
-    w = _check_wrench(wrench)
-    g = _check_gravity(gravity)
-    n_el = _check_n_elements(n_elements)
-    B = np.eye(4) if base_pose is None else _check_pose(base_pose, "base_pose")
+        check_lengths(Ls[k])
+    w = check_wrench(wrench)
+    g = check_gravity(gravity)
+    n_el = check_n_elements(n_elements)
+    B = np.eye(4) if base_pose is None else check_pose(base_pose, "base_pose")
     guesses, shapes = _predict_stack(gs, Ls, B, initial_poses, g, n_el)
     specs = [_spec(geo, Ls[k]) for k, geo in enumerate(gs)]
     wr = None if w is None else (w[:3], w[3:])
-    out, poses, F, M, (legpos, legrot) = _ex.solve_stack(specs, B, guesses, shapes, g, wr, tolerance, max_iterations, 1)
+    out, poses, F, M, (legpos, legrot) = solve_stack(specs, B, guesses, shapes, g, wr, tolerance, max_iterations, 1)
     if not out.converged and continuation:
         out, poses, F, M, (legpos, legrot) = _stack_continuation(gs, Ls, B, g, wr, n_el, tolerance, max_iterations, out)
     if not out.converged:
@@ -196,6 +222,58 @@ def stack_forward(
     return (res, F, M, legrot) if _return_legs else res
 
 
+def module_forward(
+    geometry: ModuleGeometry,
+    insertion_lengths,
+    wrench=None,
+    gravity=None,
+    *,
+    n_elements: int = 8,
+    initial_pose=None,
+    tolerance: float = 1e-10,
+    max_iterations: int = 50,
+) -> ModulePose:
+    """Forward kinematics of one module: static equilibrium for given insertion lengths (Eq 21-24).
+
+    One Exudyn static solve of six GE-beam legs and the free platform.  The start is a geometric
+    predictor: the platform pose whose cubic-Hermite legs have the given lengths.
+
+    Parameters
+    ----------
+    geometry : ModuleGeometry
+    insertion_lengths : array_like, shape (6,)
+        Free leg lengths hole -> platform L_i [m].
+    wrench : array_like, shape (6,), optional
+        External force [N] and moment [N m] on the platform at its origin, base frame.
+    gravity : array_like, shape (3,), optional
+        Gravitational acceleration in the base frame [m/s^2], e.g. ``(0, 0, -9.81)``; None = off.
+    n_elements : int
+        GE beam elements per leg.
+    initial_pose : array_like, shape (4, 4), optional
+        Starting guess for the predictor (default: home pose).
+    tolerance : float
+        Newton relative tolerance on the step size.
+    max_iterations : int
+        Newton iteration cap.
+
+    Returns
+    -------
+    ModulePose
+    """
+    L = check_lengths(insertion_lengths)
+    st = stack_forward(
+        [geometry], L[None, :], wrench=wrench, gravity=gravity, n_elements=n_elements,
+        initial_poses=None if initial_pose is None else check_pose(initial_pose, "initial_pose")[None],
+        tolerance=tolerance, max_iterations=max_iterations, _return_legs=True,
+    )
+    res, F, M, _ = st
+    return ModulePose(
+        pose=res.poses[0], tip_forces=F[0], tip_moments=M[0], leg_positions=res.leg_positions[0],
+        converged=res.converged, iterations=res.iterations, residual=res.residual, reason=res.reason,
+        wall_time=res.wall_time,
+    )
+
+
 def _predict_stack(gs, Ls, B, initial_poses, g, n_el):
     """Geometric predictor, module by module (Eq 30 recursion): global platform poses ``(n, 4, 4)``
     and, per module, six leg shapes, each leg in equilibrium with its platform held at the
@@ -205,8 +283,8 @@ def _predict_stack(gs, Ls, B, initial_poses, g, n_el):
     shapes = []
     Tb = B.copy()
     for k, geo in enumerate(gs):
-        Tk0 = home_pose(geo) if initial_poses is None else _check_pose(np.asarray(initial_poses)[k], "initial_poses[k]")
-        Tloc = _pose_from_lengths_hermite(geo, Ls[k], Tk0)
+        Tk0 = home_pose(geo) if initial_poses is None else check_pose(np.asarray(initial_poses)[k], "initial_poses[k]")
+        Tloc = pose_from_lengths_hermite(geo, Ls[k], Tk0)
         guesses[k] = Tb @ Tloc
         P0, R0 = hole_frames(geo)
         A = attachment_points(geo)
@@ -220,9 +298,9 @@ def _predict_stack(gs, Ls, B, initial_poses, g, n_el):
             Tt[:3, 3] = pt
             leg = leg_static(geo, pb, Rb, Ls[k, i], tip_pose=Tt, gravity=g, n_elements=n_el)
             if leg.converged:
-                legs.append(_ex.LegShape(positions=leg.positions, rotations=leg.rotations))
+                legs.append(LegShape(positions=leg.positions, rotations=leg.rotations))
             else:
-                legs.append(_leg_shape(pb, Rb, Ls[k, i], pt, guesses[k][:3, :3], n_el, True))
+                legs.append(leg_shape(pb, Rb, Ls[k, i], pt, guesses[k][:3, :3], n_el, True))
         shapes.append(legs)
         Tb = guesses[k] @ geo.mount_transform()
     return guesses, shapes
@@ -260,14 +338,14 @@ def _worst_platform_balance(gs, Ls, poses, F, M, legpos, g, w):
             P0, _ = hole_frames(geo_n)
             for i in range(6):
                 hole = Tbn[:3, :3] @ P0[i] + Tbn[:3, 3]
-                n0, m0 = _hole_reaction(legpos[k + 1, i], F[k + 1, i], M[k + 1, i], hole, Ls[k + 1, i],
+                n0, m0 = hole_reaction(legpos[k + 1, i], F[k + 1, i], M[k + 1, i], hole, Ls[k + 1, i],
                                         geo_n.rod_params().weight_per_length, g)
                 Fs = Fs + n0
                 Ms = Ms + m0 + np.cross(hole - Tk[:3, 3], n0)
         elif w is not None:
             Fs = Fs + w[:3]
             Ms = Ms + w[3:]
-        worst = max(worst, _resnorm(geo, np.concatenate([Fs, Ms])))
+        worst = max(worst, resnorm(geo, np.concatenate([Fs, Ms])))
     return worst
 
 
@@ -298,9 +376,9 @@ def _presolve_legs(gs, Ls, B, poses, g, n_el, guess_pos, guess_rot):
             leg = leg_static(geo, pb, Rb, Ls[k, i], tip_pose=Tt, gravity=g, n_elements=n_el, initial_guess=guess,
                              continuation=False)
             if leg.converged:
-                legs.append(_ex.LegShape(positions=leg.positions, rotations=leg.rotations))
+                legs.append(LegShape(positions=leg.positions, rotations=leg.rotations))
             else:
-                legs.append(_ex.LegShape(positions=guess_pos[k, i], rotations=guess_rot[k, i]))
+                legs.append(LegShape(positions=guess_pos[k, i], rotations=guess_rot[k, i]))
         shapes.append(legs)
         Tb = poses[k] @ geo.mount_transform()
     return shapes
@@ -312,7 +390,7 @@ def _stack_home(gs, B, n_el, tol, max_it):
     n = len(gs)
     L_home = np.empty((n, 6))
     for k, geo in enumerate(gs):
-        ik = _module_inverse(geo, home_pose(geo), n_elements=n_el)
+        ik = module_inverse(geo, home_pose(geo), n_elements=n_el)
         if not ik.success:
             return None
         L_home[k] = ik.lengths
@@ -340,7 +418,7 @@ def _stack_continuation(gs, Ls, B, g, wr, n_el, tol, max_it, last_out, min_step=
     """Length continuation from the home configuration for :func:`stack_forward`.
 
     Lengths, gravity and tip wrench go linearly from home (no loads) to the requested ones
-    (``_stepping.continuation``: first step 1/4, doubling up to 1/2, stall below ``min_step``),
+    (:func:`workbench.physics._stepping.continuation`: first step 1/4, doubling up to 1/2, stall below ``min_step``),
     each step started from a secant predictor with every leg pre-solved at its new length.
     """
     home = _stack_home(gs, B, n_el, tol, max_it)
@@ -360,17 +438,17 @@ def _stack_continuation(gs, Ls, B, g, wr, n_el, tol, max_it, last_out, min_step=
         # the previous equilibrium: the old leg shapes with the new stress-free lengths carry an
         # axial misfit (EA dL / L, ~kN for 0.1 mm) that Newton on the whole module does not survive
         shapes = _presolve_legs(gs, Lt, B, g_poses, g if g is None else lt * g, n_el, g_pos, g_rot)
-        out, P_, F_, M_, (lp, lr) = _ex.solve_stack(specs, B, g_poses, shapes, g if lt == 1.0 or g is None else lt * g,
+        out, P_, F_, M_, (lp, lr) = solve_stack(specs, B, g_poses, shapes, g if lt == 1.0 or g is None else lt * g,
                                                      None if wr is None else (lt * wr[0], lt * wr[1]), tol, max_it, 1)
         if out.converged:
             prev = (lam, poses, legpos, legrot)
             poses, F, M, legpos, legrot = P_, F_, M_, lp, lr
         return out.converged
 
-    walk = _stepping.continuation(step, first=0.25, max_step=0.5, min_step=min_step)
+    walk = continuation(step, first=0.25, max_step=0.5, min_step=min_step)
     if not walk.completed:
         reason = f"length continuation from home stalled at {walk.reached:.3f}: {out.reason}"
-        return _ex.StaticOutcome(False, out.iterations, out.residual, reason, out.wall_time), None, None, None, (None, None)
+        return StaticOutcome(False, out.iterations, out.residual, reason, out.wall_time), None, None, None, (None, None)
     return out, poses, F, M, (legpos, legrot)
 
 
@@ -412,16 +490,16 @@ def stack_inverse(
     StackIK
     """
     t_start = time.perf_counter()
-    gs = _check_geometries(geometries)
+    gs = check_geometries(geometries)
     n = len(gs)
     Tp = np.asarray(platform_poses, dtype=float)
     if Tp.shape != (n, 4, 4):
         raise ValueError(f"platform_poses must have shape ({n}, 4, 4), got {Tp.shape}")
     for k in range(n):
-        _check_pose(Tp[k], f"platform_poses[{k}]")
-    w = _check_wrench(wrench)
-    g = _check_gravity(gravity)
-    B = np.eye(4) if base_pose is None else _check_pose(base_pose, "base_pose")
+        check_pose(Tp[k], f"platform_poses[{k}]")
+    w = check_wrench(wrench)
+    g = check_gravity(gravity)
+    B = np.eye(4) if base_pose is None else check_pose(base_pose, "base_pose")
     bases = [B] + [Tp[k] @ gs[k].mount_transform() for k in range(n - 1)]
     results: list = [None] * n
     home_cache: dict = {}  # the branch check's home reference, shared by modules with equal geometry and loads
@@ -439,7 +517,7 @@ def stack_inverse(
         M_pk = M_above_o - np.cross(pk, F_above)
         wk = np.concatenate([Rb.T @ F_above, Rb.T @ M_pk])
         gk = None if Bg is None else Rb.T @ Bg
-        r = _module_inverse(gs[k], local, wrench=wk if np.any(wk) else None, gravity=gk, n_elements=n_elements,
+        r = module_inverse(gs[k], local, wrench=wk if np.any(wk) else None, gravity=gk, n_elements=n_elements,
                            length_tolerance=length_tolerance, max_iterations=max_iterations, home_cache=home_cache)
         results[k] = r
         if not r.success:

@@ -9,7 +9,7 @@ A segmented backbone (Hannan & Walker's trunk: a robot with joint springs ``k`` 
   masses and inertias from the mass per length, the disk masses and the payload.
 * :mod:`.params` -- :class:`SpringLinkParams` (dimension, torsion, axial springs, backend) and
   :func:`is_planar`.
-* :mod:`.chain` -- the :class:`_Chain` base every variant shares; :mod:`.planar` (``RigidBody2D``,
+* :mod:`.chain` -- the :class:`Chain` base every variant shares; :mod:`.planar` (``RigidBody2D``,
   the base x-z plane), :mod:`.spatial` (Euler-parameter bodies, spherical or Cardan joints) and
   :mod:`.tree` (one ``ObjectKinematicTree``, planar or Cardan; used for eyelet ropes).
 * :mod:`.routing` -- tendons: ``tendon_model="eyelets"``, one frictionless rope per tendon through
@@ -26,24 +26,15 @@ A segmented backbone (Hannan & Walker's trunk: a robot with joint springs ``k`` 
 Checked by ``tests/physics/test_spring_link.py`` (order-2 convergence to the arc and the heavy
 elastica, CC limit exact to 1e-12, 2-D = 3-D, tree = bodies, axial compression, dynamics settle to
 statics), ``test_spring_link_eyelets.py`` (rope routing, convergence to the ANCF rope model),
-``test_hannan_walker.py`` (Eq. 1 cable geometry) and ``test_spring_link_layout.py`` (layout, load
-ramp, old import paths).  Measured behaviour (timings, Newton convergence with eyelet ropes, why
+``test_hannan_walker.py`` (Eq. 1 cable geometry) and ``test_spring_link_layout.py`` (the chain
+hooks, the load ramp's steps).  Measured behaviour (timings, Newton convergence with eyelet ropes, why
 the tree backend is chosen) and the limitations: ``docs/models.md``, "Spring-link".
 """
 
 from __future__ import annotations
 
-from ...models.result import SolverInfo  # tests/physics/test_hannan_walker.py uses sl.SolverInfo
-from .chain import _Chain
+from .driver import run, solve
 from .geometry import ChainGeometry, chain_geometry_from_robot
 from .params import SpringLinkParams, is_planar
-from .planar import _Planar
-from .routing import _add_eyelet_rope, _eyelet_placement, _Tendon, _tendons
-from .driver import _static_ramp, _use_sparse, run, solve
-from .spatial import _Spatial
-from .tree import _Tree, tree_tip_position
 
-#: Deprecated: use ``_Tree`` (the kinematic-tree chain is planar or 3-D).
-_PlanarTree = _Tree
-
-__all__ = ["SpringLinkParams", "run", "solve", "is_planar", "chain_geometry_from_robot"]
+__all__ = ["SpringLinkParams", "run", "solve", "is_planar", "chain_geometry_from_robot", "ChainGeometry"]

@@ -1,11 +1,11 @@
 """What every spring-link chain shares: inputs, tendon commands, active set, tensions, result.
 
 A chain object is the assembled Exudyn system of one solve (built from plain parameters, no
-module state).  :class:`_Chain` builds it in one fixed sequence -- bind the inputs and the tendon
-routing, :meth:`_Chain._check` the case, create the system, :meth:`_Chain._build` every item,
+module state).  :class:`Chain` builds it in one fixed sequence -- bind the inputs and the tendon
+routing, :meth:`Chain._check` the case, create the system, :meth:`Chain._build` every item,
 ``Assemble`` -- and drives it through the interface the static ramp and the dynamic pre-step use:
-:meth:`_Chain.set_external`, :meth:`_Chain.set_tendons`, :meth:`_Chain.update_active_set`,
-:meth:`_Chain.result`.  A variant (:mod:`.planar`, :mod:`.spatial`, :mod:`.tree`) provides the
+:meth:`Chain.set_external`, :meth:`Chain.set_tendons`, :meth:`Chain.update_active_set`,
+:meth:`Chain.result`.  A variant (:mod:`.planar`, :mod:`.spatial`, :mod:`.tree`) provides the
 hooks named in the class docstring and nothing else.  Checked through every chain by
 ``tests/physics/test_spring_link*.py`` and the layout by ``tests/physics/test_spring_link_layout.py``.
 """
@@ -20,13 +20,13 @@ from ...models.inputs import check_model_inputs
 from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ...robot import LoadCase, Robot
 from .geometry import ChainGeometry
-from .routing import _add_eyelet_rope, _Tendon, _tendons
+from .routing import add_eyelet_rope, TendonRoute, route_tendons
 from .shape import planar_shape, spatial_shape, twist_vs_parallel_transport
 
 __all__: list[str] = []
 
 
-class _Chain:
+class Chain:
     """Base of the chain variants.
 
     Hooks a variant must provide (each raises ``NotImplementedError`` here):
@@ -59,7 +59,7 @@ class _Chain:
         check_model_inputs(robot, load, options)
         self.exu, self.eii = exu, eii
         self.robot, self.load, self.options, self.geo = robot, load, options, geo
-        self.tendons: list[_Tendon] = _tendons(robot, geo, options.tendon_model)
+        self.tendons: list[TendonRoute] = route_tendons(robot, geo, options.tendon_model)
         self.mode = None if load.actuation is None else load.actuation.mode
         self.model = options.tendon_model
         self._check()
@@ -79,10 +79,10 @@ class _Chain:
     def _build(self, mbs) -> None:  # noqa: ANN001
         raise NotImplementedError
 
-    def _eyelet_marker(self, mbs, i: int, tendon: _Tendon, link: int, z: float, d: float) -> int:  # noqa: ANN001
+    def _eyelet_marker(self, mbs, i: int, tendon: TendonRoute, link: int, z: float, d: float) -> int:  # noqa: ANN001
         raise NotImplementedError
 
-    def _continuum_items(self, mbs, i: int, tendon: _Tendon) -> list:  # noqa: ANN001
+    def _continuum_items(self, mbs, i: int, tendon: TendonRoute) -> list:  # noqa: ANN001
         raise NotImplementedError
 
     def _set_continuum(self) -> None:
@@ -139,7 +139,7 @@ class _Chain:
             if self.mode is None:
                 items = []
             elif self.model == "eyelets":
-                items = _add_eyelet_rope(mbs, marks, t, self.mode, self.options.damping)
+                items = add_eyelet_rope(mbs, marks, t, self.mode, self.options.damping)
             else:
                 items = self._continuum_items(mbs, i, t)
             self.tendon_items.append(items)
@@ -313,10 +313,10 @@ class _Chain:
         force plus the distal weight, minus the summed tensions of the tendons passing the joint.
         """
         from ...models.stress import combined_stress, section_arrays, stress_extras
-        from .geometry import _section_of
+        from .geometry import section_of
 
         robot, geo = self.robot, self.geo
-        idx, frac = _section_of(robot, geo.joints)
+        idx, frac = section_of(robot, geo.joints)
         arrs = section_arrays([robot.sections[int(i)].cross_section_at(float(f)) for i, f in zip(idx, frac)])
         sigma = strength = None
         if arrs is not None:

@@ -1,8 +1,8 @@
 """Driving a spring-link chain: chain choice, the static load ramp, statics and dynamics.
 
-:func:`solve` picks the chain (:func:`_build_chain`: dimension from :func:`.params.is_planar` and
+:func:`solve` picks the chain (:func:`build_chain`: dimension from :func:`.params.is_planar` and
 ``SpringLinkParams.dimension``; the kinematic tree for eyelet ropes where it applies, rigid bodies
-otherwise), ramps the loads (:func:`_static_ramp` on :func:`workbench.physics._stepping.ramp`) and
+otherwise), ramps the loads (:func:`static_ramp` on :func:`workbench.physics._stepping.ramp`) and
 for dynamics integrates with implicit generalised-alpha, updating the tendon commands of
 :meth:`TendonActuation.command_at` every step.  :func:`run` is the registered model
 ``"spring_link"`` (default :class:`SpringLinkParams`).  Checked by ``tests/physics/test_spring_link*.py``.
@@ -22,12 +22,12 @@ from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOpti
 from ...robot import LoadCase, Robot
 from ...models.backbone_frames import backbone_series, frame_stride
 from .._stepping import RampExhausted, RampPolicy, RampStalled, ramp
-from .chain import _Chain
+from .chain import Chain
 from .geometry import ChainGeometry, chain_geometry_from_robot
 from .params import SpringLinkParams, is_planar
-from .planar import _Planar
-from .spatial import _Spatial
-from .tree import _Tree
+from .planar import PlanarChain
+from .spatial import SpatialChain
+from .tree import TreeChain
 
 __all__ = ["solve", "run"]
 
@@ -50,14 +50,14 @@ def _use_sparse(settings, model) -> None:  # noqa: ANN001
         settings.linearSolver.solverType = exu.LinearSolverType.EigenSparse
 
 
-def _static_ramp(model: _Chain, options: SolverOptions, params: SpringLinkParams,
+def static_ramp(model: Chain, options: SolverOptions, params: SpringLinkParams,
                  apply: Callable[[float], None]) -> tuple[int, int]:
     """Ramp ``apply(lam)`` from 0 to 1 with repeated static solves; returns (steps, newton its).
 
     One attempt applies the load factor and solves, re-solving while the slack/taut active set
     of length-controlled tendons changes (at most ``params.max_active_set_iterations`` passes).
     A failed attempt (Exudyn ``SolverError``, non-finite state, an unsettled active set) restores
-    the chain's state (:meth:`_Chain.save_state`) and halves the increment (:data:`_STATIC_RAMP`);
+    the chain's state (:meth:`Chain.save_state`) and halves the increment (:data:`_STATIC_RAMP`);
     a non-positive rope rest length is not a solver failure and propagates.  Newton iterations
     of every attempt are counted.  Checked by ``test_max_load_steps_is_a_failure``,
     ``test_rigid_body_ramp_failure_names_the_numerical_cause`` and ``test_spring_link_layout.py``.
@@ -117,18 +117,18 @@ def _static_ramp(model: _Chain, options: SolverOptions, params: SpringLinkParams
     return info.attempts, newton_its
 
 
-def _ramp_to(model: _Chain, params: SpringLinkParams, commands: np.ndarray) -> tuple[int, int]:
+def ramp_to(model: Chain, params: SpringLinkParams, commands: np.ndarray) -> tuple[int, int]:
     """Static equilibrium under gravity, tip loads and tendon ``commands``, all ramped together."""
 
     def apply(lam: float) -> None:
         model.set_external(lam)
         model.set_tendons(lam * commands, lam)
 
-    return _static_ramp(model, model.options, params, apply)
+    return static_ramp(model, model.options, params, apply)
 
 
-def _build_chain(robot: Robot, load: LoadCase, options: SolverOptions, geo: ChainGeometry,
-                 params: SpringLinkParams, use_2d: bool) -> _Chain:
+def build_chain(robot: Robot, load: LoadCase, options: SolverOptions, geo: ChainGeometry,
+                 params: SpringLinkParams, use_2d: bool) -> Chain:
     """The chain variant for this case: the kinematic tree for every inextensible chain
     (``backend`` ``"auto"`` or ``"tree"``), rigid bodies for ``backend="bodies"`` or ``axial=True``."""
     if params.backend == "tree" and params.axial:
@@ -137,29 +137,29 @@ def _build_chain(robot: Robot, load: LoadCase, options: SolverOptions, geo: Chai
     # rigid bodies + joints: Exudyn's static Newton matrix lacks the geometric stiffness of the
     # joint reactions (docs/models.md), so their ramp stalls under large dead loads and rope forces
     if params.backend != "bodies" and not params.axial:
-        return _Tree(robot, load, options, geo, spatial=not use_2d, torsion=params.torsion)
+        return TreeChain(robot, load, options, geo, spatial=not use_2d, torsion=params.torsion)
     if use_2d:
-        return _Planar(robot, load, options, geo, params.axial)
-    return _Spatial(robot, load, options, geo, params.torsion, params.axial)
+        return PlanarChain(robot, load, options, geo, params.axial)
+    return SpatialChain(robot, load, options, geo, params.torsion, params.axial)
 
 
-def _solve_static(model: _Chain, params: SpringLinkParams, t0: float) -> PhysicsResult:
+def _solve_static(model: Chain, params: SpringLinkParams, t0: float) -> PhysicsResult:
     act = model.load.actuation
     final = np.zeros(len(model.tendons)) if act is None else np.asarray(act.values)
-    steps, its = _ramp_to(model, params, final)
+    steps, its = ramp_to(model, params, final)
     info = SolverInfo(converged=True, iterations=its, wall_time=time.perf_counter() - t0,
                       message=f"{steps} load steps")
     return model.result(info)
 
 
-def _solve_dynamic(model: _Chain, params: SpringLinkParams, t0: float) -> PhysicsResult:
+def _solve_dynamic(model: Chain, params: SpringLinkParams, t0: float) -> PhysicsResult:
     """Equilibrium under the external loads with the commands at t = 0, then integrate."""
     from .._exudyn import dynamic_settings
 
     load, exu = model.load, model.exu
     act = load.actuation
     start = np.zeros(len(model.tendons)) if act is None else act.command_at(0.0, load.ramp_time)
-    _ramp_to(model, params, start)
+    ramp_to(model, params, start)
     rec_t, rec_tip, rec_T, bb_t, bb_p = [], [], [], [], []
     peak: dict[str, float] = {}  # largest stress extras over the recorded states
     h = model.options.time_step if model.options.time_step > 0 else load.duration
@@ -254,7 +254,7 @@ def solve(robot: Robot, load: LoadCase, options: SolverOptions,
     geo = chain_geometry_from_robot(robot, options.n_elements)
     t0 = time.perf_counter()
     with quiet_exudyn():
-        model = _build_chain(robot, load, options, geo, params, use_2d)
+        model = build_chain(robot, load, options, geo, params, use_2d)
         if load.analysis == "static":
             return _solve_static(model, params, t0)
         return _solve_dynamic(model, params, t0)

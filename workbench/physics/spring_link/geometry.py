@@ -81,7 +81,7 @@ class ChainGeometry:
         return int(self.joints.size)
 
 
-def _section_of(robot: Robot, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def section_of(robot: Robot, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Section index and fraction within the section for stations ``s``."""
     ends = robot.section_ends
     starts = np.concatenate([[0.0], ends[:-1]])
@@ -112,7 +112,7 @@ def _eyelet_stations(robot: Robot, per: int) -> np.ndarray:
 
 def _section_properties(robot: Robot, s: np.ndarray) -> dict[str, np.ndarray]:
     """EI, GJ, EA, GA (EA where None), mass per length ``mu`` and diameter ``d`` at stations ``s``."""
-    idx, frac = _section_of(robot, s)
+    idx, frac = section_of(robot, s)
     out: dict[str, list[float]] = {"EI": [], "GJ": [], "EA": [], "GA": [], "mu": [], "d": []}
     for i, f in zip(idx, frac):
         cs = robot.sections[i].cross_section_at(f)

@@ -15,9 +15,9 @@ import numpy as np
 
 from ...models.result import ModelFailure, SolverOptions
 from ...robot import LoadCase, Payload, Robot
-from .chain import _Chain
+from .chain import Chain
 from .geometry import ChainGeometry
-from .routing import _Tendon
+from .routing import TendonRoute
 
 __all__: list[str] = []
 
@@ -40,7 +40,7 @@ def _planar_link_masses(geo: ChainGeometry, payload: Payload) -> tuple[np.ndarra
     return mass, com, inertia, np.array([0.0, com[-1]])
 
 
-class _Planar(_Chain):
+class PlanarChain(Chain):
     """Planar chain on rigid bodies; ``axial=True``: rigid-body springs instead of pin joints."""
 
     planar = True
@@ -114,12 +114,12 @@ class _Planar(_Chain):
                 markerNumbers=[c0, self.coord_markers[k]], stiffness=float(geo.stiffness[k]),
                 damping=float(damping * geo.stiffness[k]))))
 
-    def _eyelet_marker(self, mbs, i: int, tendon: _Tendon, link: int, z: float, d: float) -> int:  # noqa: ANN001
+    def _eyelet_marker(self, mbs, i: int, tendon: TendonRoute, link: int, z: float, d: float) -> int:  # noqa: ANN001
         body = self.ground if link < 0 else self.bodies[link]
         x, y = float(self.sign[i] * d), float(z)
         return mbs.AddMarker(self._eyelet_marker_type()(bodyNumber=body, localPosition=[x, y, 0.0]))
 
-    def _continuum_items(self, mbs, i: int, tendon: _Tendon) -> list:  # noqa: ANN001
+    def _continuum_items(self, mbs, i: int, tendon: TendonRoute) -> list:  # noqa: ANN001
         eii = self.eii
         if self.mode == "length":
             return [mbs.AddObject(eii.ObjectConnectorCoordinateSpringDamper(

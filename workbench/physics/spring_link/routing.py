@@ -25,7 +25,7 @@ __all__: list[str] = []
 
 
 @dataclass(frozen=True)
-class _Tendon:
+class TendonRoute:
     """Routing of one tendon along the chain (reference configuration, lengths in m)."""
 
     section: int
@@ -54,7 +54,7 @@ def _eyelet_placement(geo: ChainGeometry, stations: np.ndarray) -> tuple[np.ndar
 
 
 
-def _add_eyelet_rope(mbs, marks: list, tendon: "_Tendon", mode: str, damping: float) -> list:
+def add_eyelet_rope(mbs, marks: list, tendon: "TendonRoute", mode: str, damping: float) -> list:
     """Exudyn items of one frictionless eyelet rope through ``marks`` (base anchor first).
 
     Tension mode: one constant-force spring-damper per straight segment (stiffness 0, the force is
@@ -75,7 +75,7 @@ def _add_eyelet_rope(mbs, marks: list, tendon: "_Tendon", mode: str, damping: fl
         referenceLength=float(tendon.reference_length), regularizationForce=-1.0,
         sheavesRadii=[0.0] * n, sheavesAxes=exu.Vector3DList([[0.0, 0.0, 1.0]] * n)))]
 
-def _tendons(robot: Robot, geo: ChainGeometry, tendon_model: str = "continuum") -> list[_Tendon]:
+def route_tendons(robot: Robot, geo: ChainGeometry, tendon_model: str = "continuum") -> list[TendonRoute]:
     """Tendon routing.  Eyelet ropes pass the robot's disks (``robot.disk_stations()``) of the
     sections they cross and end at their section end (as in the ANCF model); the links may be
     finer than the disks.  Continuum tendons use the link eyelets."""
@@ -104,12 +104,12 @@ def _tendons(robot: Robot, geo: ChainGeometry, tendon_model: str = "continuum") 
             dd = d
             link = np.arange(-1, m)
             z = np.concatenate([[0.0], e[1:] - geo.joints[:m]])
-        out.append(_Tendon(j, float(sigma), m, d, grp.axial_stiffness, L_ref, grp.offset_tip is not None, arm,
+        out.append(TendonRoute(j, float(sigma), m, d, grp.axial_stiffness, L_ref, grp.offset_tip is not None, arm,
                            cos_a, link, z, dd))
     return out
 
 
-def _end_link_torque(tendon: _Tendon, tension: float) -> list[float]:
+def end_link_torque(tendon: TendonRoute, tension: float) -> list[float]:
     """Body-fixed torque ``T d (-sin sigma, cos sigma, 0)`` of a constant-offset continuum tendon
     on its terminating link (3-D chains; the reaction acts on the base)."""
     d = float(tendon.moment_arm[-1])

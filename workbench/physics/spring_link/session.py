@@ -5,7 +5,7 @@ slightly changed tendon commands at every control step.  :func:`.driver.solve` b
 system each call and ramps every load from the straight reference; :class:`StaticSession` builds
 the chain once (the same variant :func:`.driver.solve` would choose), solves the first load case as
 :func:`.driver.solve` does, and then ramps only the tendon commands from their current values to
-the new ones (the same ramp, :func:`.driver._static_ramp`), starting Newton at the current state.
+the new ones (the same ramp, :func:`.driver.static_ramp`), starting Newton at the current state.
 Measured on the Hannan & Walker closed loop (19 static solves, planar tree, horizontal trunk,
 loaded 2-core machine): 1.6 s against 36 s for fresh solves, tips equal to 2e-15 m.
 
@@ -22,7 +22,7 @@ import numpy as np
 from ...models.inputs import check_model_inputs
 from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ...robot import LoadCase, Robot
-from .driver import _build_chain, _ramp_to, _static_ramp
+from .driver import build_chain, ramp_to, static_ramp
 from .geometry import chain_geometry_from_robot
 from .params import SpringLinkParams, is_planar
 
@@ -62,9 +62,9 @@ class StaticSession:
         self.values = np.asarray(load.actuation.values, dtype=float)
         t0 = time.perf_counter()
         with quiet_exudyn():
-            self.chain = _build_chain(robot, load, options, chain_geometry_from_robot(robot, options.n_elements),
+            self.chain = build_chain(robot, load, options, chain_geometry_from_robot(robot, options.n_elements),
                                       params, use_2d)
-            steps, its = _ramp_to(self.chain, params, self.values)
+            steps, its = ramp_to(self.chain, params, self.values)
         self._last = self._result(steps, its, t0)
 
     def _result(self, steps: int, its: int, t0: float) -> PhysicsResult:
@@ -97,7 +97,7 @@ class StaticSession:
         t0 = time.perf_counter()
         try:
             with quiet_exudyn():
-                steps, its = _static_ramp(chain, chain.options, self.params, apply)
+                steps, its = static_ramp(chain, chain.options, self.params, apply)
         except ModelFailure:
             chain.restore_state(state)
             chain.set_tendons(old, 1.0)

@@ -17,9 +17,9 @@ import numpy as np
 
 from ...models.result import ModelFailure, SolverOptions
 from ...robot import LoadCase, Payload, Robot
-from .chain import _Chain
+from .chain import Chain
 from .geometry import ChainGeometry
-from .routing import _end_link_torque, _Tendon
+from .routing import end_link_torque, TendonRoute
 
 __all__: list[str] = []
 
@@ -42,7 +42,7 @@ def _spatial_link_masses(geo: ChainGeometry, payload: Payload) -> tuple[np.ndarr
     return mass, coms, inertias
 
 
-class _Spatial(_Chain):
+class SpatialChain(Chain):
     """3-D chain on rigid bodies; ``torsion`` ``"spring"`` (spherical joints) or ``"locked"``
     (Cardan joints); ``axial=True``: rigid-body springs instead of joint constraints."""
 
@@ -113,13 +113,13 @@ class _Spatial(_Chain):
             self.joint_springs.append(mbs.AddObject(eii.ObjectConnectorRigidBodySpringDamper(
                 markerNumbers=[m0, m1], stiffness=K.tolist(), damping=D.tolist(), useIntrinsicFormulation=True)))
 
-    def _eyelet_marker(self, mbs, i: int, tendon: _Tendon, link: int, z: float, d: float) -> int:  # noqa: ANN001
+    def _eyelet_marker(self, mbs, i: int, tendon: TendonRoute, link: int, z: float, d: float) -> int:  # noqa: ANN001
         u = np.array([math.cos(tendon.sigma), math.sin(tendon.sigma)])
         x, y = (d * u).tolist()
         body = self.ground if link < 0 else self.bodies[link]
         return mbs.AddMarker(self._eyelet_marker_type()(bodyNumber=body, localPosition=[x, y, float(z)]))
 
-    def _continuum_items(self, mbs, i: int, tendon: _Tendon) -> list:  # noqa: ANN001
+    def _continuum_items(self, mbs, i: int, tendon: TendonRoute) -> list:  # noqa: ANN001
         # tension only (length mode is rejected): body-fixed torque on the terminating link
         eii = self.eii
         mt = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=self.bodies[tendon.end_eyelet - 1]))
@@ -127,7 +127,7 @@ class _Spatial(_Chain):
 
     def _set_continuum(self) -> None:
         for i, (t, items) in enumerate(zip(self.tendons, self.tendon_items)):
-            self.mbs.SetLoadParameter(items[0], "loadVector", _end_link_torque(t, float(self._values[i])))
+            self.mbs.SetLoadParameter(items[0], "loadVector", end_link_torque(t, float(self._values[i])))
         if self.axial:
             self._set_compression(axis=2)
 

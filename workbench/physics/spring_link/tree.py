@@ -23,9 +23,9 @@ import numpy as np
 
 from ...models.result import ModelFailure, SolverOptions
 from ...robot import LoadCase, Payload, Robot
-from .chain import _Chain
+from .chain import Chain
 from .geometry import ChainGeometry, chain_geometry_from_robot
-from .routing import _end_link_torque, _Tendon
+from .routing import end_link_torque, TendonRoute
 from .._stepping import RampExhausted, RampPolicy, ramp
 
 __all__ = ["tree_tip_position"]
@@ -112,7 +112,7 @@ def _add_kinematic_tree(mbs, exu, eii, links: tuple, damping: float) -> tuple[in
     return node, tree
 
 
-class _Tree(_Chain):
+class TreeChain(Chain):
     """Chain in minimal coordinates: planar (``RevoluteY``) or 3-D (``spatial=True``): Cardan joints
     with ``torsion="locked"``, three revolute joints with a torsion spring for ``"spring"``."""
 
@@ -151,14 +151,14 @@ class _Tree(_Chain):
         return mbs.AddMarker(self.eii.MarkerKinematicTreeRigid(objectNumber=self.tree, linkNumber=link,
                                                                localPosition=position))
 
-    def _eyelet_marker(self, mbs, i: int, tendon: _Tendon, link: int, z: float, d: float) -> int:  # noqa: ANN001
+    def _eyelet_marker(self, mbs, i: int, tendon: TendonRoute, link: int, z: float, d: float) -> int:  # noqa: ANN001
         u = np.array([math.cos(tendon.sigma), math.sin(tendon.sigma)]) if self.spatial else np.array([self.sign[i], 0.0])
         x, y = (d * u).tolist()
         if link < 0:
             return mbs.AddMarker(self.eii.MarkerBodyRigid(bodyNumber=self.ground, localPosition=[x, y, float(z)]))
         return self._tree_marker(mbs, int(link + 1) * self.per - 1, [x, y, float(z)])
 
-    def _continuum_items(self, mbs, i: int, tendon: _Tendon) -> list:  # noqa: ANN001
+    def _continuum_items(self, mbs, i: int, tendon: TendonRoute) -> list:  # noqa: ANN001
         eii = self.eii
         if self.mode == "length":  # planar: rotational spring on the terminating link's angle
             mg = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=self.ground, localPosition=[0.0, 0.0, 0.0]))
@@ -177,7 +177,7 @@ class _Tree(_Chain):
         mbs = self.mbs
         if self.mode == "tension" and self.spatial:
             for t, items, v in zip(self.tendons, self.tendon_items, self._values):
-                mbs.SetLoadParameter(items[0], "loadVector", _end_link_torque(t, v))
+                mbs.SetLoadParameter(items[0], "loadVector", end_link_torque(t, v))
             return
         if self.mode == "tension":
             Q = np.zeros(self.geo.n_links)

@@ -1,4 +1,4 @@
-"""A tiny motion study end to end: rows in the architecture's schema, round trip, failures, resume."""
+"""A tiny series-parallel study end to end: rows in the architecture's schema, round trip, failures, resume."""
 
 from __future__ import annotations
 
@@ -8,9 +8,18 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from workbench.motion import evaluate_motion_case, expand_motions, load_motion_study, run_motion_study
+from workbench.experiments.series_parallel.expand import expand_motions
+from workbench.experiments.series_parallel.kind import KIND
+from workbench.experiments.series_parallel.spec import load_series_parallel_study
+from workbench.experiments.series_parallel.worker import evaluate_motion_case
+from workbench.study.runner import run_cases
 from workbench.study.spec import StudyError
 from workbench.study.store import MANIFEST
+
+
+def run_study_file(path, out, **kw):
+    """Validate the series-parallel study file ``path`` and run it into ``out`` on the study pipeline."""
+    return run_cases(KIND, load_series_parallel_study(path), out, **kw)
 
 TINY = """
 [study]
@@ -30,7 +39,7 @@ def tiny_run(tmp_path_factory):
     d = tmp_path_factory.mktemp("motion")
     p = d / "tiny.toml"
     p.write_text(TINY)
-    summary = run_motion_study(p, d / "out")
+    summary = run_study_file(p, d / "out")
     return p, d / "out", summary
 
 
@@ -65,8 +74,8 @@ def test_tiny_study_rows_and_round_trip(tiny_run):
 def test_resume_skips_and_refuses_overwrite(tiny_run):
     p, out, _ = tiny_run
     with pytest.raises(StudyError, match="already holds results"):
-        run_motion_study(p, out)
-    s = run_motion_study(p, out, resume=True)
+        run_study_file(p, out)
+    s = run_study_file(p, out, resume=True)
     assert s.n_run == 0 and s.n_skipped == 1
     assert len(pd.read_parquet(out)) == 3
 
@@ -75,16 +84,17 @@ def test_failed_ik_is_a_failed_row_with_reason(monkeypatch, tmp_path):
     """An unreachable pose: the physics row fails with the IK reason, the CC fit has nothing to fit,
     the target row stays (and nothing raises)."""
     import workbench.physics.series_parallel as sp
+    from workbench.experiments.series_parallel import worker
 
     p = tmp_path / "t.toml"
     p.write_text(TINY)
-    case = expand_motions(load_motion_study(p))[0]
+    case = expand_motions(load_series_parallel_study(p))[0]
 
     def failing(*a, **k):
         return sp.ModuleIK(np.full(6, np.nan), False, 3, float("nan"), "leg 2 static solve failed (test)",
                            *(np.full((6, 3), np.nan),) * 4, np.full((6, 5, 3), np.nan))
 
-    monkeypatch.setattr(sp, "module_inverse", failing)
+    monkeypatch.setattr(worker, "module_inverse", failing)
     rows = {r["model"]: r for r in evaluate_motion_case(case.case_id, case.params)}
     assert rows["target"]["status"] == "ok"
     assert rows["series_parallel"]["status"] == "failed"
@@ -92,8 +102,8 @@ def test_failed_ik_is_a_failed_row_with_reason(monkeypatch, tmp_path):
     assert rows["cc_fit"]["status"] == "failed"
 
 
-def test_report_of_a_motion_study_has_the_overview_figure(tiny_run, tmp_path):
-    from workbench.report import build_report
+def test_report_of_a_series_parallel_study_has_the_overview_figure(tiny_run, tmp_path):
+    from workbench.report.build import build_report
 
     html = build_report(tiny_run[1], tmp_path / "report").read_text()
     assert 'id="motion_overview"' in html or "motion_overview" in html
@@ -102,7 +112,7 @@ def test_report_of_a_motion_study_has_the_overview_figure(tiny_run, tmp_path):
 
 def test_report_legs_figure_names_the_extremes_of_the_table(tiny_run, tmp_path):
     """The legs figure's sentence quotes the largest compression ratio and smallest gap of the table."""
-    from workbench.report._motion import motion_figures
+    from workbench.experiments.series_parallel.figures import motion_figures
 
     df = pd.read_parquet(tiny_run[1])
     figs = {f.name: f for f in motion_figures(df)}

@@ -1,4 +1,4 @@
-"""Motion-study files: strict validation (one line per problem), expansion, stable case ids."""
+"""Series-parallel study files: strict validation (one line per problem), expansion, stable case ids."""
 
 from __future__ import annotations
 
@@ -7,7 +7,9 @@ import textwrap
 import numpy as np
 import pytest
 
-from workbench.motion import expand_motions, is_motion_study, load_motion_study, motion_values, stack_targets
+from workbench.experiments.series_parallel.expand import expand_motions, motion_values
+from workbench.experiments.series_parallel.spec import is_series_parallel_study, load_series_parallel_study
+from workbench.experiments.series_parallel.worker import stack_targets
 from workbench.study.spec import StudyError
 
 GOOD = """
@@ -32,17 +34,17 @@ def _write(tmp_path, text, name="s.toml"):
 
 def test_good_file_loads_and_is_recognised(tmp_path):
     p = _write(tmp_path, GOOD)
-    assert is_motion_study(p)
-    s = load_motion_study(p)
+    assert is_series_parallel_study(p)
+    s = load_series_parallel_study(p)
     assert s.geometry["height"] == 0.4 and s.geometry["rod_diameter"] == 0.006  # defaults filled in
     assert s.solver["n_elements"] == 4
     assert len(expand_motions(s)) == 5
 
 
 def test_generic_and_broken_files_are_not_motion_studies(tmp_path):
-    assert not is_motion_study("studies/example.toml")
-    assert not is_motion_study(_write(tmp_path, "[study\nkind=", "broken.toml"))
-    assert not is_motion_study(tmp_path / "missing.toml")
+    assert not is_series_parallel_study("studies/example.toml")
+    assert not is_series_parallel_study(_write(tmp_path, "[study\nkind=", "broken.toml"))
+    assert not is_series_parallel_study(tmp_path / "missing.toml")
 
 
 @pytest.mark.parametrize(
@@ -67,7 +69,7 @@ def test_generic_and_broken_files_are_not_motion_studies(tmp_path):
 def test_bad_files_give_one_line_errors(tmp_path, edit, expected):
     p = _write(tmp_path, GOOD.replace(*edit))
     with pytest.raises(StudyError) as exc:
-        load_motion_study(p)
+        load_series_parallel_study(p)
     assert len(exc.value.problems) == 1, exc.value.problems
     line = exc.value.problems[0]
     assert "\n" not in line and line.startswith(f"{p}: ")
@@ -79,29 +81,29 @@ def test_bad_files_give_one_line_errors(tmp_path, edit, expected):
 def test_several_problems_are_all_reported(tmp_path):
     p = _write(tmp_path, GOOD.replace("height = 0.4", "heigth = 0.4").replace("samples = 3", "samples = 0"))
     with pytest.raises(StudyError) as exc:
-        load_motion_study(p)
+        load_series_parallel_study(p)
     assert len(exc.value.problems) == 2
 
 
 def test_no_motions_is_an_error(tmp_path):
     p = _write(tmp_path, GOOD.split("[motions]")[0] + "[motions]\n")
     with pytest.raises(StudyError, match="no motions given"):
-        load_motion_study(p)
+        load_series_parallel_study(p)
 
 
 def test_expansion_is_deterministic_and_ids_depend_only_on_values(tmp_path):
-    a = expand_motions(load_motion_study(_write(tmp_path, GOOD, "a.toml")))
-    b = expand_motions(load_motion_study(_write(tmp_path, GOOD, "b.toml")))
+    a = expand_motions(load_series_parallel_study(_write(tmp_path, GOOD, "a.toml")))
+    b = expand_motions(load_series_parallel_study(_write(tmp_path, GOOD, "b.toml")))
     assert [c.case_id for c in a] == [c.case_id for c in b]
     assert len({c.case_id for c in a}) == len(a)
     # renaming the study or reordering the motions does not change the ids
     swapped = GOOD.replace('name = "t"', 'name = "other"')
     mod = 'module = [ { axis = "x", amplitude = 0.1, samples = 3 } ]\n'
     swapped = swapped.replace(mod, "").replace("[motions]\n", "[motions]\n" + mod)
-    c = expand_motions(load_motion_study(_write(tmp_path, swapped, "c.toml")))
+    c = expand_motions(load_series_parallel_study(_write(tmp_path, swapped, "c.toml")))
     assert sorted(x.case_id for x in c) == sorted(x.case_id for x in a)
     # a changed parameter changes every id
-    d = expand_motions(load_motion_study(_write(tmp_path, GOOD.replace("height = 0.4", "height = 0.41"), "d.toml")))
+    d = expand_motions(load_series_parallel_study(_write(tmp_path, GOOD.replace("height = 0.4", "height = 0.41"), "d.toml")))
     assert not {x.case_id for x in d} & {x.case_id for x in a}
     # the pinned id of one case (guards against accidental changes of the id recipe)
     first = a[0]
@@ -142,7 +144,7 @@ def test_pivot_is_part_of_tilt_cases_only(tmp_path):
     text = GOOD.replace('module = [ { axis = "x", amplitude = 0.1, samples = 3 } ]',
                         'module = [ { axis = "rx", amplitude = 0.5, samples = 1 }, '
                         '{ axis = "rx", amplitude = 0.5, samples = 1, pivot = 0.5 } ]')
-    cases = expand_motions(load_motion_study(_write(tmp_path, text)))
+    cases = expand_motions(load_series_parallel_study(_write(tmp_path, text)))
     mods = [c for c in cases if c.params["motion"]["kind"] == "module"]
     assert len(mods) == 2 and mods[0].case_id != mods[1].case_id
     assert "pivot" not in mods[0].params["motion"]
@@ -152,7 +154,7 @@ def test_pivot_is_part_of_tilt_cases_only(tmp_path):
 def test_module_target_rotates_about_the_pivot():
     from scipy.spatial.transform import Rotation
 
-    from workbench.motion import module_target
+    from workbench.experiments.series_parallel.worker import module_target
 
     h, a = 0.5, 0.7
     R = Rotation.from_rotvec([a, 0.0, 0.0]).as_matrix()

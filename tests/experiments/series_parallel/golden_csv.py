@@ -1,6 +1,6 @@
-"""Golden CSV of a motion-study result folder (regression tier).
+"""Golden CSV of a series-parallel study's result folder (regression tier).
 
-``python -m tests.motion.golden_csv <study.toml> <out.csv>`` runs the study into a temporary
+``python -m tests.experiments.series_parallel.golden_csv <study.toml> <out.csv>`` runs the study into a temporary
 folder and writes the rows sorted by (case_id, model) with the columns case_id, model, status,
 tip_x, tip_y, tip_z, length_change, tip_twist and the deterministic ``x.*`` extras (timings left
 out).
@@ -34,11 +34,13 @@ def golden_frame(folder: str | Path) -> pd.DataFrame:
 
 
 def main(argv: list[str]) -> int:
-    from workbench.motion import run_motion_study
+    from workbench.experiments.series_parallel.kind import KIND
+    from workbench.experiments.series_parallel.spec import load_series_parallel_study
+    from workbench.study.runner import run_cases
 
     study, csv = argv
     with tempfile.TemporaryDirectory() as tmp:
-        run_motion_study(study, Path(tmp) / "run")
+        run_cases(KIND, load_series_parallel_study(study), Path(tmp) / "run")
         golden_frame(Path(tmp) / "run").to_csv(csv, index=False, float_format="%.12e", lineterminator="\n")
     return 0
 
