@@ -117,7 +117,7 @@ def tree_cpu() -> float:
 def bare_loop(study, model) -> tuple[float, float]:
     """Wall and CPU seconds of the model calls alone (robot, loads and options built beforehand)."""
     from workbench.study import expand
-    from workbench.study.evaluate import build_load, build_options, build_robot
+    from workbench.study.build import build_load, build_options, build_robot
 
     cases = expand(study)
     c0 = cases[0].params

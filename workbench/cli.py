@@ -298,10 +298,7 @@ def _load(args):
     path = find_study(args.study)
     args.study = str(path)
     kind = get_kind(kind_of(path))
-    overrides = tuple(getattr(args, "overrides", None) or ())
-    if overrides:
-        return kind, kind.load(path, max_cases=args.max_cases, overrides=overrides)
-    return kind, kind.load(path, max_cases=args.max_cases)
+    return kind, kind.load(path, max_cases=args.max_cases, overrides=tuple(getattr(args, "overrides", None) or ()))
 
 
 def _cmd_validate(args) -> int:
@@ -323,15 +320,15 @@ def _validate_one(args) -> int:
     except StudyError as e:
         _err(e.problems)
         return 2
-    n_cases = kind.count(study) if hasattr(kind, "count") else len(kind.expand(study))
+    n_cases = kind.count(study)
     models = kind.models(study)
-    given = getattr(study, "overrides", ())
+    given = study.overrides
     print(f"{args.study}: ok: study {study.name!r}, {n_cases} cases x {len(models)} models "
           f"({', '.join(models)}), config hash {study.config_hash}"
           + (f" (with {len(given)} override(s): {' '.join(given)})" if given else ""))
-    for note in getattr(study, "notes", ()):
+    for note in study.notes:
         print(f"  note: {note}")
-    for w in getattr(study, "warnings", ()):
+    for w in study.warnings:
         print(f"  warning: {w}")
     return 0
 
@@ -424,7 +421,7 @@ def _run(args) -> tuple[int, Path | None]:
     except StudyError as e:
         _err(e.problems)
         return 2, None
-    for w in getattr(study, "warnings", ()):
+    for w in study.warnings:
         _err([f"warning: {w}"])
     if args.out is not None and not args.out.strip():
         _err(["--out: empty path (give a folder, e.g. --out data/my_run)"])
@@ -446,7 +443,7 @@ def _run(args) -> tuple[int, Path | None]:
         n = len(kind.expand(study))
         name = getattr(executor, "name", type(executor).__name__)
         print(dry_run_text(study.name, n, kind.models(study), folder, name, cluster,
-                           kind.limits(study) if hasattr(kind, "limits") else None,
+                           kind.limits(study),
                            kind.batch_size(n, getattr(executor, "slots", 1))))
         return 0, None
     if cluster is not None:

@@ -116,6 +116,16 @@ def lookup_spin_20ms(name):
     return arc_spin_20ms
 
 
+def arc_sleep_1s(robot, load, options):
+    """The fake arc after a 1 s sleep (a slow model for the progress timer)."""
+    time.sleep(1.0)
+    return _arc(robot, load, options)
+
+
+def lookup_sleep_1s(name):
+    return arc_sleep_1s
+
+
 def fake_arc_actuation(robot, kappa, phi, mode, pretension=0.0):
     """Stand-in for workbench.models.cc.actuation_from_arc: T0 = kappa EI / d (planar)."""
     from workbench.robot import TendonActuation

@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 from workbench.study import StudyError, expand, load_study
-from workbench.study.evaluate import build_load, build_robot, evaluate_case
+from workbench.study.build import build_load, build_robot
+from workbench.study.evaluate import evaluate_case
 from workbench.study.scenarios import SCENARIOS, hannan_walker_line, load_with_scenario, scenario_parameters, wire_delay
 
 WD = textwrap.dedent("""\

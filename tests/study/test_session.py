@@ -44,3 +44,17 @@ def test_an_interrupted_run_still_finishes_its_manifest(tmp_path, write_study):
     man = read_manifest(out)
     assert man["runs"][0]["end"] is not None and man["runs"][0]["cases_done"] == 1
     assert session.n_ok == 1 and session.store.finished_case_ids() == {cases[0].case_id}
+
+
+def test_piped_progress_prints_on_a_timer_while_a_case_runs(tmp_path, write_study, capsys):
+    """Without a terminal, a line at least every ``progress_seconds`` while a (slow) case runs, naming it."""
+    study = load_study(write_study('[sweep]\nproduct = { "load.tensions" = [[1.0, 0.0], [2.0, 0.0]] }\n'))
+    first = expand(study)[0].case_id
+    run_study(study, tmp_path / "out", SerialExecutor(), model_lookup=fakes.lookup_sleep_1s, progress=None,
+              progress_seconds=0.2)
+    lines = capsys.readouterr().err.splitlines()
+    timed = [ln for ln in lines if "in progress: case" in ln]
+    assert len(timed) >= 3, lines  # ~2 s per case (two models), 0.2 s interval: several lines before the first case ends
+    assert timed[0].startswith(f"{study.name}: 0/2 cases (ok 0, failed 0), ")
+    assert f"in progress: case {first} (models cc, ancf), 1 more to go" in timed[0]
+    assert lines[-1].startswith(f"{study.name}: 2/2 cases (ok 2, failed 0), ")

@@ -8,13 +8,10 @@ result-table row (:mod:`workbench.study.rows`).  :func:`iter_case_rows` yields t
 model at a time; :func:`evaluate_rows` is the task function of the sweep study kind
 (:data:`workbench.study.kinds.SWEEP`): the executors stream each row to the parent as soon as
 it exists, so a model that crashes the process does not take the finished models' rows with
-it.  Robots are memoised per process (:func:`_robot_memo`: they are frozen values).  Nothing here imports Exudyn; models
-are looked up (and imported) lazily through ``model_lookup`` (default
+it.  Robots are memoised per process (:data:`ROBOTS`, a bounded :class:`RobotMemo`: robots are
+frozen values; the sweep kind's recorded parameters use the same memo).  Nothing here imports
+Exudyn; models are looked up (and imported) lazily through ``model_lookup`` (default
 :func:`workbench.models.get_model`).
-
-``build_robot``, ``build_load``, ``build_options``, ``gravity_from_parameter``, ``failed_rows`` and
-``row_from_result`` are re-exported from their modules (deprecated here: import them from
-:mod:`workbench.study.build` and :mod:`workbench.study.rows`).
 
 Checked by ``tests/study/test_evaluate.py`` and ``tests/study/test_executors.py``.
 """
@@ -25,33 +22,13 @@ import time
 import traceback
 from typing import Any, Callable, Iterator, Mapping, Sequence
 
-from .build import build_load, build_options, build_robot, gravity_from_parameter, resolve_case
+from .build import build_load, build_options, resolve_case
 from .estimate import CCReference, discretization_columns
 from .params import flatten_params
 from .rows import failed_rows, row_from_result
 
-__all__ = [
-    "build_robot",
-    "build_load",
-    "build_options",
-    "evaluate_case",
-    "evaluate_payload",
-    "evaluate_batch",
-    "evaluate_rows",
-    "iter_case_rows",
-    "failed_rows",
-    "row_from_result",
-    "gravity_from_parameter",
-]
-
-
-def __getattr__(name: str):
-    # the old private name of the console silencer (moved to workbench.models._console)
-    if name == "_quiet_exudyn_if_loaded":
-        from ..models import quiet_if_loaded
-
-        return quiet_if_loaded
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+__all__ = ["ROBOTS", "RobotMemo", "evaluate_batch", "evaluate_case", "evaluate_payload", "evaluate_rows",
+           "iter_case_rows"]
 
 
 def _reason(e: BaseException) -> str:
@@ -96,8 +73,12 @@ def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str]
     return list(iter_case_rows(case_id, params, models, model_lookup, arc_actuation, robot_cache))
 
 
-class _Memo(dict):
-    """A dict that forgets everything once it holds ``maxsize`` entries (bounded memo)."""
+class RobotMemo(dict):
+    """Built robots keyed by their parameters; forgets everything once it holds ``maxsize`` entries.
+
+    The argument ``robot_cache`` of :func:`~workbench.study.build.resolve_case`; checked by
+    ``tests/study/test_evaluate.py``.
+    """
 
     maxsize = 256
 
@@ -107,13 +88,9 @@ class _Memo(dict):
         super().__setitem__(key, value)
 
 
-_ROBOTS = _Memo()
+#: This process's memo of built robots (workers build a robot once per parameter set).
+ROBOTS = RobotMemo()
 _FLAT_ROBOTS: dict[int, tuple] = {}  # flat ``p.robot.*`` cells of the memoised robots' parameters (flatten_params)
-
-
-def _robot_memo() -> dict[str, Any]:
-    """This process's memo of built robots (workers build a robot once per parameter set)."""
-    return _ROBOTS
 
 
 def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str],
@@ -127,7 +104,7 @@ def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str
     try:
         # the rows record the parameters the case runs with (derived gravity, scenario load
         # fields applied); the case id stays the hash of the parameters as configured
-        robot, ran = resolve_case(params, _robot_memo() if robot_cache is None else robot_cache)
+        robot, ran = resolve_case(params, ROBOTS if robot_cache is None else robot_cache)
         load = build_load(robot, ran["load"], arc_actuation)
         options = build_options(ran["solver"])
     except Exception as e:  # noqa: BLE001 - recorded as the case's failure reason

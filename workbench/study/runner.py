@@ -131,7 +131,7 @@ def _execute(kind: StudyKind, spec: Any, session: RunSession, executor: Executor
 
     Returns the number of cases submitted (the others came whole from the cache).
     """
-    separable = getattr(kind, "separable_models", True)
+    separable = kind.separable_models
     pending = list(session.todo) if cache is None else _cached(list(session.todo), cache, session, separable,
                                                                 ok_only=retry_failed)
     n_submitted = len(pending)
@@ -162,6 +162,7 @@ def run_cases(
     retry_failed: bool = False,
     force: bool = False,
     progress: bool | None = None,
+    progress_seconds: float = 30.0,
     flush_rows: int | None = None,
     flush_seconds: float = 2.0,
     batch_size: int | None = None,
@@ -191,6 +192,8 @@ def run_cases(
         Discard the folder's stored results first.
     progress : bool, optional
         A bar (True), nothing (False), or (None) a bar on a terminal and log lines otherwise.
+    progress_seconds : float
+        Log lines: at least one this often while cases run (naming the case in progress).
     flush_rows, flush_seconds : int, float
         When buffered rows are written as a part (also on a timer); ``flush_rows`` defaults to
         ``kind.flush_rows``.  An executor without isolation journals every case at once
@@ -222,7 +225,7 @@ def run_cases(
     recorded = {c.case_id: kind.recorded_params(spec, c) for c in cases}
     flat_memo: dict[int, tuple] = {}  # shared robot sections flattened once (flatten_params)
     executor = executor or SerialExecutor()
-    limits = limits if limits is not None else (kind.limits(spec) if hasattr(kind, "limits") else CaseLimits())
+    limits = limits if limits is not None else kind.limits(spec)
     folder = Path(folder)
     lock = FolderLock(folder).acquire(_now())
     try:
@@ -234,10 +237,10 @@ def run_cases(
         session = RunSession.open(
             folder, spec, cases, (flatten_params(p, flat_memo) for p in recorded.values()),
             getattr(executor, "name", type(executor).__name__), models=kind.models(spec),
-            separable=getattr(kind, "separable_models", True), resume=resume, retry_failed=retry_failed,
+            separable=kind.separable_models, resume=resume, retry_failed=retry_failed,
             force=force, progress=progress, flush_rows=kind.flush_rows if flush_rows is None else flush_rows,
             flush_seconds=flush_seconds, lock=lock, flush_each=not getattr(executor, "isolates_cases", True),
-            limits=limits)
+            limits=limits, progress_seconds=progress_seconds)
         if cache is not None and not any(options.get(k) for k in ("model_lookup", "arc_actuation")):
             from .cache import ResultCache
 
@@ -275,6 +278,7 @@ def run_study(
     model_lookup: Callable | None = None,
     arc_actuation: Callable | None = None,
     progress: bool | None = None,
+    progress_seconds: float = 30.0,
     flush_rows: int = 256,
     flush_seconds: float = 2.0,
     batch_size: int | None = None,
@@ -287,7 +291,8 @@ def run_study(
     :func:`~workbench.study.evaluate.evaluate_case`.
     """
     return run_cases(SWEEP, study, folder, executor, resume=resume, retry_failed=retry_failed, force=force,
-                     progress=progress, flush_rows=flush_rows, flush_seconds=flush_seconds, batch_size=batch_size,
+                     progress=progress, progress_seconds=progress_seconds, flush_rows=flush_rows,
+                     flush_seconds=flush_seconds, batch_size=batch_size,
                      limits=limits, cache=cache, model_lookup=model_lookup, arc_actuation=arc_actuation)
 
 

@@ -225,6 +225,7 @@ class RunSession:
     _stop: threading.Event = field(default_factory=threading.Event)
     _timer: threading.Thread | None = None
     _closed: bool = False
+    _pending: dict = field(default_factory=dict)  # case id -> models not recorded yet (what is computing)
 
     @property
     def bar(self) -> Any:
@@ -235,7 +236,8 @@ class RunSession:
              executor_name: str, *, models: Sequence[str] = (), separable: bool = True, resume: bool = False,
              retry_failed: bool = False, force: bool = False, progress: bool | None = None,
              flush_rows: int = 256, flush_seconds: float = 2.0, lock: FolderLock | None = None,
-             flush_each: bool = False, limits: CaseLimits | None = None) -> "RunSession":
+             flush_each: bool = False, limits: CaseLimits | None = None,
+             progress_seconds: float = 30.0) -> "RunSession":
         """Open (or continue) the run of ``cases`` of ``spec`` in ``folder``.
 
         Parameters
@@ -256,6 +258,8 @@ class RunSession:
             Continue the stored run; also retry model failures; discard stored results first.
         lock : FolderLock, optional
             A lock the caller already holds (else taken here); released by :meth:`close`.
+        progress_seconds : float
+            Without a terminal, a progress line at least this often while cases run (:class:`Progress`).
 
         Raises
         ------
@@ -267,14 +271,15 @@ class RunSession:
         try:
             return cls._open_locked(folder, spec, cases, param_rows, executor_name, models, separable, resume,
                                     retry_failed, force, progress, flush_rows, flush_seconds, lock, flush_each,
-                                    limits or CaseLimits())
+                                    limits or CaseLimits(), progress_seconds)
         except BaseException:
             lock.release(remove_folder=True)
             raise
 
     @classmethod
     def _open_locked(cls, folder, spec, cases, param_rows, executor_name, models, separable, resume,
-                     retry_failed, force, progress, flush_rows, flush_seconds, lock, flush_each, limits):
+                     retry_failed, force, progress, flush_rows, flush_seconds, lock, flush_each, limits,
+                     progress_seconds):
         if force:
             _discard_results(folder)
         config_hash = spec.config_hash
@@ -304,7 +309,7 @@ class RunSession:
                    "study_file": spec.path}
         if plan.retried:
             run_rec["retried"] = plan.retried
-        if getattr(spec, "overrides", ()):
+        if spec.overrides:
             run_rec["overrides"] = list(spec.overrides)
         if changes:
             run_rec["changed"] = changes
@@ -319,21 +324,25 @@ class RunSession:
             manifest["versions"] = package_versions()
             manifest["git"] = git_commit()
         _write_manifest(folder, manifest)
-        bar = Progress(len(plan.units), spec.name, progress)
+        bar = Progress(len(plan.units), spec.name, progress, every_seconds=progress_seconds)
         session = cls(folder=folder, manifest=manifest, run_rec=run_rec, store=store, todo=plan.units, lock=lock,
                       progress=bar, flush_each=flush_each)
+        session._pending = {u.case.case_id: list(u.models) for u in plan.units}
         session._start_timer()
         return session
 
     # -- running ------------------------------------------------------------------------------
     def _start_timer(self) -> None:
+        wait = min(0.5, self.progress.every_seconds)
+
         def loop() -> None:
-            while not self._stop.wait(0.5):
+            while not self._stop.wait(wait):
                 try:
                     if self.store.flush_if_due() is not None:
                         self._write_manifest()
                 except Exception:  # noqa: BLE001 - the main thread flushes again and reports
                     pass
+                self.progress.tick(self.in_progress())
 
         self._timer = threading.Thread(target=loop, name="workbench-flush", daemon=True)
         self._timer.start()
@@ -341,6 +350,15 @@ class RunSession:
     def _write_manifest(self) -> None:
         with self.store._lock:  # one writer of the manifest at a time (timer thread, main thread)
             _write_manifest(self.folder, self.manifest)
+
+    def in_progress(self) -> str:
+        """What is still computing: the first case not finished (in submission order), its models
+        not recorded yet, and how many cases follow it (the progress log's timer line)."""
+        pending = dict(self._pending)  # (the timer thread reads it while record() changes it)
+        if not pending:
+            return "finishing"
+        cid, models = next(iter(pending.items()))
+        return f"in progress: case {cid} (models {', '.join(models)}), {len(pending) - 1} more to go"
 
     def record(self, case_id: str, rows: list[dict[str, Any]], complete: bool = True) -> None:
         """Store the rows of one unit of case ``case_id``; ``complete``: no more units of it follow.
@@ -354,7 +372,11 @@ class RunSession:
         if any(r.get("status") != "ok" for r in rows):
             self._failed_ids.add(case_id)
         if not complete:
+            done = {r.get("model") for r in rows}
+            if case_id in self._pending:
+                self._pending[case_id] = [m for m in self._pending[case_id] if m not in done]
             return
+        self._pending.pop(case_id, None)
         if case_id in self._failed_ids:
             self.n_failed += 1
         else:
