@@ -193,7 +193,7 @@ def _clip(text: str, n: int = 200) -> str:
 
 def _print_summary(summary, report_note: str | None = None, show_run: bool = True) -> None:
     from .study.lock import describe_holder, lock_holder
-    from .study.runner import read_manifest, study_name
+    from .study.session import read_manifest, study_name
 
     man = read_manifest(summary.folder)
     name = study_name(man, "?")
@@ -502,7 +502,8 @@ def _not_a_result_folder(folder: Path) -> str:
 
 def _cmd_show(args) -> int:
     from .study import StudyError
-    from .study.runner import read_manifest, summarize
+    from .study.runner import summarize
+    from .study.session import read_manifest
     from .study.store import MANIFEST, CorruptPart
 
     folder = Path(args.folder)
@@ -535,7 +536,7 @@ def _cmd_report(args) -> int:
     from .study import StudyError
     from .study.store import CorruptPart
 
-    from .study.runner import read_manifest
+    from .study.session import read_manifest
     from .study.store import MANIFEST, check_parts
 
     folder = Path(args.folder)

@@ -14,7 +14,7 @@ from workbench.cli import main
 from workbench.models.result import SolverOptions
 from workbench.study import StudyError, count_cases, load_study
 from workbench.study.schema import LIMIT_KEYS
-from workbench.study.spec import SolverSection
+from workbench.study.schema import SolverSection
 
 HERE = Path(__file__).parent
 BAD = sorted((HERE / "bad_configs").glob("*.toml"))

@@ -41,9 +41,8 @@ from typing import Any, Callable, Iterator, Protocol, Sequence
 from .outcomes import CaseLimits, Crash, ExecutorStartError, InfrastructureError, Outcome
 from .sandbox import Sandbox, prestart
 
-__all__ = ["DASK_SETTINGS", "DaskExecutor", "Executor", "IsolatedExecutor", "SerialExecutor", "WorkerCrash"]
+__all__ = ["DASK_SETTINGS", "DaskExecutor", "Executor", "IsolatedExecutor", "SerialExecutor"]
 
-WorkerCrash = Crash  # the old name of a crashed unit's record (deprecated)
 _NO_LIMITS = CaseLimits()
 
 

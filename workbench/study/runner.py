@@ -10,9 +10,6 @@ reason and ``failure`` kind, and for a kind whose models are computed one by one
 models are run again in a fresh process (:func:`_complete`).  :func:`run_study` is
 ``run_cases(SWEEP, ...)``; :func:`summarize` counts a stored table.
 
-``open_run_manifest``, ``finish_run``, ``package_versions``, ``git_commit``, ``read_manifest``,
-``_now`` and ``_write_manifest`` moved to :mod:`workbench.study.session` and are re-exported here.
-
 Checked by ``tests/study/test_store.py``, ``tests/study/test_executors.py``, ``tests/study/test_cli.py``,
 ``tests/study/test_kinds.py``, ``tests/study/test_retry.py`` and ``tests/motion/test_motion_run.py``.
 """
@@ -31,22 +28,11 @@ from .outcomes import CaseLimits, Outcome
 from .params import flatten_params
 from .plan import Unit
 from .rows import failed_rows
-from .session import (  # all but RunSession re-exported (their old home; deprecated here)
-    RunSession,
-    _now,
-    _write_manifest,
-    finish_run,
-    git_commit,
-    open_run_manifest,
-    package_versions,
-    read_manifest,
-    study_name,
-)
+from .session import RunSession, read_manifest, utc_now
 from .spec import Study
 from .store import read_columns
 
-__all__ = ["RunSummary", "finish_run", "open_run_manifest", "run_cases", "run_study", "read_manifest",
-           "package_versions", "git_commit", "study_name", "summarize"]
+__all__ = ["RunSummary", "run_cases", "run_study", "summarize"]
 
 #: failure kinds that make the exit code 3 ("the infrastructure failed": --resume retries them)
 _INFRA_EXIT = ("killed", "lost")
@@ -227,7 +213,7 @@ def run_cases(
     executor = executor or SerialExecutor()
     limits = limits if limits is not None else kind.limits(spec)
     folder = Path(folder)
-    lock = FolderLock(folder).acquire(_now())
+    lock = FolderLock(folder).acquire(utc_now())
     try:
         executor.__enter__()
     except BaseException:

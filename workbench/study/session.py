@@ -20,7 +20,6 @@ Every study kind runs through one :class:`RunSession` (:func:`workbench.study.ru
    time and the outcome, and releases the lock.
 
 ``open_run_manifest``, ``finish_run``, ``package_versions``, ``git_commit``, ``read_manifest``,
-``_now`` and ``_write_manifest`` are re-exported by :mod:`workbench.study.runner` (their old home).
 
 Checked by ``tests/study/test_store.py``, ``tests/study/test_session.py``, ``tests/study/test_lock.py``
 and ``tests/study/test_retry.py``.
@@ -56,7 +55,8 @@ _PACKAGES = ("trunk-workbench", "exudyn", "numpy", "scipy", "pandas", "pyarrow",
              "distributed", "dask-jobqueue", "pydantic", "tqdm")
 
 
-def _now() -> str:
+def utc_now() -> str:
+    """The current UTC time as ISO 8601 (seconds): the times of the manifest's run records and the lock."""
     return _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
 
 
@@ -173,7 +173,7 @@ def finish_run(folder: Path, manifest: dict[str, Any], run_rec: dict[str, Any], 
     finally:
         if bar is not None:
             bar.close()
-        run_rec["end"] = _now()
+        run_rec["end"] = utc_now()
         run_rec["wall_time"] = round(time.perf_counter() - t0, 3)
         _write_manifest(folder, manifest)
 
@@ -267,7 +267,7 @@ class RunSession:
             Locked folder, folder/resume mismatch, corrupt manifest or part, other column types.
         """
         folder = Path(folder)
-        lock = lock if lock is not None and lock.held else FolderLock(folder).acquire(_now())
+        lock = lock if lock is not None and lock.held else FolderLock(folder).acquire(utc_now())
         try:
             return cls._open_locked(folder, spec, cases, param_rows, executor_name, models, separable, resume,
                                     retry_failed, force, progress, flush_rows, flush_seconds, lock, flush_each,
@@ -303,7 +303,7 @@ class RunSession:
         plan = plan_units(cases, tuple(models), stored, retry_failed=retry_failed, separable=separable)
         store.remove_rows(plan.remove)
         run_rec = {"host": socket.gethostname(), "pid": os.getpid(), "platform": platform.platform(),
-                   "executor": executor_name, "start": _now(), "end": None, "outcome": None,
+                   "executor": executor_name, "start": utc_now(), "end": None, "outcome": None,
                    "cases_to_run": len(plan.units), "cases_done": 0,
                    "limits": {"max_case_seconds": limits.seconds, "max_case_memory": limits.memory},
                    "study_file": spec.path}
