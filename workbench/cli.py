@@ -37,7 +37,6 @@ and then use only that kind's ``load`` / ``expand`` / ``models`` and the one run
 from __future__ import annotations
 
 import argparse
-import importlib
 import os
 import signal
 import sys
@@ -148,9 +147,6 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--reports-dir", default="reports", help="where reports go (default reports/<data folder name>)")
     r.add_argument("--progress", choices=("auto", "on", "off"), default="auto",
                    help="progress bar (auto: a bar on a terminal, a log line every 10%% or 30 s otherwise)")
-    # advanced / tests: 'module:function' returning the model function for a name
-    r.add_argument("--model-lookup", help=argparse.SUPPRESS)
-    r.add_argument("--arc-actuation", help=argparse.SUPPRESS)
     r.add_argument("--flush-rows", type=int, default=None, help=argparse.SUPPRESS)
 
     s = sub.add_parser("show", help="summarise a study result folder")
@@ -177,11 +173,6 @@ def _err(lines: Sequence[str]) -> None:
         print(line, file=sys.stderr)
 
 
-def _resolve(dotted: str):
-    mod, _, fn = dotted.partition(":")
-    return getattr(importlib.import_module(mod), fn)
-
-
 def _clip(text: str, n: int = 200) -> str:
     """``text`` cut at a word boundary near ``n`` characters (with an ellipsis)."""
     text = " ".join(str(text).split())
@@ -201,7 +192,7 @@ def _print_summary(summary, report_note: str | None = None, show_run: bool = Tru
     study_file = (runs[-1].get("study_file") if runs else None) or man.get("study_file") or "STUDY.toml"
     source = (runs[-1].get("study_file") if runs else None) or man.get("study_file")
     print(f"study {name!r}" + (f" ({source})" if source else "") + f": {summary.folder}")
-    n_cached, n_computed = getattr(summary, "n_cached", 0), getattr(summary, "n_computed", None)
+    n_cached, n_computed = summary.n_cached, summary.n_computed
     if n_cached and n_computed is not None:
         done = f"{n_computed} computed, {summary.n_run - n_computed} from the cache ({n_cached} model rows)"
     else:
@@ -406,7 +397,7 @@ def _cmd_run(args) -> int:
 
 
 def _run(args) -> tuple[int, Path | None]:
-    from .study import StudyError, run_cases
+    from .study import RunConfig, StudyError, run_cases
     from .study.outcomes import ExecutorStartError, InfrastructureError
     from .study.store import CorruptPart
 
@@ -441,10 +432,10 @@ def _run(args) -> tuple[int, Path | None]:
         return 2, None
     if args.dry_run:
         n = len(kind.expand(study))
-        name = getattr(executor, "name", type(executor).__name__)
+        name = executor.name
         print(dry_run_text(study.name, n, kind.models(study), folder, name, cluster,
                            kind.limits(study),
-                           kind.batch_size(n, getattr(executor, "slots", 1))))
+                           kind.batch_size(n, executor.slots)))
         return 0, None
     if cluster is not None:
         try:
@@ -455,13 +446,11 @@ def _run(args) -> tuple[int, Path | None]:
     if args.in_process and sys.stderr.isatty():  # (the manifest and `show` name the executor too)
         _err(["--in-process: cases run in this process without isolation (the debugging executor): a case that "
               "crashes ends the command (the cases before it are stored), the time limit interrupts Python code only"])
-    lookup = _resolve(args.model_lookup) if args.model_lookup else None
-    arc = _resolve(args.arc_actuation) if args.arc_actuation else None
-    progress = {"auto": None, "on": True, "off": False}[args.progress]
+    config = RunConfig(resume=args.resume, retry_failed=args.retry_failed, force=args.force,
+                       progress={"auto": None, "on": True, "off": False}[args.progress], flush_rows=args.flush_rows,
+                       cache=None if args.no_cache else folder.resolve().parent / "_cache")
     try:
-        summary = run_cases(kind, study, folder, executor, resume=args.resume, retry_failed=args.retry_failed, force=args.force,
-                            cache=None if args.no_cache else folder.resolve().parent / "_cache",
-                            progress=progress, flush_rows=args.flush_rows, model_lookup=lookup, arc_actuation=arc)
+        summary = run_cases(kind, study, folder, executor, config)
     except StudyError as e:
         _err(e.problems)
         return 2, folder

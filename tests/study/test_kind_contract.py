@@ -76,7 +76,7 @@ def test_one_case_writes_one_row_per_model(loaded):
     assert isinstance(recorded, dict) and recorded
     limits = kind.limits(spec)
     assert limits.seconds is None or limits.seconds > 0
-    rows = list(kind.task(kind.payload(spec, case, models, kind.run_options(spec))))
+    rows = list(kind.task(kind.payload(spec, case, models)))
     assert sorted(r["model"] for r in rows) == sorted(models)
     for r in rows:
         assert set(ROW_COLUMNS) <= set(r), (r["model"], set(ROW_COLUMNS) - set(r))

@@ -131,7 +131,7 @@ def test_cli_validate_bad_exit_2_no_traceback(capsys):
 def test_cli_run_bad_config_runs_nothing(tmp_path, capsys):
     out = tmp_path / "out"
     path = HERE / "bad_configs" / "nan_in_sweep_axis.toml"
-    rc = main(["run", str(path), "--out", str(out), "--in-process", "--model-lookup", "study_fakes:lookup"])
+    rc = main(["run", str(path), "--out", str(out), "--in-process"])
     assert rc == 2
     assert not out.exists()
     assert "must be finite" in capsys.readouterr().err

@@ -16,7 +16,7 @@ Checked by ``tests/study/test_evaluate.py`` (gamma -> gravity, loads) and
 from __future__ import annotations
 
 import math
-from typing import Any, Callable, Mapping
+from typing import Any, Mapping
 
 import numpy as np
 
@@ -124,12 +124,12 @@ def parameters_as_run(params: Mapping[str, Any], robot_cache: dict[str, Any] | N
         return dict(params)
 
 
-def build_load(robot, load: Mapping[str, Any], arc_actuation: Callable | None = None):
+def build_load(robot, load: Mapping[str, Any]):
     """LoadCase from the ``[load]`` parameters of one case.
 
     ``bend_angle`` (total angle per section, scalar or per section) and ``bend_plane`` become
     ``kappa_j = bend_angle_j / L_j`` and ``phi_j`` and are translated into tendon commands by
-    ``arc_actuation`` (default ``workbench.models.cc.actuation_from_arc``).
+    ``workbench.models.cc.actuation_from_arc``.
     """
     from dataclasses import replace
 
@@ -138,12 +138,12 @@ def build_load(robot, load: Mapping[str, Any], arc_actuation: Callable | None = 
     mode = load["mode"]
     act = None
     if load.get("bend_angle") is not None:
-        if arc_actuation is None:
-            from ..models.cc import actuation_from_arc as arc_actuation
+        from ..models.cc import actuation_from_arc
+
         ns = robot.n_sections
         kappa = np.broadcast_to(np.asarray(load["bend_angle"], float), (ns,)) / robot.section_lengths
         phi = np.broadcast_to(np.asarray(load.get("bend_plane", 0.0), float), (ns,)).copy()
-        act = arc_actuation(robot, kappa, phi, mode, pretension=load.get("pretension", 0.0))
+        act = actuation_from_arc(robot, kappa, phi, mode, pretension=load.get("pretension", 0.0))
     elif load.get("tensions") is not None:
         act = TendonActuation("tension", tuple(load["tensions"]), pretension=load.get("pretension", 0.0))
     elif load.get("length_changes") is not None:

@@ -13,8 +13,7 @@ Only rows that are results are cached: ``ok`` rows and model failures (``failure
 raised, not converged, non-finite); crashes, timeouts, memory, killed and lost rows are not; a
 run with ``--retry-failed`` does not reuse cached model failures (it recomputes them).
 Entries are pickled row dicts, one file per ``<cache>/<model>/<version>/<case_id>.pkl``, written
-atomically (two runs may share a cache; the last writer of an identical row wins).  A run with a
-custom ``model_lookup`` or ``arc_actuation`` (tests) does not use the cache.  The CLI uses
+atomically (two runs may share a cache; the last writer of an identical row wins).  The CLI uses
 ``<parent of --out>/_cache`` (``--no-cache`` to turn it off); :func:`~workbench.study.runner.run_cases`
 only with ``cache=``.  Checked by ``tests/study/test_cache.py``.
 """

@@ -40,7 +40,6 @@ def _reason(e: BaseException) -> str:
 
 def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str],
                   model_lookup: Callable[[str], Callable] | None = None,
-                  arc_actuation: Callable | None = None,
                   robot_cache: dict[str, Any] | None = None) -> list[dict[str, Any]]:
     """Evaluate one case for every model; returns one row per model (never raises).
 
@@ -51,10 +50,8 @@ def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str]
         Resolved case parameters (see :class:`~workbench.study.expand.Case`).
     models : sequence of str
     model_lookup : callable, optional
-        ``name -> run(robot, load, options)``; default :func:`workbench.models.get_model`.
-        Must be picklable (a module-level function) when used with process executors.
-    arc_actuation : callable, optional
-        Replaces ``workbench.models.cc.actuation_from_arc`` (tests).
+        ``name -> run(robot, load, options)``; default :func:`workbench.models.get_model` (the
+        registry).  A caller's own models (tests: ``tests/study/study_fakes.py``).
     robot_cache : dict, optional
         Memo of built robots (and the parameters they were built with) keyed by their
         parameters (robots are frozen); default: this process's memo.
@@ -70,7 +67,7 @@ def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str]
         ``p.load.*`` the load (a scenario's fields applied); ``case_id`` stays the hash of the
         parameters as configured.
     """
-    return list(iter_case_rows(case_id, params, models, model_lookup, arc_actuation, robot_cache))
+    return list(iter_case_rows(case_id, params, models, model_lookup, robot_cache))
 
 
 class RobotMemo(dict):
@@ -94,7 +91,7 @@ _FLAT_ROBOTS: dict[int, tuple] = {}  # flat ``p.robot.*`` cells of the memoised 
 
 
 def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str],
-                   model_lookup: Callable[[str], Callable] | None = None, arc_actuation: Callable | None = None,
+                   model_lookup: Callable[[str], Callable] | None = None,
                    robot_cache: dict[str, Any] | None = None) -> Iterator[dict[str, Any]]:
     """The rows of :func:`evaluate_case`, yielded one model at a time (never raises for a model)."""
     from ..models import quiet_if_loaded
@@ -105,7 +102,7 @@ def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str
         # the rows record the parameters the case runs with (derived gravity, scenario load
         # fields applied); the case id stays the hash of the parameters as configured
         robot, ran = resolve_case(params, ROBOTS if robot_cache is None else robot_cache)
-        load = build_load(robot, ran["load"], arc_actuation)
+        load = build_load(robot, ran["load"])
         options = build_options(ran["solver"])
     except Exception as e:  # noqa: BLE001 - recorded as the case's failure reason
         yield from failed_rows(case_id, params, models, f"building the case failed: {_reason(e)}")
@@ -143,9 +140,9 @@ def _model_resolution(name: str, options, ran: Mapping[str, Any], flat: Mapping[
 
 
 def evaluate_rows(payload: tuple) -> Iterator[dict[str, Any]]:
-    """The sweep kind's task: ``payload = (case_id, params, models, model_lookup, arc_actuation)``; yields rows."""
-    case_id, params, models, model_lookup, arc_actuation = payload
-    return iter_case_rows(case_id, params, models, model_lookup, arc_actuation)
+    """The sweep kind's task: ``payload = (case_id, params, models)``; yields rows (the registry's models)."""
+    case_id, params, models = payload
+    return iter_case_rows(case_id, params, models)
 
 
 def evaluate_payload(payload: tuple) -> list[dict[str, Any]]:
@@ -156,10 +153,10 @@ def evaluate_payload(payload: tuple) -> list[dict[str, Any]]:
 def evaluate_batch(batch: tuple) -> list[list[dict[str, Any]]]:
     """Several cases, one list of rows per case (the task function before units; kept for callers).
 
-    ``batch = (cases, models, model_lookup, arc_actuation)`` with ``cases`` a list of
-    ``(case_id, params)``.  Batching amortises the per-task cost of process executors; robots
-    are built once per distinct robot parameter set within the batch.
+    ``batch = (cases, models, model_lookup)`` with ``cases`` a list of ``(case_id, params)``
+    (``model_lookup``: see :func:`evaluate_case`).  Batching amortises the per-task cost of
+    process executors; robots are built once per distinct robot parameter set within the batch.
     """
-    cases, models, model_lookup, arc_actuation = batch
+    cases, models, model_lookup = batch
     cache: dict[str, Any] = {}
-    return [evaluate_case(cid, params, models, model_lookup, arc_actuation, cache) for cid, params in cases]
+    return [evaluate_case(cid, params, models, model_lookup, cache) for cid, params in cases]

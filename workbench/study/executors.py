@@ -36,7 +36,8 @@ import signal
 import threading
 import time
 import uuid
-from typing import Any, Callable, Iterator, Protocol, Sequence
+from abc import ABC, abstractmethod
+from typing import Any, Callable, Iterator, Sequence
 
 from .outcomes import CaseLimits, Crash, ExecutorStartError, InfrastructureError, Outcome
 from .sandbox import Sandbox, prestart
@@ -46,17 +47,36 @@ __all__ = ["DASK_SETTINGS", "DaskExecutor", "Executor", "IsolatedExecutor", "Ser
 _NO_LIMITS = CaseLimits()
 
 
-class Executor(Protocol):
-    """What the runner needs of an executor (see the module docstring)."""
+class Executor(ABC):
+    """What the runner needs of an executor (see the module docstring); used as ``with executor:``.
 
-    name: str
-    slots: int  # units it runs at once (chunk sizing)
-    isolates_cases: bool  # False: a crashing case takes the caller down (journal every case)
+    Attributes
+    ----------
+    name : str
+        Recorded in the run record and printed by ``run --dry-run``.
+    slots : int
+        Units it runs at once (chunk sizing).
+    isolates_cases : bool
+        ``False``: a crashing case takes the caller down (the runner journals every case).
+    adapts_chunks : bool
+        :meth:`imap_unordered` takes ``max_chunk`` and sizes later tasks by the measured time per unit.
+    """
 
-    def __enter__(self) -> "Executor": ...
-    def __exit__(self, *exc: Any) -> None: ...
+    name: str = "executor"
+    slots: int = 1
+    isolates_cases: bool = True
+    adapts_chunks: bool = False
+
+    def __enter__(self) -> "Executor":
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        return None
+
+    @abstractmethod
     def imap_unordered(self, fn: Callable[[Any], Any], payloads: Sequence[Any], limits: CaseLimits = _NO_LIMITS,
-                       chunk_size: int = 1) -> Iterator[tuple[int, Outcome]]: ...
+                       chunk_size: int = 1) -> Iterator[tuple[int, Outcome]]:
+        """``(index, outcome)`` for every payload, in the order they finish."""
 
 
 class _CaseTimeout(BaseException):
@@ -90,7 +110,7 @@ def _run_here(fn: Callable[[Any], Any], payload: Any, seconds: float | None) -> 
     return Outcome(rows)
 
 
-class SerialExecutor:
+class SerialExecutor(Executor):
     """In-process serial execution: the debugging executor, without isolation (module docstring)."""
 
     name = "serial (in-process, no isolation)"
@@ -108,7 +128,7 @@ class SerialExecutor:
             yield i, _run_here(fn, p, limits.seconds)
 
 
-class IsolatedExecutor:
+class IsolatedExecutor(Executor):
     """Serial execution in one child process (a sandbox), restarted after a crash or timeout."""
 
     name = "serial (isolated child process)"
@@ -193,7 +213,7 @@ DASK_SETTINGS = {
 }
 
 
-class DaskExecutor:
+class DaskExecutor(Executor):
     """Dask distributed execution.
 
     Parameters

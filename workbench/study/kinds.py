@@ -33,7 +33,6 @@ from .. import registry
 from .build import parameters_as_run
 from .evaluate import ROBOTS, evaluate_rows
 from .expand import Case, count_cases, expand
-from .messages import StudyError
 from .outcomes import CaseLimits
 from .spec import Study, load_study
 
@@ -95,21 +94,14 @@ class StudyKind(ABC):
     def recorded_params(self, spec: Any, case: Case) -> dict[str, Any]:
         """The parameters the rows of ``case`` record as ``p.*`` (those it runs with; they fix the column types)."""
 
-    def run_options(self, spec: Any, **options: Any) -> Any:
-        """Check the run's extra options; what :meth:`payload` gets.  Default: none accepted."""
-        given = sorted(k for k, v in options.items() if v is not None)
-        if given:
-            flags = " / ".join("--" + k.replace("_", "-") for k in given)
-            raise StudyError([f"{spec.path}: {flags} do not apply to a {self.name} study"])
-        return None
-
     def batch_size(self, n_cases: int, slots: int) -> int:
         """Units per Dask task when the caller does not choose (``slots``: parallel workers); default 1."""
         return 1
 
     @abstractmethod
-    def payload(self, spec: Any, case: Case, models: Sequence[str], options: Any) -> Any:
-        """The argument of :attr:`task` for one unit: ``case`` and the ``models`` to compute."""
+    def payload(self, spec: Any, case: Case, models: Sequence[str]) -> Any:
+        """The argument of :attr:`task` for one unit: ``case`` and the ``models`` to compute (plain,
+        picklable data: it goes to another process)."""
 
     @abstractmethod
     def limits(self, spec: Any) -> CaseLimits:
@@ -150,16 +142,12 @@ class SweepKind(StudyKind):
         """
         return parameters_as_run(case.params, ROBOTS)
 
-    def run_options(self, spec: Study, *, model_lookup: Any = None, arc_actuation: Any = None) -> tuple:
-        """``(model_lookup, arc_actuation)``: passed to :func:`~workbench.study.evaluate.evaluate_case`."""
-        return model_lookup, arc_actuation
-
     def batch_size(self, n_cases: int, slots: int) -> int:
         return min(32, max(1, -(-n_cases // (8 * max(1, slots)))))
 
-    def payload(self, spec: Study, case: Case, models: Sequence[str], options: tuple) -> tuple:
-        model_lookup, arc_actuation = options
-        return case.case_id, case.params, tuple(models), model_lookup, arc_actuation
+    def payload(self, spec: Study, case: Case, models: Sequence[str]) -> tuple:
+        """``(case_id, params, models)``: :func:`~workbench.study.evaluate.evaluate_rows`'s argument."""
+        return case.case_id, case.params, tuple(models)
 
     def limits(self, spec: Study) -> CaseLimits:
         return spec.limits

@@ -46,6 +46,7 @@ from .messages import StudyError
 from .outcomes import CaseLimits
 from .plan import Unit, plan_units
 from .progress import Progress
+from .run_config import RunConfig
 from .store import MANIFEST, CorruptPart, ResultStore, SchemaMismatch, atomic_write_bytes
 
 __all__ = ["RunSession", "Unit", "finish_run", "git_commit", "open_run_manifest", "package_versions",
@@ -233,33 +234,35 @@ class RunSession:
 
     @classmethod
     def open(cls, folder: str | Path, spec: Any, cases: Sequence[Any], param_rows: Iterable[Mapping[str, Any]],
-             executor_name: str, *, models: Sequence[str] = (), separable: bool = True, resume: bool = False,
-             retry_failed: bool = False, force: bool = False, progress: bool | None = None,
-             flush_rows: int = 256, flush_seconds: float = 2.0, lock: FolderLock | None = None,
-             flush_each: bool = False, limits: CaseLimits | None = None,
-             progress_seconds: float = 30.0) -> "RunSession":
+             executor_name: str, config: RunConfig = RunConfig(), *, models: Sequence[str] = (),
+             separable: bool = True, lock: FolderLock | None = None, flush_each: bool = False,
+             limits: CaseLimits | None = None) -> "RunSession":
         """Open (or continue) the run of ``cases`` of ``spec`` in ``folder``.
 
         Parameters
         ----------
         folder : path-like
         spec : object
-            The validated study: ``path``, ``name``, ``config_hash`` and ``resolved()`` are recorded.
+            The validated study: ``path``, ``name``, ``config_hash``, ``overrides`` and
+            ``resolved()`` are recorded.
         cases : sequence of Case
         param_rows : iterable of dict
             The flattened ``p.*`` parameters of every case (fix the column types).
         executor_name : str
+        config : RunConfig
+            ``resume``, ``retry_failed``, ``force``, ``progress``, ``progress_seconds``,
+            ``flush_rows`` (``None``: 256) and ``flush_seconds`` are used here.
         models : sequence of str
             The models every case writes a row for (``kind.models(spec)``).
         separable : bool
             Models of a case can be computed one by one (sweeps); ``False``: a case is
             recomputed whole (series-parallel).
-        resume, retry_failed, force
-            Continue the stored run; also retry model failures; discard stored results first.
         lock : FolderLock, optional
             A lock the caller already holds (else taken here); released by :meth:`close`.
-        progress_seconds : float
-            Without a terminal, a progress line at least this often while cases run (:class:`Progress`).
+        flush_each : bool
+            Journal every unit's rows at once (an executor without isolation).
+        limits : CaseLimits, optional
+            Recorded in the run record.
 
         Raises
         ------
@@ -269,18 +272,18 @@ class RunSession:
         folder = Path(folder)
         lock = lock if lock is not None and lock.held else FolderLock(folder).acquire(utc_now())
         try:
-            return cls._open_locked(folder, spec, cases, param_rows, executor_name, models, separable, resume,
-                                    retry_failed, force, progress, flush_rows, flush_seconds, lock, flush_each,
-                                    limits or CaseLimits(), progress_seconds)
+            return cls._open_locked(folder, spec, cases, param_rows, executor_name, config, tuple(models),
+                                    separable, lock, flush_each, limits or CaseLimits())
         except BaseException:
             lock.release(remove_folder=True)
             raise
 
     @classmethod
-    def _open_locked(cls, folder, spec, cases, param_rows, executor_name, models, separable, resume,
-                     retry_failed, force, progress, flush_rows, flush_seconds, lock, flush_each, limits,
-                     progress_seconds):
-        if force:
+    def _open_locked(cls, folder, spec, cases, param_rows, executor_name, config, models, separable, lock,
+                     flush_each, limits):
+        resume, retry_failed = config.resume, config.retry_failed
+        flush_rows = 256 if config.flush_rows is None else config.flush_rows
+        if config.force:
             _discard_results(folder)
         config_hash = spec.config_hash
         resolved = spec.resolved()
@@ -290,7 +293,7 @@ class RunSession:
         })
         changes = presentation_changes(manifest.get("study") or {}, resolved) if manifest["runs"] else {}
         try:
-            store = ResultStore(folder, param_rows, flush_rows, flush_seconds, journal=flush_each)
+            store = ResultStore(folder, param_rows, flush_rows, config.flush_seconds, journal=flush_each)
             store.cleanup_temporaries()
             store.recover_journal()  # rows of an in-process run that died between its flushes
             stored = store.stored_rows()
@@ -300,7 +303,7 @@ class RunSession:
         except CorruptPart as e:
             raise StudyError([f"{e.path}: unreadable Parquet part ({e.reason}); move it out of {folder} (--resume "
                               f"then recomputes its cases) or use another --out"]) from None
-        plan = plan_units(cases, tuple(models), stored, retry_failed=retry_failed, separable=separable)
+        plan = plan_units(cases, models, stored, retry_failed=retry_failed, separable=separable)
         store.remove_rows(plan.remove)
         run_rec = {"host": socket.gethostname(), "pid": os.getpid(), "platform": platform.platform(),
                    "executor": executor_name, "start": utc_now(), "end": None, "outcome": None,
@@ -324,7 +327,7 @@ class RunSession:
             manifest["versions"] = package_versions()
             manifest["git"] = git_commit()
         _write_manifest(folder, manifest)
-        bar = Progress(len(plan.units), spec.name, progress, every_seconds=progress_seconds)
+        bar = Progress(len(plan.units), spec.name, config.progress, every_seconds=config.progress_seconds)
         session = cls(folder=folder, manifest=manifest, run_rec=run_rec, store=store, todo=plan.units, lock=lock,
                       progress=bar, flush_each=flush_each)
         session._pending = {u.case.case_id: list(u.models) for u in plan.units}

@@ -20,7 +20,7 @@ import hashlib
 from dataclasses import dataclass
 from pathlib import Path
 from dataclasses import replace
-from typing import Any, Callable, Sequence
+from typing import Any, Sequence
 
 from ...study.build import parameters_as_run
 from ...study.expand import Case, count_cases, expand
@@ -134,17 +134,9 @@ class ClosedLoopKind(StudyKind):
         """:func:`~workbench.study.build.parameters_as_run` (the scenario's final plan cables applied)."""
         return parameters_as_run(case.params)
 
-    def run_options(self, spec: ClosedLoopStudy, *, model_lookup: Callable | None = None,
-                    arc_actuation: Callable | None = None) -> Callable | None:
-        """``model_lookup`` replaces the registered plants (tests); ``arc_actuation`` does not apply."""
-        if arc_actuation is not None:
-            raise StudyError([f"{spec.path}: --arc-actuation does not apply to a closed_loop study (its cables come "
-                              f"from the controller)"])
-        return model_lookup
-
-    def payload(self, spec: ClosedLoopStudy, case: Case, models: Sequence[str], options: Callable | None) -> tuple:
-        """``(case_id, params, plants, model_lookup)``: a case is computed whole, whatever ``models`` says."""
-        return case.case_id, case.params, spec.plants, options
+    def payload(self, spec: ClosedLoopStudy, case: Case, models: Sequence[str]) -> tuple:
+        """``(case_id, params, plants)``: a case is computed whole, whatever ``models`` says."""
+        return case.case_id, case.params, spec.plants
 
     def limits(self, spec: ClosedLoopStudy) -> CaseLimits:
         return spec.study.limits

@@ -190,6 +190,6 @@ def evaluate_closed_loop_case(case_id: str, params: Mapping[str, Any], plants: S
 
 
 def evaluate_closed_loop_rows(payload: tuple) -> list[dict[str, Any]]:
-    """The kind's task: ``(case_id, params, plants, model_lookup)`` -> the rows of that case."""
-    case_id, params, plants, model_lookup = payload
-    return evaluate_closed_loop_case(case_id, params, plants, model_lookup)
+    """The kind's task: ``(case_id, params, plants)`` -> the rows of that case."""
+    case_id, params, plants = payload
+    return evaluate_closed_loop_case(case_id, params, plants)

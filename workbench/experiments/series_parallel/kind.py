@@ -51,7 +51,7 @@ class SeriesParallelKind(StudyKind):
         """The case's parameters: nothing is derived from them before a case runs."""
         return case.params
 
-    def payload(self, spec: SeriesParallelStudy, case: Case, models: Sequence[str], options: Any
+    def payload(self, spec: SeriesParallelStudy, case: Case, models: Sequence[str]
                 ) -> tuple[str, dict]:
         """``(case_id, params)``: a case is computed whole (every model), whatever ``models`` says."""
         return case.case_id, case.params

@@ -91,7 +91,7 @@ class GraspKind(StudyKind):
         """:func:`~workbench.study.build.parameters_as_run` (the scenario's tensions in ``p.load.*``)."""
         return parameters_as_run(case.params)
 
-    def payload(self, spec: Study, case: Case, models: Sequence[str], options: Any) -> tuple:
+    def payload(self, spec: Study, case: Case, models: Sequence[str]) -> tuple:
         """``(case_id, params, models)``: one case, the models still to compute."""
         return case.case_id, case.params, tuple(models)
 
