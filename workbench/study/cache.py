@@ -41,8 +41,8 @@ def _sources(model: str) -> list[Path]:
     from .. import registry
 
     info = registry.MODELS.get(model)
-    # the package of the model's code; rows of another study kind (no target): all of physics
-    parts = info.target.partition(":")[0].split(".")[1:2] if info is not None and info.target else ["physics"]
+    # the package of the model's code; rows of another study kind (registry.LABELS): all of physics
+    parts = info.target.partition(":")[0].split(".")[1:2] if info is not None else ["physics"]
     out: list[Path] = []
     for rel in [*parts, *_SHARED]:
         p = _ROOT / rel
