@@ -22,7 +22,7 @@ import time
 import traceback
 from typing import Any, Callable, Iterator, Mapping, Sequence
 
-from .build import build_load, build_options, resolve_case
+from .build import build_load, build_options, build_pipeline_options, resolve_case
 from .estimate import CCReference, discretization_columns
 from .params import flatten_params
 from .rows import failed_rows, row_from_result
@@ -104,6 +104,7 @@ def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str
         robot, ran = resolve_case(params, ROBOTS if robot_cache is None else robot_cache)
         load = build_load(robot, ran["load"])
         options = build_options(ran["solver"])
+        pipeline = build_pipeline_options(ran["solver"])
     except Exception as e:  # noqa: BLE001 - recorded as the case's failure reason
         yield from failed_rows(case_id, params, models, f"building the case failed: {_reason(e)}")
         return
@@ -111,7 +112,7 @@ def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str
     cc_reference = CCReference(model_lookup, robot, load, options)
     for name in models:
         t0 = time.perf_counter()
-        opts, ran_m, flat_m = _model_resolution(name, options, ran, flat)
+        opts, ran_m, flat_m = _model_resolution(name, options, pipeline, ran, flat)
         try:
             fn = model_lookup(name)
             with quiet_if_loaded():
@@ -122,17 +123,17 @@ def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str
                 cc_reference.set(res)
             if row["status"] == "ok":  # the discretisation-error estimate (study/estimate.py)
                 with quiet_if_loaded():
-                    row.update(discretization_columns(name, fn, robot, load, opts, res, cc_reference))
+                    row.update(discretization_columns(name, fn, robot, load, opts, res, cc_reference, pipeline))
         except Exception as e:  # noqa: BLE001 - ModelFailure, exudyn.SolverError, bugs: all recorded
             kind = "memory" if isinstance(e, MemoryError) else "model"
             row = failed_rows(case_id, ran_m, [name], _reason(e), time.perf_counter() - t0, flat_m, failure=kind)[0]
         yield row
 
 
-def _model_resolution(name: str, options, ran: Mapping[str, Any], flat: Mapping[str, Any]):
+def _model_resolution(name: str, options, pipeline, ran: Mapping[str, Any], flat: Mapping[str, Any]):
     """Options, parameters and flat ``p.*`` cells of model ``name``: its ``[solver] n_elements_by_model``
     entry applied, so its rows record the resolution that ran (``p.solver.n_elements``)."""
-    opts = options.for_model(name)
+    opts = pipeline.for_model(name, options)
     if opts is options:
         return options, ran, flat
     ran_m = {**ran, "solver": {**ran["solver"], "n_elements": opts.n_elements}}
