@@ -11,6 +11,7 @@ from pathlib import Path
 from ..experiments.series_parallel.kind import KIND
 from ..experiments.series_parallel.spec import SeriesParallelStudy, is_series_parallel_study, load_series_parallel_study
 from ..study.executors import Executor
+from ..study.run_config import RunConfig
 from ..study.runner import RunSummary, run_cases
 
 __all__ = ["run_motion_study", "run_loaded_motion_study", "is_motion_study"]
@@ -30,11 +31,6 @@ def run_motion_study(path: str | Path, out_dir: str | Path, executor: Executor |
 
 
 def run_loaded_motion_study(study: SeriesParallelStudy, out_dir: str | Path, executor: Executor | None = None, *,
-                            resume: bool = False, progress: bool | None = None, flush_rows: int = 64,
-                            model_lookup=None, arc_actuation=None) -> RunSummary:
-    """:func:`run_motion_study` for a validated study: ``run_cases(KIND, study, ...)``.
-
-    ``model_lookup`` and ``arc_actuation`` must be None (a :class:`StudyError` otherwise).
-    """
-    return run_cases(KIND, study, out_dir, executor, resume=resume, progress=progress, flush_rows=flush_rows,
-                     model_lookup=model_lookup, arc_actuation=arc_actuation)
+                            resume: bool = False, progress: bool | None = None, flush_rows: int = 64) -> RunSummary:
+    """:func:`run_motion_study` for a validated study: ``run_cases(KIND, study, ..., RunConfig(...))``."""
+    return run_cases(KIND, study, out_dir, executor, RunConfig(resume=resume, progress=progress, flush_rows=flush_rows))

@@ -36,7 +36,7 @@ from .session import RunSession, read_manifest, utc_now
 from .spec import Study
 from .store import read_columns
 
-__all__ = ["MAX_ADAPTIVE_CHUNK", "RunConfig", "RunSummary", "run_cases", "run_study", "summarize"]
+__all__ = ["MAX_ADAPTIVE_CHUNK", "RunSummary", "run_cases", "run_study", "summarize"]
 
 #: failure kinds that make the exit code 3 ("the infrastructure failed": --resume retries them)
 _INFRA_EXIT = ("killed", "lost")
