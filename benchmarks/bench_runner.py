@@ -70,6 +70,27 @@ def lookup_0ms(name):
     return model_0ms
 
 
+def lookup_rows(payload):
+    """The task of :func:`lookup_kind`: the sweep kind's rows with the payload's model lookup."""
+    from workbench.study.evaluate import iter_case_rows
+
+    case_id, params, models, lookup = payload
+    return iter_case_rows(case_id, params, models, lookup)
+
+
+def lookup_kind(lookup):
+    """The sweep study kind on the benchmark's models ``lookup(name)`` (module-level: its payloads go to workers)."""
+    from workbench.study.kinds import SweepKind
+
+    class LookupKind(SweepKind):
+        task = staticmethod(lookup_rows)
+
+        def payload(self, spec, case, models):
+            return case.case_id, case.params, tuple(models), lookup
+
+    return LookupKind()
+
+
 def lookup_1p5ms(name):
     return model_1p5ms
 
@@ -117,7 +138,7 @@ def tree_cpu() -> float:
 def bare_loop(study, model) -> tuple[float, float]:
     """Wall and CPU seconds of the model calls alone (robot, loads and options built beforehand)."""
     from workbench.study import expand
-    from workbench.study.evaluate import build_load, build_options, build_robot
+    from workbench.study.build import build_load, build_options, build_robot
 
     cases = expand(study)
     c0 = cases[0].params
@@ -132,11 +153,11 @@ def bare_loop(study, model) -> tuple[float, float]:
 
 def through_runner(study, executor, lookup) -> tuple[float, float, float]:
     """Wall seconds, CPU seconds of this (the runner's) process, CPU seconds of the whole process tree."""
-    from workbench.study import run_study
+    from workbench.study import RunConfig, run_cases
 
     with tempfile.TemporaryDirectory() as d:
         tree0, c0, t0 = tree_cpu(), time.process_time(), time.perf_counter()
-        s = run_study(study, Path(d) / "out", executor, model_lookup=lookup, progress=False)
+        s = run_cases(lookup_kind(lookup), study, Path(d) / "out", executor, RunConfig(progress=False))
         dt, dc, dtree = time.perf_counter() - t0, time.process_time() - c0, tree_cpu() - tree0
         assert s.n_ok == s.n_cases, s
     return dt, dc, dtree

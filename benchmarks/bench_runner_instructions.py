@@ -30,9 +30,10 @@ from pathlib import Path
 root, n = sys.argv[1], int(sys.argv[2])
 sys.path[:0] = [root, root + "/benchmarks"]
 import bench_runner as B
-from workbench.study import IsolatedExecutor, run_study
+from workbench.study import IsolatedExecutor, RunConfig, run_cases
 with tempfile.TemporaryDirectory() as d:
-    s = run_study(B.make_study(n), Path(d) / "out", IsolatedExecutor(), model_lookup=B.lookup_0ms, progress=False)
+    s = run_cases(B.lookup_kind(B.lookup_0ms), B.make_study(n), Path(d) / "out", IsolatedExecutor(),
+                  RunConfig(progress=False))
     assert s.n_ok == n, s
 """
 

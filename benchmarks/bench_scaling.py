@@ -85,15 +85,37 @@ def _warm():
     return os.getpid()
 
 
+def _lookup_rows(payload):
+    """The sweep kind's rows with the payload's model lookup (the task of :func:`_lookup_kind`)."""
+    from workbench.study.evaluate import iter_case_rows
+
+    case_id, params, models, lookup = payload
+    return iter_case_rows(case_id, params, models, lookup)
+
+
+def _lookup_kind(lookup):
+    """The sweep study kind on the models ``lookup(name)`` (here: :func:`lookup_zero`)."""
+    from workbench.study.kinds import SweepKind
+
+    class LookupKind(SweepKind):
+        task = staticmethod(_lookup_rows)
+
+        def payload(self, spec, case, models):
+            return case.case_id, case.params, tuple(models), lookup
+
+    return LookupKind()
+
+
 def _one_run(kind, spec, make_executor, lookup=None, batch_size=None):
     import pandas as pd
 
-    from workbench.study import run_cases
+    from workbench.study import RunConfig, run_cases
 
-    opts = {"model_lookup": lookup} if lookup else {}
+    if lookup is not None:
+        kind = _lookup_kind(lookup)
     with tempfile.TemporaryDirectory() as d:
         c0, t0 = time.process_time(), time.perf_counter()
-        s = run_cases(kind, spec, Path(d) / "out", make_executor(), progress=False, batch_size=batch_size, **opts)
+        s = run_cases(kind, spec, Path(d) / "out", make_executor(), RunConfig(progress=False, batch_size=batch_size))
         wall, cpu = time.perf_counter() - t0, time.process_time() - c0
         model = float(pd.read_parquet(Path(d) / "out", columns=["wall_time"])["wall_time"].sum())
     assert s.n_ok + s.n_failed == s.n_cases, s
@@ -220,7 +242,7 @@ def bench_breakdown():
           "then storing them in 256-row parts:")
     for name, (kind, spec, _) in _studies(["cheap", "heavy"]).items():
         cases = kind.expand(spec)[:8]
-        rows = evaluate_batch(([(c.case_id, c.params) for c in cases], spec.models, None, None))
+        rows = evaluate_batch(([(c.case_id, c.params) for c in cases], spec.models, None))
         blob = pickle.dumps(rows, protocol=pickle.HIGHEST_PROTOCOL)
         n_rows = sum(len(r) for r in rows)
         t_unpickle = _cpu(lambda: pickle.loads(blob)) / n_rows
@@ -239,7 +261,7 @@ def bench_breakdown():
     kind, _, lookup = _studies(["zero"])["zero"]
     spec = zero_study(1024)
     cases = kind.expand(spec)
-    rows = evaluate_batch(([(c.case_id, c.params) for c in cases], spec.models, lookup, None))
+    rows = evaluate_batch(([(c.case_id, c.params) for c in cases], spec.models, lookup))
     params = [flatten_params(kind.recorded_params(spec, c)) for c in cases]
     with tempfile.TemporaryDirectory() as d:
         def store(flush_rows, folder=Path(d)):

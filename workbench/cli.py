@@ -37,7 +37,6 @@ and then use only that kind's ``load`` / ``expand`` / ``models`` and the one run
 from __future__ import annotations
 
 import argparse
-import importlib
 import os
 import signal
 import sys
@@ -148,9 +147,6 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--reports-dir", default="reports", help="where reports go (default reports/<data folder name>)")
     r.add_argument("--progress", choices=("auto", "on", "off"), default="auto",
                    help="progress bar (auto: a bar on a terminal, a log line every 10%% or 30 s otherwise)")
-    # advanced / tests: 'module:function' returning the model function for a name
-    r.add_argument("--model-lookup", help=argparse.SUPPRESS)
-    r.add_argument("--arc-actuation", help=argparse.SUPPRESS)
     r.add_argument("--flush-rows", type=int, default=None, help=argparse.SUPPRESS)
 
     s = sub.add_parser("show", help="summarise a study result folder")
@@ -177,11 +173,6 @@ def _err(lines: Sequence[str]) -> None:
         print(line, file=sys.stderr)
 
 
-def _resolve(dotted: str):
-    mod, _, fn = dotted.partition(":")
-    return getattr(importlib.import_module(mod), fn)
-
-
 def _clip(text: str, n: int = 200) -> str:
     """``text`` cut at a word boundary near ``n`` characters (with an ellipsis)."""
     text = " ".join(str(text).split())
@@ -193,7 +184,7 @@ def _clip(text: str, n: int = 200) -> str:
 
 def _print_summary(summary, report_note: str | None = None, show_run: bool = True) -> None:
     from .study.lock import describe_holder, lock_holder
-    from .study.runner import read_manifest, study_name
+    from .study.session import read_manifest, study_name
 
     man = read_manifest(summary.folder)
     name = study_name(man, "?")
@@ -201,7 +192,7 @@ def _print_summary(summary, report_note: str | None = None, show_run: bool = Tru
     study_file = (runs[-1].get("study_file") if runs else None) or man.get("study_file") or "STUDY.toml"
     source = (runs[-1].get("study_file") if runs else None) or man.get("study_file")
     print(f"study {name!r}" + (f" ({source})" if source else "") + f": {summary.folder}")
-    n_cached, n_computed = getattr(summary, "n_cached", 0), getattr(summary, "n_computed", None)
+    n_cached, n_computed = summary.n_cached, summary.n_computed
     if n_cached and n_computed is not None:
         done = f"{n_computed} computed, {summary.n_run - n_computed} from the cache ({n_cached} model rows)"
     else:
@@ -298,10 +289,7 @@ def _load(args):
     path = find_study(args.study)
     args.study = str(path)
     kind = get_kind(kind_of(path))
-    overrides = tuple(getattr(args, "overrides", None) or ())
-    if overrides:
-        return kind, kind.load(path, max_cases=args.max_cases, overrides=overrides)
-    return kind, kind.load(path, max_cases=args.max_cases)
+    return kind, kind.load(path, max_cases=args.max_cases, overrides=tuple(getattr(args, "overrides", None) or ()))
 
 
 def _cmd_validate(args) -> int:
@@ -323,15 +311,15 @@ def _validate_one(args) -> int:
     except StudyError as e:
         _err(e.problems)
         return 2
-    n_cases = kind.count(study) if hasattr(kind, "count") else len(kind.expand(study))
+    n_cases = kind.count(study)
     models = kind.models(study)
-    given = getattr(study, "overrides", ())
+    given = study.overrides
     print(f"{args.study}: ok: study {study.name!r}, {n_cases} cases x {len(models)} models "
           f"({', '.join(models)}), config hash {study.config_hash}"
           + (f" (with {len(given)} override(s): {' '.join(given)})" if given else ""))
-    for note in getattr(study, "notes", ()):
+    for note in study.notes:
         print(f"  note: {note}")
-    for w in getattr(study, "warnings", ()):
+    for w in study.warnings:
         print(f"  warning: {w}")
     return 0
 
@@ -409,7 +397,7 @@ def _cmd_run(args) -> int:
 
 
 def _run(args) -> tuple[int, Path | None]:
-    from .study import StudyError, run_cases
+    from .study import RunConfig, StudyError, run_cases
     from .study.outcomes import ExecutorStartError, InfrastructureError
     from .study.store import CorruptPart
 
@@ -424,7 +412,7 @@ def _run(args) -> tuple[int, Path | None]:
     except StudyError as e:
         _err(e.problems)
         return 2, None
-    for w in getattr(study, "warnings", ()):
+    for w in study.warnings:
         _err([f"warning: {w}"])
     if args.out is not None and not args.out.strip():
         _err(["--out: empty path (give a folder, e.g. --out data/my_run)"])
@@ -444,10 +432,10 @@ def _run(args) -> tuple[int, Path | None]:
         return 2, None
     if args.dry_run:
         n = len(kind.expand(study))
-        name = getattr(executor, "name", type(executor).__name__)
+        name = executor.name
         print(dry_run_text(study.name, n, kind.models(study), folder, name, cluster,
-                           kind.limits(study) if hasattr(kind, "limits") else None,
-                           kind.batch_size(n, getattr(executor, "slots", 1))))
+                           kind.limits(study),
+                           kind.batch_size(n, executor.slots)))
         return 0, None
     if cluster is not None:
         try:
@@ -458,13 +446,11 @@ def _run(args) -> tuple[int, Path | None]:
     if args.in_process and sys.stderr.isatty():  # (the manifest and `show` name the executor too)
         _err(["--in-process: cases run in this process without isolation (the debugging executor): a case that "
               "crashes ends the command (the cases before it are stored), the time limit interrupts Python code only"])
-    lookup = _resolve(args.model_lookup) if args.model_lookup else None
-    arc = _resolve(args.arc_actuation) if args.arc_actuation else None
-    progress = {"auto": None, "on": True, "off": False}[args.progress]
+    config = RunConfig(resume=args.resume, retry_failed=args.retry_failed, force=args.force,
+                       progress={"auto": None, "on": True, "off": False}[args.progress], flush_rows=args.flush_rows,
+                       cache=None if args.no_cache else folder.resolve().parent / "_cache")
     try:
-        summary = run_cases(kind, study, folder, executor, resume=args.resume, retry_failed=args.retry_failed, force=args.force,
-                            cache=None if args.no_cache else folder.resolve().parent / "_cache",
-                            progress=progress, flush_rows=args.flush_rows, model_lookup=lookup, arc_actuation=arc)
+        summary = run_cases(kind, study, folder, executor, config)
     except StudyError as e:
         _err(e.problems)
         return 2, folder
@@ -505,7 +491,8 @@ def _not_a_result_folder(folder: Path) -> str:
 
 def _cmd_show(args) -> int:
     from .study import StudyError
-    from .study.runner import read_manifest, summarize
+    from .study.runner import summarize
+    from .study.session import read_manifest
     from .study.store import MANIFEST, CorruptPart
 
     folder = Path(args.folder)
@@ -538,7 +525,7 @@ def _cmd_report(args) -> int:
     from .study import StudyError
     from .study.store import CorruptPart
 
-    from .study.runner import read_manifest
+    from .study.session import read_manifest
     from .study.store import MANIFEST, check_parts
 
     folder = Path(args.folder)

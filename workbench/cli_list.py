@@ -25,12 +25,13 @@ def list_lines(topic: str) -> list[str]:
     if topic == "models":
         from .study.capabilities import describe
 
-        w = max(len(n) for n in registry.MODELS)
+        w = max(len(n) for n in [*registry.MODELS, *registry.LABELS])
         out = []
         for name, info in registry.MODELS.items():
             out.append(f"{name:<{w}}  {info.label}: {describe(info.capabilities)}")
             if info.capabilities is not None and info.capabilities.note:
                 out.append(f"{'':<{w}}  ({info.capabilities.note})")
+        out += [f"{name:<{w}}  {row.label}: {describe(None)}" for name, row in registry.LABELS.items()]
         return out
     if topic == "presets":
         from .robot.presets import preset_parameters

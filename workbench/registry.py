@@ -15,7 +15,8 @@ import importlib
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-__all__ = ["Capabilities", "FIGURES", "FigureSet", "KINDS", "MODELS", "ModelInfo", "PRESETS", "SCENARIOS", "resolve"]
+__all__ = ["Capabilities", "FIGURES", "FigureSet", "KINDS", "LABELS", "MODELS", "ModelInfo", "PRESETS", "RowLabel",
+           "SCENARIOS", "resolve", "row_info"]
 
 
 @dataclass(frozen=True)
@@ -67,15 +68,14 @@ class ModelInfo:
 
     Attributes
     ----------
-    target : str or None
-        ``"module:function"`` of ``run(robot, load, options) -> PhysicsResult``; ``None`` for a
-        label-only row (the rows another study kind writes, such as ``"target"``).
+    target : str
+        ``"module:function"`` of ``run(robot, load, options) -> PhysicsResult``.
     label : str
         Name in figures and tables.
     color : str or None
         Line colour in figures (``None``: a fallback colour is picked per report).
     capabilities : Capabilities or None
-        What the model supports (``None``: a label-only row, nothing to check).
+        What the model supports (``None``: not declared, nothing to check).
     order : float or None
         Convergence order of the model's discretisation error in the element / link count
         (measured by its validation tests, ``docs/models.md``); the discretisation-error estimate
@@ -83,10 +83,29 @@ class ModelInfo:
         discretisation (CC) or not declared.
     """
 
-    target: str | None
+    target: str
     label: str
     color: str | None = None
     capabilities: Capabilities | None = None
+    order: float | None = None
+
+
+@dataclass(frozen=True)
+class RowLabel:
+    """A ``model`` value another study kind writes that is not a ``run`` model (``"plan"``, ...).
+
+    Attributes
+    ----------
+    label : str
+        Name in figures and tables.
+    color : str or None
+        Line colour in figures (``None``: a fallback colour is picked per report).
+    order : float or None
+        Convergence order of the row's discretisation error, when the kind estimates one.
+    """
+
+    label: str
+    color: str | None = None
     order: float | None = None
 
 
@@ -142,15 +161,26 @@ MODELS: Mapping[str, ModelInfo] = {
         spatial_length_tendon_models=(), loads=(), analyses=("static",), torsion=False,
         note="planar ANCF cable in contact with a rigid circle; continuum tendons of constant offset in "
              "tension mode, static only, no tip force or torque")),
-    # rows of the series-parallel study kind (not run(robot, load, options) models); its GE-beam
-    # legs converge at order 2 (test_series_parallel.py, against the Cosserat shooting solver)
-    "series_parallel": ModelInfo(None, "series-parallel", order=2.0),
-    # rows of the closed-loop study kind: the controller's CC plan, the closed loop on a plant
-    "plan": ModelInfo(None, "CC plan (open loop)", "#7f7f7f"),
-    "spring_link_closed_loop": ModelInfo(None, "spring-link, closed loop", "#98df8a"),
-    "ancf_closed_loop": ModelInfo(None, "ANCF, closed loop", "#aec7e8"),
-    "cc_closed_loop": ModelInfo(None, "CC tendon map, closed loop", "#c7c7c7"),
 }
+
+#: Rows of other study kinds (not ``run(robot, load, options)`` models): their labels and colours.
+LABELS: Mapping[str, RowLabel] = {
+    # rows of the series-parallel study kind; its GE-beam legs converge at order 2
+    # (test_series_parallel.py, against the Cosserat shooting solver)
+    "series_parallel": RowLabel("series-parallel", order=2.0),
+    # rows of the closed-loop study kind: the controller's CC plan, the closed loop on a plant
+    "plan": RowLabel("CC plan (open loop)", "#7f7f7f"),
+    "spring_link_closed_loop": RowLabel("spring-link, closed loop", "#98df8a"),
+    "ancf_closed_loop": RowLabel("ANCF, closed loop", "#aec7e8"),
+    "cc_closed_loop": RowLabel("CC tendon map, closed loop", "#c7c7c7"),
+}
+
+
+def row_info(name: str) -> ModelInfo | RowLabel | None:
+    """The registry row of the ``model`` value ``name``: a run model (:data:`MODELS`) or another
+    kind's row (:data:`LABELS`); ``None`` when neither knows it.  Every reader of labels, colours
+    and orders uses this (checked by ``tests/report/test_report_registry.py``)."""
+    return MODELS.get(name) or LABELS.get(name)
 
 PRESETS: Mapping[str, str] = {
     "steel_rod": "workbench.robot.presets.steel_rod:steel_rod",

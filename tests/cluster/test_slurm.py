@@ -22,12 +22,13 @@ import pandas as pd
 import pytest
 
 from tests.regression.diff_runs import diff_tables
-from workbench.study import SerialExecutor, load_study, run_study
+from workbench.study import RunConfig, SerialExecutor, load_study, run_study
 
 pytestmark = pytest.mark.slurm
 
 HERE = Path(__file__).parent
 ROOT = HERE.parents[1]
+FAKES = ROOT / "tests" / "study"  # fake_workbench.py, study_fakes
 N_CASES = 16
 
 STUDY = textwrap.dedent("""\
@@ -58,12 +59,14 @@ STUDY = textwrap.dedent("""\
 
 def _env(slurm: dict, tmp_path: Path) -> dict:
     return dict(os.environ, **slurm, XDG_CONFIG_HOME=str(tmp_path / "xdg"),
-                PYTHONPATH=os.pathsep.join([str(ROOT), str(HERE)]))
+                PYTHONPATH=os.pathsep.join([str(ROOT), str(HERE), str(FAKES)]))
 
 
 def _run_cmd(study: Path, out: Path, config: Path, *extra: str) -> list[str]:
-    return [sys.executable, "-m", "workbench", "run", str(study), "--out", str(out), "--cluster", "slurm",
-            "--cluster-config", str(config), "--no-report", "--progress", "off", *extra]
+    """``workbench run`` on the cluster with the real models slowed down (``cluster_models:slow_lookup``)."""
+    return [sys.executable, str(FAKES / "fake_workbench.py"), "cluster_models:slow_lookup", "run", str(study),
+            "--out", str(out), "--cluster", "slurm", "--cluster-config", str(config), "--no-report", "--progress",
+            "off", *extra]
 
 
 def _jobs(env: dict, name: str) -> dict[str, str]:
@@ -92,7 +95,7 @@ def test_cancelled_worker_job_loses_nothing_and_matches_serial(local_slurm, tmp_
     name = f"wbtest{os.getpid()}"
     env, out = _env(local_slurm, tmp_path), tmp_path / "slurm"
     cmd = _run_cmd(study, out, _config(tmp_path, name), "--jobs", "2", "--queue-timeout", "90",
-                   "--flush-rows", "1", "--model-lookup", "cluster_models:slow_lookup")
+                   "--flush-rows", "1")
     proc = subprocess.Popen(cmd, env=env, cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     killed, stored_at_kill = None, None
     try:
@@ -117,7 +120,7 @@ def test_cancelled_worker_job_loses_nothing_and_matches_serial(local_slurm, tmp_
     assert run["executor"].startswith("dask-jobqueue slurm: 2 job(s)") and run["cases_done"] == N_CASES
 
     serial = tmp_path / "serial"
-    run_study(load_study(study), serial, SerialExecutor(), progress=False)
+    run_study(load_study(study), serial, SerialExecutor(), RunConfig(progress=False))
     assert diff_tables(serial, out) == []
     assert len(pd.read_parquet(out)) == 2 * N_CASES  # no duplicate rows from the retried case
     assert not _jobs(env, name), "the run left jobs in the queue"
@@ -161,13 +164,12 @@ def _walltime_run(local_slurm, tmp_path, margin: int, delay: float):
     cfg = cfg.replace("lifetime_margin = 60", f"lifetime_margin = {margin}")
     (tmp_path / "cluster.toml").write_text(cfg)
     out = tmp_path / "slurm"
-    r = subprocess.run(_run_cmd(study, out, tmp_path / "cluster.toml", "--jobs", "1", "--queue-timeout", "90",
-                                "--model-lookup", "cluster_models:slow_lookup"),
+    r = subprocess.run(_run_cmd(study, out, tmp_path / "cluster.toml", "--jobs", "1", "--queue-timeout", "90"),
                        env=env, cwd=tmp_path, capture_output=True, text=True, timeout=400)
     assert r.returncode == 0, r.stderr
     assert "cases 16: ok 16, failed 0" in r.stdout, r.stdout
     serial = tmp_path / "serial"
-    run_study(load_study(study), serial, SerialExecutor(), progress=False)
+    run_study(load_study(study), serial, SerialExecutor(), RunConfig(progress=False))
     assert diff_tables(serial, out) == []
     return r.stderr
 
@@ -212,8 +214,7 @@ def test_a_case_longer_than_a_worker_life_is_stopped_by_the_case_limit(local_slu
     (tmp_path / "cluster.toml").write_text(cfg.replace("lifetime_margin = 60", "lifetime_margin = 10"))
     out = tmp_path / "slurm"
     t0 = time.monotonic()
-    r = subprocess.run(_run_cmd(study, out, tmp_path / "cluster.toml", "--jobs", "1", "--queue-timeout", "90",
-                                "--model-lookup", "cluster_models:slow_lookup"),
+    r = subprocess.run(_run_cmd(study, out, tmp_path / "cluster.toml", "--jobs", "1", "--queue-timeout", "90"),
                        env=env, cwd=tmp_path, capture_output=True, text=True, timeout=300)
     assert r.returncode == 1, r.stderr  # one case failed
     assert "cases are stopped after 24 s" in r.stderr, r.stderr
@@ -225,7 +226,7 @@ def test_a_case_longer_than_a_worker_life_is_stopped_by_the_case_limit(local_slu
     assert hung["error"].str.contains("max_case_seconds = 24 s").all(), hung["error"].tolist()
     assert (table[g <= 500]["status"] == "ok").all() and len(table) == 8
     serial = tmp_path / "serial"
-    run_study(load_study(study), serial, SerialExecutor(), progress=False)
+    run_study(load_study(study), serial, SerialExecutor(), RunConfig(progress=False))
     ok_serial = pd.read_parquet(serial).query("`p.robot.gravity` <= 500")
     ok_slurm = table[g <= 500].copy()
     for c in ok_serial.columns:  # the failed rows' NaN made int columns float: back, only where exact

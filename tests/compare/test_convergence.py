@@ -9,7 +9,7 @@ import pytest
 
 from workbench.compare import compare_table
 from workbench.compare.convergence import AGREEMENT_FLOOR, convergence_metrics
-from workbench.study import SerialExecutor, load_study, read_table, run_study
+from workbench.study import RunConfig, SerialExecutor, load_study, read_table, run_study
 
 STUDY = """
 [study]
@@ -38,7 +38,7 @@ product = { "solver.n_elements" = [4, 16] }
 def test_coarse_case_is_marked_not_converged(tmp_path):
     path = tmp_path / "coarse.toml"
     path.write_text(STUDY)
-    run_study(load_study(path), tmp_path / "out", SerialExecutor(), progress=False)
+    run_study(load_study(path), tmp_path / "out", SerialExecutor(), RunConfig(progress=False))
     cmp = compare_table(read_table(tmp_path / "out"), reference="cc").set_index("p.solver.n_elements")
     # gamma = 0.01: CC's own error (the sag) is ~1 mm; 4 ANCF elements at kappa L = 3 carry a
     # discretisation error of the same order, 16 elements a far smaller one

@@ -29,7 +29,7 @@ from workbench.experiments.closed_loop.worker import _SessionPlant, row_models
 from workbench.kinematics import line_path, planar_forward_kinematics, planar_inverse_kinematics
 from workbench.models import SolverOptions, get_model
 from workbench.robot.presets.hannan_walker import hannan_walker
-from workbench.study import SerialExecutor, StudyError, get_kind, kind_of, run_cases
+from workbench.study import RunConfig, SerialExecutor, StudyError, get_kind, kind_of, run_cases
 
 LINE = line_path(np.array([0.25, 0.0, 0.70]), np.array([0.35, 0.0, 0.60]), 6)
 GRASP = np.array([-0.3, 0.3, 1.0, 1.6])
@@ -146,7 +146,7 @@ def test_kind_loads_validates_and_runs(tmp_path):
     spec = kind.load(p)
     assert kind.models(spec) == row_models(["cc"]) == ("plan", "cc", "cc_closed_loop")
     assert spec.resolved()["study"]["kind"] == "closed_loop" and spec.resolved()["report"]["reference"] == "plan"
-    summary = run_cases(kind, spec, tmp_path / "out", SerialExecutor(), progress=False)
+    summary = run_cases(kind, spec, tmp_path / "out", SerialExecutor(), RunConfig(progress=False))
     assert (summary.n_cases, summary.n_ok) == (2, 2)
     df = pd.read_parquet(tmp_path / "out")
     assert set(df["model"]) == {"plan", "cc", "cc_closed_loop"} and (df["status"] == "ok").all()
@@ -177,8 +177,6 @@ def test_kind_refuses_other_scenarios_row_names_and_references(tmp_path):
     assert "study.models[0]: unknown model 'plan'" in text
     with pytest.raises(StudyError, match="report.reference: 'nope' is not one of the rows"):
         kind.load(_write(tmp_path, STUDY + '[report]\nreference = "nope"\n'))
-    with pytest.raises(StudyError, match="arc-actuation does not apply"):
-        kind.run_options(kind.load(_write(tmp_path, STUDY)), arc_actuation=lambda *a: None)
 
 
 def _failing_lookup(name):
@@ -187,10 +185,13 @@ def _failing_lookup(name):
     return run
 
 
-def test_a_failing_plant_fails_its_rows_with_the_place(tmp_path):
+def test_a_failing_plant_fails_its_rows_with_the_place(tmp_path, monkeypatch):
+    import workbench.models
+
+    monkeypatch.setattr(workbench.models, "get_model", _failing_lookup)  # the plants the worker looks up
     kind = get_kind("closed_loop")
     spec = kind.load(_write(tmp_path, STUDY))
-    summary = run_cases(kind, spec, tmp_path / "out", SerialExecutor(), progress=False, model_lookup=_failing_lookup)
+    summary = run_cases(kind, spec, tmp_path / "out", SerialExecutor(), RunConfig(progress=False))
     assert summary.n_failed == 2
     df = pd.read_parquet(tmp_path / "out")
     assert (df[df["model"] == "plan"]["status"] == "ok").all()

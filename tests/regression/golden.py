@@ -53,19 +53,19 @@ def small_study_paths() -> list[Path]:
 
 def run_study_object(study, out_dir: str | Path) -> pd.DataFrame:
     """Run a loaded :class:`workbench.study.Study` in-process (serial) into ``out_dir``; raw table."""
-    from workbench.study import SerialExecutor, read_table, run_study
+    from workbench.study import RunConfig, SerialExecutor, read_table, run_study
 
     out = Path(out_dir)
-    run_study(study, out, SerialExecutor(), progress=False)
+    run_study(study, out, SerialExecutor(), RunConfig(progress=False))
     return read_table(out)
 
 
 def run_small_study(path: str | Path, out_dir: str | Path) -> pd.DataFrame:
     """Run the small study at ``path`` into ``out_dir`` (must not hold results); golden-form table."""
-    from workbench.study import SerialExecutor, get_kind, kind_of, read_table, run_cases
+    from workbench.study import RunConfig, SerialExecutor, get_kind, kind_of, read_table, run_cases
 
     kind = get_kind(kind_of(path))  # the study's kind ([study] kind), as the CLI chooses it
-    run_cases(kind, kind.load(str(path)), Path(out_dir), SerialExecutor(), progress=False)
+    run_cases(kind, kind.load(str(path)), Path(out_dir), SerialExecutor(), RunConfig(progress=False))
     return golden_frame(read_table(out_dir))
 
 

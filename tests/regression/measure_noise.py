@@ -52,9 +52,9 @@ def max_changes(a: pd.DataFrame, b: pd.DataFrame) -> pd.DataFrame:
 
 def _run(kind, study, out: Path) -> pd.DataFrame:
     """Run ``study`` with its kind's pipeline (serial, in-process) into ``out``; golden-form table."""
-    from workbench.study import SerialExecutor, read_table, run_cases
+    from workbench.study import RunConfig, SerialExecutor, read_table, run_cases
 
-    run_cases(kind, study, out, SerialExecutor(), progress=False)
+    run_cases(kind, study, out, SerialExecutor(), RunConfig(progress=False))
     return golden_frame(read_table(out))
 
 

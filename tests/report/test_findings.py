@@ -13,7 +13,7 @@ import pandas as pd
 import pytest
 
 from workbench.report.build import build_report
-from workbench.study import SerialExecutor, load_study, run_study
+from workbench.study import RunConfig, SerialExecutor, load_study, run_study
 
 STUDY = """
 [study]
@@ -53,7 +53,7 @@ sensitivity = ["robot.diameter"]
 def page(tmp_path_factory):
     d = tmp_path_factory.mktemp("findings")
     (d / "s.toml").write_text(STUDY)
-    run_study(load_study(d / "s.toml"), d / "out", SerialExecutor(), progress=False)
+    run_study(load_study(d / "s.toml"), d / "out", SerialExecutor(), RunConfig(progress=False))
     path = build_report(d / "out", d / "rep")
     return path.read_text(encoding="utf-8"), pd.read_csv(d / "rep" / "summary.csv")
 

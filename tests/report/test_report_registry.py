@@ -22,7 +22,8 @@ from workbench.report.style import _FALLBACK
 
 
 def test_labels_and_colours_are_the_registry_rows():
-    for name, info in registry.MODELS.items():
+    for name, info in [*registry.MODELS.items(), *registry.LABELS.items()]:
+        assert registry.row_info(name) is info
         assert model_label(name) == info.label
         if info.color is not None:
             assert model_color(name, ["x", name]) == info.color

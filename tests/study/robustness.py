@@ -347,8 +347,8 @@ def _env():
 
 
 def _run_args(study: Path, out: Path, *extra: str, executor: str = "--in-process") -> list[str]:
-    return [sys.executable, "-m", "workbench", "run", str(study), "--out", str(out), executor, "--no-report",
-            "--progress", "off", "--model-lookup", "study_fakes:lookup_spin_20ms", *extra]
+    return [sys.executable, str(HERE / "fake_workbench.py"), "study_fakes:lookup_spin_20ms", "run", str(study),
+            "--out", str(out), executor, "--no-report", "--progress", "off", *extra]
 
 
 def _table(folder: Path):

@@ -46,9 +46,8 @@ def env(**extra: str) -> dict[str, str]:
 
 def cli_args(study_path: Path, out: Path, *extra: str, lookup: str = "study_fakes:lookup_spin_20ms",
              in_process: bool = True) -> list[str]:
-    return [sys.executable, "-m", "workbench", "run", str(study_path), "--out", str(out),
-            *(["--in-process"] if in_process else []), "--no-report", "--progress", "off",
-            "--model-lookup", lookup, "--flush-rows", "4", *extra]
+    return [sys.executable, str(HERE / "fake_workbench.py"), lookup, "run", str(study_path), "--out", str(out),
+            *(["--in-process"] if in_process else []), "--no-report", "--progress", "off", "--flush-rows", "4", *extra]
 
 
 def canon(df: pd.DataFrame) -> pd.DataFrame:

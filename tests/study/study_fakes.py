@@ -23,6 +23,8 @@ import time
 import numpy as np
 
 from workbench.models.result import PhysicsResult, SolverInfo
+from workbench.study.evaluate import iter_case_rows
+from workbench.study.kinds import SweepKind
 
 RAISE, NAN, EXIT, NOCONV, HANG, HOG = 13.0, 7.0, 66.0, 5.0, 99.0, 98.0
 
@@ -116,6 +118,16 @@ def lookup_spin_20ms(name):
     return arc_spin_20ms
 
 
+def arc_sleep_1s(robot, load, options):
+    """The fake arc after a 1 s sleep (a slow model for the progress timer)."""
+    time.sleep(1.0)
+    return _arc(robot, load, options)
+
+
+def lookup_sleep_1s(name):
+    return arc_sleep_1s
+
+
 def fake_arc_actuation(robot, kappa, phi, mode, pretension=0.0):
     """Stand-in for workbench.models.cc.actuation_from_arc: T0 = kappa EI / d (planar)."""
     from workbench.robot import TendonActuation
@@ -187,3 +199,31 @@ def sleepy(x):
     yield x
     time.sleep(x)
     yield -x
+
+
+# -- the fake models on the real pipeline: a sweep kind whose task uses a lookup of this module ------------
+
+
+def fake_sweep_rows(payload):
+    """:func:`workbench.study.evaluate.evaluate_rows` with the payload's ``lookup``."""
+    case_id, params, models, lookup = payload
+    return iter_case_rows(case_id, params, models, lookup)
+
+
+class FakeSweepKind(SweepKind):
+    """The sweep kind with its models looked up by ``lookup`` (a module-level function, so the payload
+    pickles to worker processes); the tests' way to run the real runner and executors on fake models."""
+
+    task = staticmethod(fake_sweep_rows)
+
+    def __init__(self, lookup):
+        self.lookup = lookup
+
+    def payload(self, spec, case, models):
+        return case.case_id, case.params, tuple(models), self.lookup
+
+
+
+def sweep_kind(lookup=None) -> FakeSweepKind:
+    """The sweep kind on the models of ``lookup`` (default :func:`lookup`: every model is the fake arc)."""
+    return FakeSweepKind(lookup or globals()["lookup"])

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 import study_fakes as fakes
-from workbench.study import SerialExecutor, build_load, build_robot, expand, load_study, read_table, run_study
+from workbench.study import (RunConfig, SerialExecutor, build_load, build_robot, expand, load_study, read_table,
+                             run_cases)
 from workbench.study.build import gravity_from_parameter, resolve_robot
 from workbench.study.params import section_params
 
@@ -41,7 +42,7 @@ def test_a_stored_row_rebuilds_the_robot_and_load_that_ran(tmp_path, write_study
             return fakes.arc(robot, load, options)
         return run
 
-    run_study(study, tmp_path / "out", SerialExecutor(), model_lookup=lookup, progress=False)
+    run_cases(fakes.sweep_kind(lookup), study, tmp_path / "out", SerialExecutor(), RunConfig(progress=False))
     df = read_table(tmp_path / "out")
     assert len(df) == 12 and len(ran) == 12 and (df["status"] == "ok").all()
     # case ids are still the hashes of the parameters as configured
@@ -103,7 +104,7 @@ def test_a_stored_row_records_the_load_a_scenario_made(tmp_path):
             return fakes.arc(robot, load, options)
         return run
 
-    run_study(study, tmp_path / "out", SerialExecutor(), model_lookup=lookup, progress=False)
+    run_cases(fakes.sweep_kind(lookup), study, tmp_path / "out", SerialExecutor(), RunConfig(progress=False))
     df = read_table(tmp_path / "out").sort_values("p.scenario.delay")
     assert set(df["case_id"]) == {c.case_id for c in expand(study)}
     # the scenario's fields, not the configured [load] (duration 8.0, no length changes)

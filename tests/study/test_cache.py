@@ -8,7 +8,7 @@ import pandas as pd
 from runs_util import same_table
 from study_fakes import GOOD
 from workbench.cli import main
-from workbench.study import SerialExecutor, load_study, read_manifest, run_study
+from workbench.study import RunConfig, SerialExecutor, load_study, read_manifest, run_study
 from workbench.study import cache as cache_mod
 from workbench.study.cache import ResultCache, code_version
 
@@ -21,10 +21,11 @@ def _study(write_study, tensions, models='"cc"'):
 
 def test_an_added_sweep_value_computes_only_the_new_case(tmp_path, write_study):
     cache = tmp_path / "_cache"
-    first = run_study(_study(write_study, [1.0, 2.0]), tmp_path / "a", SerialExecutor(), progress=False, cache=cache)
+    first = run_study(_study(write_study, [1.0, 2.0]), tmp_path / "a", SerialExecutor(),
+                      RunConfig(progress=False, cache=cache))
     assert first.n_cached == 0 and read_manifest(tmp_path / "a")["runs"][0]["cache"]["writes"] == 2
-    second = run_study(_study(write_study, [1.0, 2.0, 3.0]), tmp_path / "b", SerialExecutor(), progress=False,
-                       cache=cache)
+    second = run_study(_study(write_study, [1.0, 2.0, 3.0]), tmp_path / "b", SerialExecutor(),
+                       RunConfig(progress=False, cache=cache))
     rec = read_manifest(tmp_path / "b")["runs"][0]["cache"]
     assert second.n_cached == 2 and rec == {"folder": str(cache), "hits": 2, "writes": 1}  # one case computed
     assert first.n_computed == 2 and second.n_computed == 1 and second.n_run == 3
@@ -32,15 +33,15 @@ def test_an_added_sweep_value_computes_only_the_new_case(tmp_path, write_study):
     old = b[b["case_id"].isin(a["case_id"])]
     assert same_table(old, a) and old.sort_values("case_id")["wall_time"].tolist() == \
         a.sort_values("case_id")["wall_time"].tolist()  # the very rows, wall time included
-    ref = run_study(_study(write_study, [1.0, 2.0, 3.0]), tmp_path / "ref", SerialExecutor(), progress=False)
+    ref = run_study(_study(write_study, [1.0, 2.0, 3.0]), tmp_path / "ref", SerialExecutor(), RunConfig(progress=False))
     assert ref.n_cached == 0 and same_table(b, pd.read_parquet(tmp_path / "ref"))  # same table as without cache
 
 
 def test_an_added_model_computes_only_that_model(tmp_path, write_study):
     cache = tmp_path / "_cache"
-    run_study(_study(write_study, [1.0]), tmp_path / "a", SerialExecutor(), progress=False, cache=cache)
+    run_study(_study(write_study, [1.0]), tmp_path / "a", SerialExecutor(), RunConfig(progress=False, cache=cache))
     s = run_study(_study(write_study, [1.0], models='"cc", "ancf"'), tmp_path / "b", SerialExecutor(),
-                  progress=False, cache=cache)
+                  RunConfig(progress=False, cache=cache))
     assert s.n_cached == 1 and read_manifest(tmp_path / "b")["runs"][0]["cache"]["writes"] == 1
     assert s.n_computed == 1  # the case is submitted for its new model
     assert set(pd.read_parquet(tmp_path / "b")["model"]) == {"cc", "ancf"} and s.n_ok == 1
@@ -77,14 +78,14 @@ def test_cli_caches_next_to_the_output_folder(tmp_path, write_study, capsys):
 def test_retry_failed_recomputes_a_cached_model_failure(tmp_path, write_study):
     cache = tmp_path / "_cache"
     study = _study(write_study, [1.0])
-    run_study(study, tmp_path / "a", SerialExecutor(), progress=False, cache=cache)
+    run_study(study, tmp_path / "a", SerialExecutor(), RunConfig(progress=False, cache=cache))
     c = ResultCache(cache)
     (cid,) = pd.read_parquet(tmp_path / "a")["case_id"].tolist()
     good = c.get(cid, "cc")
     c.put({**good, "status": "failed", "failure": "model", "error": "ModelFailure: planted"})  # as if it had failed
-    b = run_study(study, tmp_path / "b", SerialExecutor(), progress=False, cache=cache)
+    b = run_study(study, tmp_path / "b", SerialExecutor(), RunConfig(progress=False, cache=cache))
     assert b.n_failed == 1 and b.n_cached == 1 and b.n_computed == 0  # a model failure is a result: reused
-    again = run_study(study, tmp_path / "b", SerialExecutor(), progress=False, cache=cache, resume=True,
-                      retry_failed=True)
+    again = run_study(study, tmp_path / "b", SerialExecutor(),
+                      RunConfig(progress=False, cache=cache, resume=True, retry_failed=True))
     assert again.n_ok == 1 and again.n_failed == 0 and again.n_cached == 0 and again.n_computed == 1
     assert ResultCache(cache).get(cid, "cc")["status"] == "ok"  # the recomputed row replaced the failure

@@ -26,3 +26,15 @@ def test_committed_study_validates(path, capsys):
     out, err = capsys.readouterr()
     assert rc == 0, err
     assert "ok: study" in out, out
+
+
+@pytest.mark.parametrize("path", STUDIES, ids=[p.stem for p in STUDIES])
+def test_committed_study_validates_with_an_override(path, capsys):
+    """``solver.n_elements=8`` applies to every committed study, or ``validate`` says in one line why not."""
+    rc = main(["validate", str(path), "solver.n_elements=8"])
+    out, err = capsys.readouterr()
+    assert "Traceback" not in out + err
+    if rc == 0:
+        assert "(with 1 override(s): solver.n_elements=8)" in out, out
+    else:
+        assert rc == 2 and len(err.strip().splitlines()) == 1 and "n_elements" in err, err

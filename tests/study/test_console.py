@@ -32,9 +32,3 @@ def test_never_imports_exudyn():
     env = {**os.environ, "PYTHONPATH": os.pathsep.join([root, os.environ.get("PYTHONPATH", "")])}
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env)
     assert out.stdout.strip() == "False"
-
-
-def test_the_old_private_name_in_evaluate_is_the_same_function():
-    from workbench.study import evaluate
-
-    assert evaluate._quiet_exudyn_if_loaded is quiet_if_loaded

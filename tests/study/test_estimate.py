@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from workbench.study import SerialExecutor, load_study, read_table, run_study
+from workbench.study import RunConfig, SerialExecutor, load_study, read_table, run_study
 from workbench.study.estimate import EXEMPT_STATUS
 
 STUDY = """
@@ -32,7 +32,7 @@ def _run(tmp_path, extra=""):
     tmp_path.mkdir(parents=True, exist_ok=True)
     p = tmp_path / "est.toml"
     p.write_text(STUDY.format(extra=extra))
-    run_study(load_study(p), tmp_path / "out", SerialExecutor(), progress=False)
+    run_study(load_study(p), tmp_path / "out", SerialExecutor(), RunConfig(progress=False))
     return {r["model"]: r for _, r in read_table(tmp_path / "out").iterrows()}
 
 

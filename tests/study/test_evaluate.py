@@ -83,12 +83,14 @@ def test_build_failure_fails_every_model(write_study):
     assert "building the case failed" in rows[0]["error"] and "poisson_ratio" in rows[0]["error"]
 
 
-def test_bend_angle_goes_through_arc_actuation(write_study):
+def test_bend_angle_goes_through_arc_actuation(write_study, monkeypatch):
+    import workbench.models.cc
     from study_fakes import GOOD
 
+    monkeypatch.setattr(workbench.models.cc, "actuation_from_arc", fakes.fake_arc_actuation)
     base = GOOD.replace("tensions = [1.0, 0.0]", "bend_angle = 1.2\nbend_plane = 0.0")
     case = _case(write_study, base=base)[0]
-    rows = evaluate_case(case.case_id, case.params, ("cc",), fakes.lookup, fakes.fake_arc_actuation)
+    rows = evaluate_case(case.case_id, case.params, ("cc",), fakes.lookup)
     r = rows[0]
     assert r["status"] == "ok"
     # fake actuation realises kappa = 1.2 / L exactly with the fake arc model

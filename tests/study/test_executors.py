@@ -15,7 +15,7 @@ import pandas as pd
 import pytest
 
 import study_fakes as fakes
-from workbench.study import DaskExecutor, IsolatedExecutor, SerialExecutor, load_study, run_study
+from workbench.study import DaskExecutor, IsolatedExecutor, RunConfig, SerialExecutor, load_study, run_cases
 from workbench.study.outcomes import CaseLimits, ExecutorStartError
 
 HERE = Path(__file__).parent
@@ -62,15 +62,16 @@ def _check(folder, with_exit=True):
 
 
 def test_serial_in_process_isolates_exceptions(tmp_path, write_study):
-    s = run_study(_study(write_study, with_exit=False), tmp_path / "o", SerialExecutor(),
-                  model_lookup=fakes.lookup, progress=False)
+    s = run_cases(fakes.sweep_kind(fakes.lookup),
+                  _study(write_study, with_exit=False), tmp_path / "o", SerialExecutor(),
+                  RunConfig(progress=False))
     assert s.exit_code == 1 and s.n_failed == 3 and s.n_ok == 6
     _check(tmp_path / "o", with_exit=False)
 
 
 def test_serial_isolated_survives_os_exit(tmp_path, write_study):
-    s = run_study(_study(write_study), tmp_path / "o", IsolatedExecutor(), model_lookup=fakes.lookup,
-                  progress=False)
+    s = run_cases(fakes.sweep_kind(fakes.lookup), _study(write_study), tmp_path / "o", IsolatedExecutor(),
+                  RunConfig(progress=False))
     assert s.exit_code == 1 and s.n_failed == 4 and s.n_ok == 6
     df = _check(tmp_path / "o")
     crashed = df[df["t0"] == fakes.EXIT].set_index("model")["error"]
@@ -82,7 +83,8 @@ def test_serial_isolated_survives_os_exit(tmp_path, write_study):
 def test_a_crashing_model_keeps_the_other_models_rows(tmp_path, write_study):
     """ancf kills its process in every case: cc's rows (computed first, streamed) are all kept."""
     study = _study(write_study, tensions=[1.0, 2.0, 3.0])
-    s = run_study(study, tmp_path / "o", IsolatedExecutor(), model_lookup=fakes.lookup_ancf_exits, progress=False)
+    s = run_cases(fakes.sweep_kind(fakes.lookup_ancf_exits), study, tmp_path / "o", IsolatedExecutor(),
+                  RunConfig(progress=False))
     df = pd.read_parquet(tmp_path / "o").set_index(["model"])
     assert s.n_failed == 3 and len(df) == 6
     assert (df.loc["cc", "status"] == "ok").all() and df.loc["cc", "tip_x"].notna().all()
@@ -104,8 +106,8 @@ def test_a_hanging_case_is_stopped_by_the_time_limit(tmp_path, write_study, exec
     ex = {"serial": SerialExecutor, "isolated": IsolatedExecutor}.get(executor)
     ex = ex() if ex else DaskExecutor(scheduler=request.getfixturevalue("dask_scheduler"))
     study = _study(write_study, tensions=[1.0, fakes.HANG, 2.0])
-    s = run_study(study, tmp_path / "o", ex, model_lookup=fakes.lookup, progress=False,
-                  limits=CaseLimits(seconds=2.0), batch_size=3)
+    s = run_cases(fakes.sweep_kind(fakes.lookup), study, tmp_path / "o", ex,
+                  RunConfig(progress=False, limits=CaseLimits(seconds=2.0), batch_size=3))
     df = pd.read_parquet(tmp_path / "o")
     df["t0"] = _t0(df)
     hung = df[df["t0"] == fakes.HANG]
@@ -117,8 +119,8 @@ def test_a_hanging_case_is_stopped_by_the_time_limit(tmp_path, write_study, exec
 
 def test_a_case_over_the_memory_cap_fails_with_memory(tmp_path, write_study):
     study = _study(write_study, tensions=[1.0, fakes.HOG])
-    s = run_study(study, tmp_path / "o", IsolatedExecutor(), model_lookup=fakes.lookup, progress=False,
-                  limits=CaseLimits(memory=4 * 2**30))
+    s = run_cases(fakes.sweep_kind(fakes.lookup), study, tmp_path / "o", IsolatedExecutor(),
+                  RunConfig(progress=False, limits=CaseLimits(memory=4 * 2**30)))
     df = pd.read_parquet(tmp_path / "o")
     df["t0"] = _t0(df)
     hog = df[df["t0"] == fakes.HOG]
@@ -142,8 +144,9 @@ def dask_scheduler():
 
 
 def test_dask_isolates_failures_and_os_exit(tmp_path, write_study, dask_scheduler):
-    s = run_study(_study(write_study), tmp_path / "o", DaskExecutor(scheduler=dask_scheduler),
-                  model_lookup=fakes.lookup, progress=False)
+    s = run_cases(fakes.sweep_kind(fakes.lookup),
+                  _study(write_study), tmp_path / "o", DaskExecutor(scheduler=dask_scheduler),
+                  RunConfig(progress=False))
     assert s.exit_code == 1 and s.n_failed == 4 and s.n_ok == 6
     df = _check(tmp_path / "o")
     crashed = df[df["t0"] == fakes.EXIT]["error"]
@@ -152,9 +155,9 @@ def test_dask_isolates_failures_and_os_exit(tmp_path, write_study, dask_schedule
 
 def test_dask_matches_serial_table(tmp_path, write_study, dask_scheduler):
     study = _study(write_study, with_exit=False)
-    run_study(study, tmp_path / "a", SerialExecutor(), model_lookup=fakes.lookup, progress=False)
-    run_study(study, tmp_path / "b", DaskExecutor(scheduler=dask_scheduler), model_lookup=fakes.lookup,
-              progress=False)
+    run_cases(fakes.sweep_kind(fakes.lookup), study, tmp_path / "a", SerialExecutor(), RunConfig(progress=False))
+    run_cases(fakes.sweep_kind(fakes.lookup), study, tmp_path / "b", DaskExecutor(scheduler=dask_scheduler),
+              RunConfig(progress=False))
     a = pd.read_parquet(tmp_path / "a").drop(columns="wall_time").sort_values(["case_id", "model"])
     b = pd.read_parquet(tmp_path / "b").drop(columns="wall_time").sort_values(["case_id", "model"])
     assert a.reset_index(drop=True).map(repr).equals(b.reset_index(drop=True).map(repr))
@@ -184,8 +187,8 @@ def test_cli_local_cluster_with_os_exit(tmp_path, write_study):
     study = _study(write_study)
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), str(HERE)]))
     out = tmp_path / "o"
-    r = subprocess.run([sys.executable, "-m", "workbench", "run", study.path, "--out", str(out), "--workers", "2",
-                        "--no-report", "--model-lookup", "study_fakes:lookup"], env=env, capture_output=True, text=True,
+    r = subprocess.run([sys.executable, str(HERE / "fake_workbench.py"), "study_fakes:lookup", "run", study.path,
+                        "--out", str(out), "--workers", "2", "--no-report"], env=env, capture_output=True, text=True,
                        timeout=300, cwd=tmp_path)
     assert r.returncode == 1, r.stderr
     _check(out)
@@ -199,10 +202,10 @@ def test_a_lost_dask_worker_is_retried_by_dask_with_identical_results(tmp_path, 
     """The 2 N case kills its Dask worker once: Dask reruns the task on a new worker (allowed-failures 1)."""
     monkeypatch.setenv("WB_KILL_ONCE", str(tmp_path / "killed-once"))
     study = _study(write_study, tensions=[1.0, 2.0, 3.0])
-    s = run_study(study, tmp_path / "o", DaskExecutor(n_workers=2), model_lookup=fakes.lookup_kills_worker_once,
-                  progress=False, batch_size=1)
+    s = run_cases(fakes.sweep_kind(fakes.lookup_kills_worker_once), study, tmp_path / "o", DaskExecutor(n_workers=2),
+                  RunConfig(progress=False, batch_size=1))
     assert (tmp_path / "killed-once").exists() and s.n_ok == 3 and s.exit_code == 0
-    run_study(study, tmp_path / "ref", SerialExecutor(), model_lookup=fakes.lookup, progress=False)
+    run_cases(fakes.sweep_kind(fakes.lookup), study, tmp_path / "ref", SerialExecutor(), RunConfig(progress=False))
     from runs_util import same_table
 
     assert same_table(pd.read_parquet(tmp_path / "o"), pd.read_parquet(tmp_path / "ref"))
@@ -211,8 +214,8 @@ def test_a_lost_dask_worker_is_retried_by_dask_with_identical_results(tmp_path, 
 @pytest.mark.slow
 def test_a_case_that_keeps_killing_workers_is_stored_lost_and_exits_3(tmp_path, write_study):
     study = _study(write_study, tensions=[1.0, 2.0, 3.0])
-    s = run_study(study, tmp_path / "o", DaskExecutor(n_workers=2), model_lookup=fakes.lookup_kills_worker_always,
-                  progress=False, batch_size=1)
+    s = run_cases(fakes.sweep_kind(fakes.lookup_kills_worker_always), study, tmp_path / "o", DaskExecutor(n_workers=2),
+                  RunConfig(progress=False, batch_size=1))
     df = pd.read_parquet(tmp_path / "o")
     lost = df[df["status"] != "ok"]
     assert s.n_ok == 2 and s.exit_code == 3 and len(lost) == 2 and (lost["failure"] == "lost").all()
@@ -229,9 +232,8 @@ def test_a_cluster_without_workers_is_an_infrastructure_error(tmp_path, write_st
                            silence_logs=logging.CRITICAL)
     try:
         with pytest.raises(InfrastructureError, match="has had no workers for 2 s"):
-            run_study(_study(write_study, tensions=[1.0]), tmp_path / "o",
-                      DaskExecutor(scheduler=cluster.scheduler_address, lost_timeout=2.0), model_lookup=fakes.lookup,
-                      progress=False)
+            run_cases(fakes.sweep_kind(fakes.lookup), _study(write_study, tensions=[1.0]), tmp_path / "o",
+                      DaskExecutor(scheduler=cluster.scheduler_address, lost_timeout=2.0), RunConfig(progress=False))
     finally:
         cluster.close()
     assert (tmp_path / "o" / "_manifest.json").exists()  # the run was recorded (and can be resumed)
@@ -242,15 +244,15 @@ def test_crash_inside_a_batch_is_blamed_on_its_case(tmp_path, write_study, kind,
     """Units grouped 4 per task: only the crashing case fails."""
     ex = IsolatedExecutor() if kind == "isolated" else DaskExecutor(
         scheduler=request.getfixturevalue("dask_scheduler"))
-    s = run_study(_study(write_study), tmp_path / "o", ex, model_lookup=fakes.lookup, progress=False,
-                  batch_size=4)
+    s = run_cases(fakes.sweep_kind(fakes.lookup), _study(write_study), tmp_path / "o", ex,
+                  RunConfig(progress=False, batch_size=4))
     assert s.n_failed == 4 and s.n_ok == 6
     _check(tmp_path / "o")
 
 
 def test_progress_bar_counts(tmp_path, write_study, capsys):
-    run_study(_study(write_study, with_exit=False), tmp_path / "o", SerialExecutor(), model_lookup=fakes.lookup,
-              progress=True, batch_size=1)
+    run_cases(fakes.sweep_kind(fakes.lookup), _study(write_study, with_exit=False), tmp_path / "o", SerialExecutor(),
+              RunConfig(progress=True, batch_size=1))
     err = capsys.readouterr().err
     assert "9/9" in err and "ok=6 failed=3" in err
 
@@ -258,10 +260,10 @@ def test_progress_bar_counts(tmp_path, write_study, capsys):
 def test_adaptive_dask_chunks_run_every_case_once_with_the_serial_results(tmp_path, write_study, dask_scheduler):
     """40 cases, chunks re-sized after every task (a tiny target time per task): nothing lost or run twice."""
     study = _study(write_study, tensions=[1.0 + 0.1 * k for k in range(40)])
-    run_study(study, tmp_path / "a", SerialExecutor(), model_lookup=fakes.lookup, progress=False)
+    run_cases(fakes.sweep_kind(fakes.lookup), study, tmp_path / "a", SerialExecutor(), RunConfig(progress=False))
     ex = DaskExecutor(scheduler=dask_scheduler)
     ex.task_seconds = 0.003
-    s = run_study(study, tmp_path / "b", ex, model_lookup=fakes.lookup, progress=False)
+    s = run_cases(fakes.sweep_kind(fakes.lookup), study, tmp_path / "b", ex, RunConfig(progress=False))
     b = pd.read_parquet(tmp_path / "b")
     assert s.n_ok == 40 and len(b) == 80 and not b.duplicated(["case_id", "model"]).any()
     from runs_util import same_table
@@ -273,8 +275,8 @@ def test_adaptive_dask_chunks_run_every_case_once_with_the_serial_results(tmp_pa
 def test_a_lost_chunk_is_retried_unit_by_unit_so_only_the_killer_is_lost(tmp_path, write_study):
     """The 2 N case kills every worker that runs it: its chunk of 3 is rerun one case per task."""
     study = _study(write_study, tensions=[1.0, 2.0, 3.0])
-    s = run_study(study, tmp_path / "o", DaskExecutor(n_workers=2), model_lookup=fakes.lookup_kills_worker_always,
-                  progress=False, batch_size=3)
+    s = run_cases(fakes.sweep_kind(fakes.lookup_kills_worker_always), study, tmp_path / "o", DaskExecutor(n_workers=2),
+                  RunConfig(progress=False, batch_size=3))
     df = pd.read_parquet(tmp_path / "o")
     df["t0"] = _t0(df)
     assert s.n_ok == 2 and s.exit_code == 3

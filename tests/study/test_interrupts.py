@@ -13,7 +13,7 @@ import pytest
 
 import study_fakes as fakes
 from runs_util import KILL_STUDY, cli_args, env, parts, same_table
-from workbench.study import SerialExecutor, expand, load_study, read_manifest, run_study
+from workbench.study import RunConfig, SerialExecutor, expand, load_study, read_manifest, run_cases
 from workbench.study.session import RunSession
 
 
@@ -23,7 +23,8 @@ def reference(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("ref")
     study = tmp / "killme.toml"
     study.write_text(KILL_STUDY)
-    run_study(load_study(study), tmp / "ref", SerialExecutor(), model_lookup=fakes.lookup, progress=False)
+    run_cases(fakes.sweep_kind(fakes.lookup), load_study(study), tmp / "ref", SerialExecutor(),
+              RunConfig(progress=False))
     return pd.read_parquet(tmp / "ref")
 
 
@@ -106,8 +107,8 @@ def test_rows_are_flushed_on_a_timer(tmp_path, write_study):
     """A finished case waits at most flush_seconds in memory, even when no further case finishes."""
     study = load_study(write_study())
     cases = expand(study)
-    session = RunSession.open(tmp_path / "o", study, cases, ({} for _ in cases), "test", models=("cc",),
-                              progress=False, flush_rows=1000, flush_seconds=0.3)
+    session = RunSession.open(tmp_path / "o", study, cases, ({} for _ in cases), "test",
+                              RunConfig(progress=False, flush_rows=1000, flush_seconds=0.3), models=("cc",))
     with session:
         session.record(cases[0].case_id, [{"case_id": cases[0].case_id, "model": "cc", "status": "ok",
                                            "error": "", "wall_time": 0.0}])

@@ -7,7 +7,7 @@ import pytest
 
 import study_fakes as fakes
 from workbench import registry
-from workbench.study import SWEEP, SerialExecutor, get_kind, kind_of, load_study, read_manifest, run_cases, run_study
+from workbench.study import RunConfig, SWEEP, SerialExecutor, get_kind, kind_of, load_study, read_manifest, run_cases
 
 SP_TINY = """
 [study]
@@ -48,12 +48,17 @@ def test_get_kind_resolves_the_registry():
         get_kind("nope")
 
 
-def test_every_kind_has_the_protocol():
-    for name in registry.KINDS:
-        k = get_kind(name)
-        assert k.name == name and k.flush_rows > 0 and callable(k.task)
-        for attr in ("load", "expand", "models", "recorded_params", "run_options", "batch_size", "payload"):
-            assert callable(getattr(k, attr)), (name, attr)
+def test_a_kind_missing_a_method_cannot_be_made():
+    from workbench.study import StudyKind
+
+    class Partial(StudyKind):
+        name = "partial"
+
+        def load(self, path, max_cases=None, overrides=()):
+            return None
+
+    with pytest.raises(TypeError, match="abstract"):
+        Partial()
 
 
 def test_sweep_batch_sizes():
@@ -65,26 +70,21 @@ def test_sweep_batch_sizes():
 
 def test_run_cases_sweep_equals_run_study(tmp_path, write_study):
     study = load_study(write_study('[sweep]\nproduct = { "load.tensions" = [[1.0, 0.0], [2.0, 0.0]] }\n'))
-    a = run_cases(SWEEP, study, tmp_path / "a", SerialExecutor(), model_lookup=fakes.lookup, progress=False)
-    b = run_study(study, tmp_path / "b", SerialExecutor(), model_lookup=fakes.lookup, progress=False)
+    a = run_cases(fakes.sweep_kind(fakes.lookup), study, tmp_path / "a", SerialExecutor(), RunConfig(progress=False))
+    b = run_cases(fakes.sweep_kind(fakes.lookup), study, tmp_path / "b", SerialExecutor(), RunConfig(progress=False))
     assert (a.n_cases, a.n_ok, a.n_failed) == (b.n_cases, b.n_ok, b.n_failed) == (2, 2, 0)
     ta = pd.read_parquet(tmp_path / "a").drop(columns="wall_time").sort_values(["case_id", "model"])
     tb = pd.read_parquet(tmp_path / "b").drop(columns="wall_time").sort_values(["case_id", "model"])
     assert ta.reset_index(drop=True).equals(tb.reset_index(drop=True))
 
 
-def test_series_parallel_kind_refuses_the_sweep_hooks(tmp_path):
-    from workbench.study import StudyError
-
+def test_series_parallel_kind_loads_and_expands(tmp_path):
     p = tmp_path / "sp.toml"
     p.write_text(SP_TINY)
     kind = get_kind(kind_of(p))
     spec = kind.load(p)
     assert kind.models(spec) == ("target", "series_parallel", "cc_fit")
     assert len(kind.expand(spec)) == 2 and kind.batch_size(2, 4) == 1
-    with pytest.raises(StudyError, match="do not apply to a series_parallel motion study"):
-        run_cases(kind, spec, tmp_path / "out", model_lookup=fakes.lookup)
-    assert not (tmp_path / "out").exists()  # refused before anything is written
 
 
 def test_crashed_series_parallel_case_gets_one_failed_row_per_model(tmp_path):
@@ -100,7 +100,7 @@ def test_crashed_series_parallel_case_gets_one_failed_row_per_model(tmp_path):
     p = tmp_path / "sp.toml"
     p.write_text(SP_TINY)
     kind = get_kind("series_parallel")
-    summary = run_cases(kind, kind.load(p), tmp_path / "out", Crashing(), progress=False)
+    summary = run_cases(kind, kind.load(p), tmp_path / "out", Crashing(), RunConfig(progress=False))
     df = pd.read_parquet(tmp_path / "out")
     assert summary.n_failed == 2 and len(df) == 6
     assert set(df["model"]) == {"target", "series_parallel", "cc_fit"}

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from workbench.study import messages, spec
+from workbench.study import messages
 from workbench.study.messages import StudyError, check_robot_value, read_toml, suggest
 
 
@@ -43,11 +43,3 @@ def test_suggest_and_robot_value_typing():
     assert check_robot_value("length", -1.0, 0.8) == (-1.0, "must be > 0 [m], got -1")
     assert check_robot_value("tendon_count", 2.0, 3)[1] == "must be an integer, got float 2.0"
     assert check_robot_value("length", 1, 0.8) == (1.0, None)
-
-
-def test_old_private_names_of_the_spec_still_work():
-    assert spec._suggest is messages.suggest
-    assert spec._pydantic_problems is messages.pydantic_problems
-    assert spec._translate is messages.translate
-    assert spec.check_robot_value is messages.check_robot_value
-    assert spec.StudyError is messages.StudyError

@@ -12,7 +12,7 @@ import pytest
 
 import study_fakes as fakes
 from workbench import results
-from workbench.study import SerialExecutor, load_study, run_study
+from workbench.study import RunConfig, SerialExecutor, load_study, run_cases, run_study
 from workbench.study.store import SCHEMA_FILE
 
 
@@ -23,9 +23,10 @@ def static_folder(tmp_path_factory):
     p = tmp / "s.toml"
     p.write_text(fakes.GOOD + '\n[sweep]\nproduct = { "load.tensions" = [[1.0, 0.0], [2.0, 0.0], '
                               f'[{fakes.RAISE}, 0.0]], "robot.length" = [0.5, 0.8] }}\n')
-    run_study(load_study(p), tmp / "o", SerialExecutor(), progress=False,
-              model_lookup=lambda name: fakes.arc if name == "ancf" else __import__("workbench.models", fromlist=["x"])
-              .get_model(name))
+    from workbench.models import get_model
+
+    kind = fakes.sweep_kind(lambda name: fakes.arc if name == "ancf" else get_model(name))
+    run_cases(kind, load_study(p), tmp / "o", SerialExecutor(), RunConfig(progress=False))
     return tmp / "o"
 
 
@@ -37,7 +38,7 @@ def dynamic_folder(tmp_path_factory):
     p.write_text(fakes.GOOD.replace('models = ["cc", "ancf"]', 'models = ["cc"]').replace(
         'tensions = [1.0, 0.0]', 'tensions = [1.0, 0.0]\nanalysis = "dynamic"\nduration = 0.05\nramp_time = 0.02')
         + "time_step = 0.005\n")
-    run_study(load_study(p), tmp / "o", SerialExecutor(), progress=False)
+    run_study(load_study(p), tmp / "o", SerialExecutor(), RunConfig(progress=False))
     return tmp / "o"
 
 

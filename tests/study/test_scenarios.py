@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 from workbench.study import StudyError, expand, load_study
-from workbench.study.evaluate import build_load, build_robot, evaluate_case
+from workbench.study.build import build_load, build_robot
+from workbench.study.evaluate import evaluate_case
 from workbench.experiments.hannan_walker.scenario import hannan_walker_line
 from workbench.experiments.wire_delay.scenario import wire_delay
 from workbench.study.scenarios import SCENARIOS, load_with_scenario, scenario_parameters

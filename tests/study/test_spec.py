@@ -13,8 +13,8 @@ import pytest
 from workbench.cli import main
 from workbench.models.result import SolverOptions
 from workbench.study import StudyError, count_cases, load_study
-from workbench.study.schema import LIMIT_KEYS
-from workbench.study.spec import SolverSection
+from workbench.study.build import PipelineOptions, build_options, build_pipeline_options
+from workbench.study.schema import LIMIT_KEYS, SolverSection
 
 HERE = Path(__file__).parent
 BAD = sorted((HERE / "bad_configs").glob("*.toml"))
@@ -131,7 +131,7 @@ def test_cli_validate_bad_exit_2_no_traceback(capsys):
 def test_cli_run_bad_config_runs_nothing(tmp_path, capsys):
     out = tmp_path / "out"
     path = HERE / "bad_configs" / "nan_in_sweep_axis.toml"
-    rc = main(["run", str(path), "--out", str(out), "--in-process", "--model-lookup", "study_fakes:lookup"])
+    rc = main(["run", str(path), "--out", str(out), "--in-process"])
     assert rc == 2
     assert not out.exists()
     assert "must be finite" in capsys.readouterr().err
@@ -145,15 +145,21 @@ def test_cli_subprocess_exit_code_and_single_line():
     assert r.stderr.strip().splitlines() == [f"{path}: study.models[1]: unknown model 'ancff'; did you mean 'ancf'?"]
 
 
-def test_solver_section_mirrors_solver_options():
-    """[solver] = the SolverOptions fields + the per-case limits (which never reach the case parameters)."""
-    fields = {f.name: f.default for f in dataclasses.fields(SolverOptions)}
+def test_solver_section_mirrors_solver_and_pipeline_options():
+    """[solver] = the SolverOptions fields (``spring_link_backend``: the spring-link model's own setting)
+    + the PipelineOptions fields + the per-case limits (which never reach the case parameters)."""
+    fields = {f.name: f.default for f in dataclasses.fields(SolverOptions) if f.name != "model_settings"}
+    fields.update({f.name: f.default for f in dataclasses.fields(PipelineOptions)})
+    fields["spring_link_backend"] = "auto"  # SpringLinkParams.backend's default
     section = SolverSection()
     assert set(SolverSection.model_fields) == set(fields) | set(LIMIT_KEYS)
     # tuples are lists in the section; n_elements_by_model's (name, n) pairs are a table there
     assert section.model_dump(exclude=set(LIMIT_KEYS)) == {
         k: (dict(v) if k == "n_elements_by_model" else list(v)) if isinstance(v, tuple) else v
         for k, v in fields.items()}
+    options = build_options(section.model_dump(exclude=set(LIMIT_KEYS)))
+    assert options.settings("spring_link") == {"backend": "auto"} and options.settings("cc") == {}
+    assert build_pipeline_options({"n_elements_by_model": {"ancf": 32}}).for_model("ancf", options).n_elements == 32
 
 
 def test_good_study_and_defaults(write_study):

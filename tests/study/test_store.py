@@ -14,8 +14,8 @@ import pyarrow.parquet as pq
 import pytest
 
 import study_fakes as fakes
-from workbench.study import (ResultStore, SerialExecutor, StudyError, array_shapes, load_study,
-                             read_manifest, run_study)
+from workbench.study import (ResultStore, RunConfig, SerialExecutor, StudyError, array_shapes, load_study,
+                             read_manifest, run_cases)
 from workbench.study.store import SCHEMA_FILE
 
 from runs_util import KILL_STUDY
@@ -56,7 +56,7 @@ def test_schema_survives_failed_first_part(tmp_path):
 
 def test_manifest_and_example_run(tmp_path, write_study):
     study = load_study(write_study(SWEEP_STUDY.split("[sweep]")[0], base=""))
-    s = run_study(study, tmp_path / "out", SerialExecutor(), model_lookup=fakes.lookup, progress=False)
+    s = run_cases(fakes.sweep_kind(fakes.lookup), study, tmp_path / "out", SerialExecutor(), RunConfig(progress=False))
     assert (s.n_cases, s.n_ok, s.n_failed, s.exit_code) == (1, 1, 0, 0)
     man = read_manifest(tmp_path / "out")
     assert man["config_hash"] == study.config_hash
@@ -78,21 +78,20 @@ def test_rerun_without_resume_and_changed_config_refused(tmp_path, write_study):
     p = write_study(SWEEP_STUDY, base="")
     study = load_study(p)
     out = tmp_path / "out"
-    run_study(study, out, model_lookup=fakes.lookup, progress=False)
+    run_cases(fakes.sweep_kind(fakes.lookup), study, out, None, RunConfig(progress=False))
     with pytest.raises(StudyError, match="already holds results"):
-        run_study(study, out, model_lookup=fakes.lookup, progress=False)
+        run_cases(fakes.sweep_kind(fakes.lookup), study, out, None, RunConfig(progress=False))
     changed = load_study(write_study(SWEEP_STUDY.replace("n_stations = 5", "n_stations = 7"), base=""))
     with pytest.raises(StudyError, match="config hash"):
-        run_study(changed, out, resume=True, model_lookup=fakes.lookup, progress=False)
+        run_cases(fakes.sweep_kind(fakes.lookup), changed, out, None, RunConfig(resume=True, progress=False))
     # resuming a complete run runs nothing and keeps the table
-    s = run_study(study, out, resume=True, model_lookup=fakes.lookup, progress=False)
+    s = run_cases(fakes.sweep_kind(fakes.lookup), study, out, None, RunConfig(resume=True, progress=False))
     assert s.n_run == 0 and s.n_cases == 30 and s.n_failed == 5 and s.exit_code == 1
 
 
 def _cli(study_path: Path, out: Path, *extra: str) -> list[str]:
-    return [sys.executable, "-m", "workbench", "run", str(study_path), "--out", str(out), "--in-process",
-            "--no-report", "--progress", "off", "--model-lookup", "study_fakes:lookup_spin_20ms", "--flush-rows", "4",
-            *extra]
+    return [sys.executable, str(HERE / "fake_workbench.py"), "study_fakes:lookup_spin_20ms", "run", str(study_path),
+            "--out", str(out), "--in-process", "--no-report", "--progress", "off", "--flush-rows", "4", *extra]
 
 
 def _env() -> dict[str, str]:
@@ -105,7 +104,7 @@ def test_sigkill_mid_sweep_then_resume_equals_uninterrupted(tmp_path, write_stud
     study_path = write_study(SWEEP_STUDY, base="")
     study = load_study(study_path)
     ref = tmp_path / "ref"
-    run_study(study, ref, SerialExecutor(), model_lookup=fakes.lookup, progress=False)
+    run_cases(fakes.sweep_kind(fakes.lookup), study, ref, SerialExecutor(), RunConfig(progress=False))
 
     out = tmp_path / "killed"
     kills = 0

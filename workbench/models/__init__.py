@@ -30,9 +30,9 @@ class Model(Protocol):
     def __call__(self, robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult: ...
 
 
-# name -> "module:function" (the rows of workbench.registry.MODELS that are run models);
-# resolved on demand by get_model (no import work here).
-_MODEL_PATHS: dict[str, str] = {n: m.target for n, m in registry.MODELS.items() if m.target is not None}
+# name -> "module:function" (the rows of workbench.registry.MODELS); resolved on demand by get_model
+# (no import work here).
+_MODEL_PATHS: dict[str, str] = {n: m.target for n, m in registry.MODELS.items()}
 
 MODEL_NAMES: tuple[str, ...] = tuple(_MODEL_PATHS)
 

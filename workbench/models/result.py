@@ -6,7 +6,7 @@ Importing this module does not import Exudyn.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import Literal, Mapping
 
 import numpy as np
@@ -59,24 +59,14 @@ class SolverOptions:
         Model-specific viscous damping parameter (see each model's docstring).
     spectral_radius : float
         Generalised-alpha numerical damping (spectral radius at infinity), in [0, 1].
-    spring_link_backend : {"auto", "tree", "bodies"}
-        ``spring_link`` only: the Exudyn representation of the chain (``SpringLinkParams.backend``).
-        ``"auto"`` (default): the kinematic tree (minimal coordinates) for every inextensible
-        chain; ``"bodies"``: rigid bodies and joints, whose static Newton converges only linearly
-        under large joint reactions (dead loads, rope forces; ``docs/models.md``, "Spring-link").
-    error_estimate : {"richardson", "none"}
-        Study pipeline only (models ignore it): ``"richardson"`` re-solves every physics case at
-        1/2 and 1/4 of the resolution and records its discretisation-error estimate
-        (:mod:`workbench.models.discretization`); ``"none"`` turns that off.
-    n_elements_by_model : tuple of (str, int)
-        Study pipeline only: ``n_elements`` of the named models where it differs from
-        ``n_elements`` (``[solver] n_elements_by_model = { spring_link = 256 }``; a mapping is
-        accepted); :meth:`for_model` applies it.  Lets one case give an order-2 chain more links
-        than an order-4 beam needs elements.
-    error_estimate_exempt : tuple of str
-        Study pipeline only: models whose discretisation *is* the hardware (e.g. a spring-link
-        chain with one link per physical joint), so that coarsening them would change the robot,
-        not the mesh; they get no estimate.
+    model_settings : mapping of str to mapping
+        Settings of one model's own solver, by model name (a tuple of ``(name, ((key, value),
+        ...))`` pairs is accepted); the model reads its entry with :meth:`settings`, e.g.
+        ``{"spring_link": {"backend": "tree"}}`` (the study key ``[solver] spring_link_backend``,
+        :func:`workbench.study.build.build_options`).
+
+    The study pipeline's own ``[solver]`` keys (``error_estimate``, ``error_estimate_exempt``,
+    ``n_elements_by_model``) are not here: :class:`workbench.study.build.PipelineOptions`.
     """
 
     n_elements: int = 16
@@ -87,10 +77,7 @@ class SolverOptions:
     time_step: float = 2e-3
     damping: float = 0.0
     spectral_radius: float = 0.8
-    spring_link_backend: Literal["auto", "tree", "bodies"] = "auto"
-    error_estimate: Literal["richardson", "none"] = "richardson"
-    error_estimate_exempt: tuple[str, ...] = ()
-    n_elements_by_model: tuple[tuple[str, int], ...] = ()
+    model_settings: tuple[tuple[str, tuple[tuple[str, object], ...]], ...] = ()
 
     def __post_init__(self) -> None:
         for name in ("n_elements", "n_stations", "max_load_steps"):
@@ -109,23 +96,14 @@ class SolverOptions:
             raise ValueError(f"SolverOptions.damping must be finite and >= 0, got {self.damping}")
         if not (0.0 <= self.spectral_radius <= 1.0):
             raise ValueError(f"SolverOptions.spectral_radius must be in [0, 1], got {self.spectral_radius}")
-        if self.spring_link_backend not in ("auto", "tree", "bodies"):
-            raise ValueError("SolverOptions.spring_link_backend must be 'auto', 'tree' or 'bodies', "
-                             f"got {self.spring_link_backend!r}")
-        if self.error_estimate not in ("richardson", "none"):
-            raise ValueError(f"SolverOptions.error_estimate must be 'richardson' or 'none', got {self.error_estimate!r}")
-        object.__setattr__(self, "error_estimate_exempt", tuple(str(m) for m in self.error_estimate_exempt))
-        by = self.n_elements_by_model
-        pairs = tuple(sorted((str(k), v) for k, v in (by.items() if isinstance(by, Mapping) else by)))
-        for k, v in pairs:
-            if isinstance(v, bool) or int(v) != v or v < 1:
-                raise ValueError(f"SolverOptions.n_elements_by_model[{k!r}] must be an integer >= 1, got {v!r}")
-        object.__setattr__(self, "n_elements_by_model", tuple((k, int(v)) for k, v in pairs))
+        ms = self.model_settings
+        object.__setattr__(self, "model_settings", tuple(sorted(
+            (str(m), tuple(sorted((str(k), v) for k, v in (kv.items() if isinstance(kv, Mapping) else kv))))
+            for m, kv in (ms.items() if isinstance(ms, Mapping) else ms))))
 
-    def for_model(self, name: str) -> "SolverOptions":
-        """These options with ``n_elements`` of model ``name`` (``n_elements_by_model``, else unchanged)."""
-        n = dict(self.n_elements_by_model).get(str(name))
-        return self if n is None or n == self.n_elements else replace(self, n_elements=n)
+    def settings(self, model: str) -> dict[str, object]:
+        """The own settings of model ``model`` (``{}`` when none are given)."""
+        return dict(dict(self.model_settings).get(str(model), ()))
 
 
 @dataclass(frozen=True)

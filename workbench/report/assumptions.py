@@ -109,10 +109,10 @@ def _module_rows(study: ResultSet, section: str, target: str | None) -> list[Ass
 
 
 def _estimate_row(study: ResultSet) -> list[Assumption]:
-    models = [m for m in study.models if registry.MODELS.get(m) is not None and registry.MODELS[m].order]
+    models = [m for m in study.models if registry.row_info(m) is not None and registry.row_info(m).order]
     if not models or "x.disc_tip_error" not in study.results:
         return []
-    orders = ", ".join(f"{registry.MODELS[m].label} {fmt(registry.MODELS[m].order)}" for m in models)
+    orders = ", ".join(f"{registry.row_info(m).label} {fmt(registry.row_info(m).order)}" for m in models)
     return [Assumption("error bars", "Richardson, 1/2 and 1/4 resolution",
                        f"each physics case re-solved with half and a quarter of the elements / links (dynamics: "
                        f"2x and 4x the time step); error = |q_N - q_N/2| / (2^p - 1) with the declared order p "

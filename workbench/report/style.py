@@ -17,7 +17,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from ..compare.table import DERIVED_LABELS
-from ..registry import MODELS
+from ..registry import row_info
 from .load import ResultSet
 from .units import UNIT_DEPENDS_ON, label_of, unit_of
 
@@ -82,13 +82,13 @@ def point_links(ax, x, y, case_ids, models, tips) -> list[tuple[Any, float, floa
 
 
 def model_label(m: str) -> str:
-    """Display name of model ``m`` (``registry.MODELS`` label; unknown names as they are)."""
-    info = MODELS.get(m)
+    """Display name of model ``m`` (its registry label, :func:`~workbench.registry.row_info`; unknown names as they are)."""
+    info = row_info(m)
     return info.label if info is not None else m
 
 
 def _color_of(m: str) -> str | None:
-    info = MODELS.get(m)
+    info = row_info(m)
     return info.color if info is not None else None
 
 

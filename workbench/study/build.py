@@ -16,7 +16,8 @@ Checked by ``tests/study/test_evaluate.py`` (gamma -> gravity, loads) and
 from __future__ import annotations
 
 import math
-from typing import Any, Callable, Mapping
+from dataclasses import dataclass, replace
+from typing import Any, Mapping
 
 import numpy as np
 
@@ -24,7 +25,7 @@ from .params import canonical_json
 from .scenarios import load_with_scenario
 
 __all__ = ["gravity_from_parameter", "resolve_robot", "build_robot", "resolve_case", "parameters_as_run",
-           "build_load", "build_options"]
+           "build_load", "build_options", "build_pipeline_options", "PipelineOptions", "PIPELINE_KEYS"]
 
 
 def gravity_from_parameter(gamma: float, EI: float, mass_per_length: float, length: float) -> float:
@@ -124,26 +125,24 @@ def parameters_as_run(params: Mapping[str, Any], robot_cache: dict[str, Any] | N
         return dict(params)
 
 
-def build_load(robot, load: Mapping[str, Any], arc_actuation: Callable | None = None):
+def build_load(robot, load: Mapping[str, Any]):
     """LoadCase from the ``[load]`` parameters of one case.
 
     ``bend_angle`` (total angle per section, scalar or per section) and ``bend_plane`` become
     ``kappa_j = bend_angle_j / L_j`` and ``phi_j`` and are translated into tendon commands by
-    ``arc_actuation`` (default ``workbench.models.cc.actuation_from_arc``).
+    ``workbench.models.cc.actuation_from_arc``.
     """
-    from dataclasses import replace
-
     from ..robot import LoadCase, TendonActuation
 
     mode = load["mode"]
     act = None
     if load.get("bend_angle") is not None:
-        if arc_actuation is None:
-            from ..models.cc import actuation_from_arc as arc_actuation
+        from ..models.cc import actuation_from_arc
+
         ns = robot.n_sections
         kappa = np.broadcast_to(np.asarray(load["bend_angle"], float), (ns,)) / robot.section_lengths
         phi = np.broadcast_to(np.asarray(load.get("bend_plane", 0.0), float), (ns,)).copy()
-        act = arc_actuation(robot, kappa, phi, mode, pretension=load.get("pretension", 0.0))
+        act = actuation_from_arc(robot, kappa, phi, mode, pretension=load.get("pretension", 0.0))
     elif load.get("tensions") is not None:
         act = TendonActuation("tension", tuple(load["tensions"]), pretension=load.get("pretension", 0.0))
     elif load.get("length_changes") is not None:
@@ -164,8 +163,67 @@ def build_load(robot, load: Mapping[str, Any], arc_actuation: Callable | None = 
     )
 
 
+#: ``[solver]`` keys the study pipeline reads (:class:`PipelineOptions`), not the models
+PIPELINE_KEYS = ("error_estimate", "error_estimate_exempt", "n_elements_by_model")
+
+
 def build_options(solver: Mapping[str, Any]):
-    """:class:`~workbench.models.SolverOptions` from the ``[solver]`` parameters of one case."""
+    """:class:`~workbench.models.SolverOptions` from the ``[solver]`` parameters of one case.
+
+    The pipeline's keys (:data:`PIPELINE_KEYS`) are left out (:func:`build_pipeline_options`);
+    ``spring_link_backend`` becomes the spring-link model's own setting ``backend``
+    (``SolverOptions.model_settings``, read by ``workbench.physics.spring_link.run``).
+    """
     from ..models.result import SolverOptions
 
-    return SolverOptions(**solver)
+    fields = {k: v for k, v in solver.items() if k not in PIPELINE_KEYS and k != "spring_link_backend"}
+    if "spring_link_backend" in solver:
+        fields["model_settings"] = {"spring_link": {"backend": solver["spring_link_backend"]}}
+    return SolverOptions(**fields)
+
+
+@dataclass(frozen=True)
+class PipelineOptions:
+    """The ``[solver]`` settings the study pipeline applies around the models (the models never see them).
+
+    Attributes
+    ----------
+    error_estimate : {"richardson", "none"}
+        ``"richardson"`` re-solves every physics case at 1/2 and 1/4 of the resolution and records
+        its discretisation-error estimate (:mod:`workbench.study.estimate`); ``"none"`` turns that off.
+    error_estimate_exempt : tuple of str
+        Models whose discretisation *is* the hardware (e.g. a spring-link chain with one link per
+        physical joint), so that coarsening them would change the robot, not the mesh; they get
+        no estimate.
+    n_elements_by_model : tuple of (str, int)
+        ``n_elements`` of the named models where it differs from ``[solver] n_elements``
+        (``n_elements_by_model = { spring_link = 256 }``; a mapping is accepted); :meth:`for_model`
+        applies it.  Lets one case give an order-2 chain more links than an order-4 beam needs elements.
+
+    Checked by ``tests/study/test_evaluate.py`` and ``tests/study/test_estimate.py``.
+    """
+
+    error_estimate: str = "richardson"
+    error_estimate_exempt: tuple[str, ...] = ()
+    n_elements_by_model: tuple[tuple[str, int], ...] = ()
+
+    def __post_init__(self) -> None:
+        if self.error_estimate not in ("richardson", "none"):
+            raise ValueError(f"error_estimate must be 'richardson' or 'none', got {self.error_estimate!r}")
+        object.__setattr__(self, "error_estimate_exempt", tuple(str(m) for m in self.error_estimate_exempt))
+        by = self.n_elements_by_model
+        pairs = tuple(sorted((str(k), v) for k, v in (by.items() if isinstance(by, Mapping) else by)))
+        for k, v in pairs:
+            if isinstance(v, bool) or int(v) != v or v < 1:
+                raise ValueError(f"n_elements_by_model[{k!r}] must be an integer >= 1, got {v!r}")
+        object.__setattr__(self, "n_elements_by_model", tuple((k, int(v)) for k, v in pairs))
+
+    def for_model(self, name: str, options):
+        """``options`` (a SolverOptions) with ``n_elements`` of model ``name`` (``n_elements_by_model``, else unchanged)."""
+        n = dict(self.n_elements_by_model).get(str(name))
+        return options if n is None or n == options.n_elements else replace(options, n_elements=n)
+
+
+def build_pipeline_options(solver: Mapping[str, Any]) -> PipelineOptions:
+    """:class:`PipelineOptions` from the ``[solver]`` parameters of one case."""
+    return PipelineOptions(**{k: solver[k] for k in PIPELINE_KEYS if k in solver})

@@ -13,8 +13,7 @@ Only rows that are results are cached: ``ok`` rows and model failures (``failure
 raised, not converged, non-finite); crashes, timeouts, memory, killed and lost rows are not; a
 run with ``--retry-failed`` does not reuse cached model failures (it recomputes them).
 Entries are pickled row dicts, one file per ``<cache>/<model>/<version>/<case_id>.pkl``, written
-atomically (two runs may share a cache; the last writer of an identical row wins).  A run with a
-custom ``model_lookup`` or ``arc_actuation`` (tests) does not use the cache.  The CLI uses
+atomically (two runs may share a cache; the last writer of an identical row wins).  The CLI uses
 ``<parent of --out>/_cache`` (``--no-cache`` to turn it off); :func:`~workbench.study.runner.run_cases`
 only with ``cache=``.  Checked by ``tests/study/test_cache.py``.
 """
@@ -42,8 +41,8 @@ def _sources(model: str) -> list[Path]:
     from .. import registry
 
     info = registry.MODELS.get(model)
-    # the package of the model's code; rows of another study kind (no target): all of physics
-    parts = info.target.partition(":")[0].split(".")[1:2] if info is not None and info.target else ["physics"]
+    # the package of the model's code; rows of another study kind (registry.LABELS): all of physics
+    parts = info.target.partition(":")[0].split(".")[1:2] if info is not None else ["physics"]
     out: list[Path] = []
     for rel in [*parts, *_SHARED]:
         p = _ROOT / rel

@@ -51,9 +51,10 @@ def _order(name: str) -> float | None:
     return None if info is None else info.order
 
 
-def estimates_model(name: str, options) -> bool:
-    """True if rows of model ``name`` get an estimate under ``options`` (see the module docstring)."""
-    if name == "cc" or getattr(options, "error_estimate", "none") == "none":
+def estimates_model(name: str, pipeline) -> bool:
+    """True if rows of model ``name`` get an estimate under ``pipeline`` (a
+    :class:`~workbench.study.build.PipelineOptions`; see the module docstring)."""
+    if name == "cc" or pipeline.error_estimate == "none":
         return False
     return _order(name) is not None
 
@@ -63,13 +64,14 @@ EXEMPT_STATUS = "exempt: the discretisation is the robot's structure ([solver] e
 
 
 def discretization_columns(name: str, run: Callable, robot, load, options, result,
-                           reference: CCReference | None) -> dict[str, Any]:
-    """The ``x.disc_*`` and ``disc_status`` cells of one ok row (``{}`` when the model gets none)."""
+                           reference: CCReference | None, pipeline) -> dict[str, Any]:
+    """The ``x.disc_*`` and ``disc_status`` cells of one ok row (``{}`` when the model gets none);
+    ``pipeline``: the case's :class:`~workbench.study.build.PipelineOptions`."""
     from ..models.discretization import estimate_columns, estimate_discretization
 
-    if not estimates_model(name, options):
+    if not estimates_model(name, pipeline):
         return {}
-    if name in getattr(options, "error_estimate_exempt", ()):
+    if name in pipeline.error_estimate_exempt:
         return {"x.disc_tip_error": 0.0, "x.disc_order_observed": float("nan"), "x.disc_order": float("nan"),
                 "disc_status": EXEMPT_STATUS}
     ref = None

@@ -8,13 +8,10 @@ result-table row (:mod:`workbench.study.rows`).  :func:`iter_case_rows` yields t
 model at a time; :func:`evaluate_rows` is the task function of the sweep study kind
 (:data:`workbench.study.kinds.SWEEP`): the executors stream each row to the parent as soon as
 it exists, so a model that crashes the process does not take the finished models' rows with
-it.  Robots are memoised per process (:func:`_robot_memo`: they are frozen values).  Nothing here imports Exudyn; models
-are looked up (and imported) lazily through ``model_lookup`` (default
+it.  Robots are memoised per process (:data:`ROBOTS`, a bounded :class:`RobotMemo`: robots are
+frozen values; the sweep kind's recorded parameters use the same memo).  Nothing here imports
+Exudyn; models are looked up (and imported) lazily through ``model_lookup`` (default
 :func:`workbench.models.get_model`).
-
-``build_robot``, ``build_load``, ``build_options``, ``gravity_from_parameter``, ``failed_rows`` and
-``row_from_result`` are re-exported from their modules (deprecated here: import them from
-:mod:`workbench.study.build` and :mod:`workbench.study.rows`).
 
 Checked by ``tests/study/test_evaluate.py`` and ``tests/study/test_executors.py``.
 """
@@ -25,33 +22,13 @@ import time
 import traceback
 from typing import Any, Callable, Iterator, Mapping, Sequence
 
-from .build import build_load, build_options, build_robot, gravity_from_parameter, resolve_case
+from .build import build_load, build_options, build_pipeline_options, resolve_case
 from .estimate import CCReference, discretization_columns
 from .params import flatten_params
 from .rows import failed_rows, row_from_result
 
-__all__ = [
-    "build_robot",
-    "build_load",
-    "build_options",
-    "evaluate_case",
-    "evaluate_payload",
-    "evaluate_batch",
-    "evaluate_rows",
-    "iter_case_rows",
-    "failed_rows",
-    "row_from_result",
-    "gravity_from_parameter",
-]
-
-
-def __getattr__(name: str):
-    # the old private name of the console silencer (moved to workbench.models._console)
-    if name == "_quiet_exudyn_if_loaded":
-        from ..models import quiet_if_loaded
-
-        return quiet_if_loaded
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+__all__ = ["ROBOTS", "RobotMemo", "evaluate_batch", "evaluate_case", "evaluate_payload", "evaluate_rows",
+           "iter_case_rows"]
 
 
 def _reason(e: BaseException) -> str:
@@ -63,7 +40,6 @@ def _reason(e: BaseException) -> str:
 
 def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str],
                   model_lookup: Callable[[str], Callable] | None = None,
-                  arc_actuation: Callable | None = None,
                   robot_cache: dict[str, Any] | None = None) -> list[dict[str, Any]]:
     """Evaluate one case for every model; returns one row per model (never raises).
 
@@ -74,10 +50,8 @@ def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str]
         Resolved case parameters (see :class:`~workbench.study.expand.Case`).
     models : sequence of str
     model_lookup : callable, optional
-        ``name -> run(robot, load, options)``; default :func:`workbench.models.get_model`.
-        Must be picklable (a module-level function) when used with process executors.
-    arc_actuation : callable, optional
-        Replaces ``workbench.models.cc.actuation_from_arc`` (tests).
+        ``name -> run(robot, load, options)``; default :func:`workbench.models.get_model` (the
+        registry).  A caller's own models (tests: ``tests/study/study_fakes.py``).
     robot_cache : dict, optional
         Memo of built robots (and the parameters they were built with) keyed by their
         parameters (robots are frozen); default: this process's memo.
@@ -93,11 +67,15 @@ def evaluate_case(case_id: str, params: Mapping[str, Any], models: Sequence[str]
         ``p.load.*`` the load (a scenario's fields applied); ``case_id`` stays the hash of the
         parameters as configured.
     """
-    return list(iter_case_rows(case_id, params, models, model_lookup, arc_actuation, robot_cache))
+    return list(iter_case_rows(case_id, params, models, model_lookup, robot_cache))
 
 
-class _Memo(dict):
-    """A dict that forgets everything once it holds ``maxsize`` entries (bounded memo)."""
+class RobotMemo(dict):
+    """Built robots keyed by their parameters; forgets everything once it holds ``maxsize`` entries.
+
+    The argument ``robot_cache`` of :func:`~workbench.study.build.resolve_case`; checked by
+    ``tests/study/test_evaluate.py``.
+    """
 
     maxsize = 256
 
@@ -107,17 +85,13 @@ class _Memo(dict):
         super().__setitem__(key, value)
 
 
-_ROBOTS = _Memo()
+#: This process's memo of built robots (workers build a robot once per parameter set).
+ROBOTS = RobotMemo()
 _FLAT_ROBOTS: dict[int, tuple] = {}  # flat ``p.robot.*`` cells of the memoised robots' parameters (flatten_params)
 
 
-def _robot_memo() -> dict[str, Any]:
-    """This process's memo of built robots (workers build a robot once per parameter set)."""
-    return _ROBOTS
-
-
 def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str],
-                   model_lookup: Callable[[str], Callable] | None = None, arc_actuation: Callable | None = None,
+                   model_lookup: Callable[[str], Callable] | None = None,
                    robot_cache: dict[str, Any] | None = None) -> Iterator[dict[str, Any]]:
     """The rows of :func:`evaluate_case`, yielded one model at a time (never raises for a model)."""
     from ..models import quiet_if_loaded
@@ -127,9 +101,10 @@ def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str
     try:
         # the rows record the parameters the case runs with (derived gravity, scenario load
         # fields applied); the case id stays the hash of the parameters as configured
-        robot, ran = resolve_case(params, _robot_memo() if robot_cache is None else robot_cache)
-        load = build_load(robot, ran["load"], arc_actuation)
+        robot, ran = resolve_case(params, ROBOTS if robot_cache is None else robot_cache)
+        load = build_load(robot, ran["load"])
         options = build_options(ran["solver"])
+        pipeline = build_pipeline_options(ran["solver"])
     except Exception as e:  # noqa: BLE001 - recorded as the case's failure reason
         yield from failed_rows(case_id, params, models, f"building the case failed: {_reason(e)}")
         return
@@ -137,7 +112,7 @@ def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str
     cc_reference = CCReference(model_lookup, robot, load, options)
     for name in models:
         t0 = time.perf_counter()
-        opts, ran_m, flat_m = _model_resolution(name, options, ran, flat)
+        opts, ran_m, flat_m = _model_resolution(name, options, pipeline, ran, flat)
         try:
             fn = model_lookup(name)
             with quiet_if_loaded():
@@ -148,17 +123,17 @@ def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str
                 cc_reference.set(res)
             if row["status"] == "ok":  # the discretisation-error estimate (study/estimate.py)
                 with quiet_if_loaded():
-                    row.update(discretization_columns(name, fn, robot, load, opts, res, cc_reference))
+                    row.update(discretization_columns(name, fn, robot, load, opts, res, cc_reference, pipeline))
         except Exception as e:  # noqa: BLE001 - ModelFailure, exudyn.SolverError, bugs: all recorded
             kind = "memory" if isinstance(e, MemoryError) else "model"
             row = failed_rows(case_id, ran_m, [name], _reason(e), time.perf_counter() - t0, flat_m, failure=kind)[0]
         yield row
 
 
-def _model_resolution(name: str, options, ran: Mapping[str, Any], flat: Mapping[str, Any]):
+def _model_resolution(name: str, options, pipeline, ran: Mapping[str, Any], flat: Mapping[str, Any]):
     """Options, parameters and flat ``p.*`` cells of model ``name``: its ``[solver] n_elements_by_model``
     entry applied, so its rows record the resolution that ran (``p.solver.n_elements``)."""
-    opts = options.for_model(name)
+    opts = pipeline.for_model(name, options)
     if opts is options:
         return options, ran, flat
     ran_m = {**ran, "solver": {**ran["solver"], "n_elements": opts.n_elements}}
@@ -166,9 +141,9 @@ def _model_resolution(name: str, options, ran: Mapping[str, Any], flat: Mapping[
 
 
 def evaluate_rows(payload: tuple) -> Iterator[dict[str, Any]]:
-    """The sweep kind's task: ``payload = (case_id, params, models, model_lookup, arc_actuation)``; yields rows."""
-    case_id, params, models, model_lookup, arc_actuation = payload
-    return iter_case_rows(case_id, params, models, model_lookup, arc_actuation)
+    """The sweep kind's task: ``payload = (case_id, params, models)``; yields rows (the registry's models)."""
+    case_id, params, models = payload
+    return iter_case_rows(case_id, params, models)
 
 
 def evaluate_payload(payload: tuple) -> list[dict[str, Any]]:
@@ -179,10 +154,10 @@ def evaluate_payload(payload: tuple) -> list[dict[str, Any]]:
 def evaluate_batch(batch: tuple) -> list[list[dict[str, Any]]]:
     """Several cases, one list of rows per case (the task function before units; kept for callers).
 
-    ``batch = (cases, models, model_lookup, arc_actuation)`` with ``cases`` a list of
-    ``(case_id, params)``.  Batching amortises the per-task cost of process executors; robots
-    are built once per distinct robot parameter set within the batch.
+    ``batch = (cases, models, model_lookup)`` with ``cases`` a list of ``(case_id, params)``
+    (``model_lookup``: see :func:`evaluate_case`).  Batching amortises the per-task cost of
+    process executors; robots are built once per distinct robot parameter set within the batch.
     """
-    cases, models, model_lookup, arc_actuation = batch
+    cases, models, model_lookup = batch
     cache: dict[str, Any] = {}
-    return [evaluate_case(cid, params, models, model_lookup, arc_actuation, cache) for cid, params in cases]
+    return [evaluate_case(cid, params, models, model_lookup, cache) for cid, params in cases]

@@ -36,28 +36,47 @@ import signal
 import threading
 import time
 import uuid
-from typing import Any, Callable, Iterator, Protocol, Sequence
+from abc import ABC, abstractmethod
+from typing import Any, Callable, Iterator, Sequence
 
 from .outcomes import CaseLimits, Crash, ExecutorStartError, InfrastructureError, Outcome
 from .sandbox import Sandbox, prestart
 
-__all__ = ["DASK_SETTINGS", "DaskExecutor", "Executor", "IsolatedExecutor", "SerialExecutor", "WorkerCrash"]
+__all__ = ["DASK_SETTINGS", "DaskExecutor", "Executor", "IsolatedExecutor", "SerialExecutor"]
 
-WorkerCrash = Crash  # the old name of a crashed unit's record (deprecated)
 _NO_LIMITS = CaseLimits()
 
 
-class Executor(Protocol):
-    """What the runner needs of an executor (see the module docstring)."""
+class Executor(ABC):
+    """What the runner needs of an executor (see the module docstring); used as ``with executor:``.
 
-    name: str
-    slots: int  # units it runs at once (chunk sizing)
-    isolates_cases: bool  # False: a crashing case takes the caller down (journal every case)
+    Attributes
+    ----------
+    name : str
+        Recorded in the run record and printed by ``run --dry-run``.
+    slots : int
+        Units it runs at once (chunk sizing).
+    isolates_cases : bool
+        ``False``: a crashing case takes the caller down (the runner journals every case).
+    adapts_chunks : bool
+        :meth:`imap_unordered` takes ``max_chunk`` and sizes later tasks by the measured time per unit.
+    """
 
-    def __enter__(self) -> "Executor": ...
-    def __exit__(self, *exc: Any) -> None: ...
+    name: str = "executor"
+    slots: int = 1
+    isolates_cases: bool = True
+    adapts_chunks: bool = False
+
+    def __enter__(self) -> "Executor":
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        return None
+
+    @abstractmethod
     def imap_unordered(self, fn: Callable[[Any], Any], payloads: Sequence[Any], limits: CaseLimits = _NO_LIMITS,
-                       chunk_size: int = 1) -> Iterator[tuple[int, Outcome]]: ...
+                       chunk_size: int = 1) -> Iterator[tuple[int, Outcome]]:
+        """``(index, outcome)`` for every payload, in the order they finish."""
 
 
 class _CaseTimeout(BaseException):
@@ -91,7 +110,7 @@ def _run_here(fn: Callable[[Any], Any], payload: Any, seconds: float | None) -> 
     return Outcome(rows)
 
 
-class SerialExecutor:
+class SerialExecutor(Executor):
     """In-process serial execution: the debugging executor, without isolation (module docstring)."""
 
     name = "serial (in-process, no isolation)"
@@ -109,7 +128,7 @@ class SerialExecutor:
             yield i, _run_here(fn, p, limits.seconds)
 
 
-class IsolatedExecutor:
+class IsolatedExecutor(Executor):
     """Serial execution in one child process (a sandbox), restarted after a crash or timeout."""
 
     name = "serial (isolated child process)"
@@ -194,7 +213,7 @@ DASK_SETTINGS = {
 }
 
 
-class DaskExecutor:
+class DaskExecutor(Executor):
     """Dask distributed execution.
 
     Parameters
@@ -316,73 +335,26 @@ class DaskExecutor:
 
         Fixed ``chunk_size`` units per task, or with ``max_chunk`` adaptive sizes: ``chunk_size``
         until the first tasks report their time per unit, then about :attr:`task_seconds` of
-        work per task (at most ``max_chunk``); about two tasks per worker slot are in flight.  A
-        task whose worker was lost (Dask's ``KilledWorker``) is resubmitted one unit per task, so
-        only a unit that loses workers by itself is stored ``lost``.
+        work per task (at most ``max_chunk``); about two tasks per worker slot are in flight
+        (:class:`_Tasks`).  A task whose worker was lost (Dask's ``KilledWorker``) is resubmitted
+        one unit per task, so only a unit that loses workers by itself is stored ``lost``.
         """
-        from distributed.scheduler import KilledWorker
-
-        from .dask_worker import run_chunk
-
-        tag = uuid.uuid4().hex[:12]
         size = max(1, int(chunk_size))
-        cap = size if max_chunk is None else max(size, int(max_chunk))
-        nxt, singles = 0, []  # next payload to submit; units of lost chunks, to resubmit one by one
-        futures: dict[str, tuple[Any, list[int]]] = {}
-        seconds = units = 0.0
-        count = 0
+        tasks = _Tasks(self, fn, payloads, limits, size, size if max_chunk is None else max(size, int(max_chunk)))
         lost_since = None
         slots, slots_at = self.slots, time.monotonic()  # asked again every 5 s (workers come and go)
-
-        def submit(idx: list[int]) -> None:
-            nonlocal count
-            try:
-                f = self._client.submit(run_chunk, fn, [payloads[i] for i in idx], limits, pure=False,
-                                        key=f"cases-{tag}-{count}")
-            except Exception as e:  # noqa: BLE001
-                raise InfrastructureError(f"cannot submit to the Dask scheduler: {type(e).__name__}: {e}") from None
-            count += 1
-            futures[f.key] = (f, idx)
-
         try:
             while True:
                 if time.monotonic() - slots_at > 5.0:
                     slots, slots_at = self.slots, time.monotonic()
-                while len(futures) < 2 * slots and (singles or nxt < len(payloads)):
-                    if singles:
-                        submit([singles.pop(0)])
-                        continue
-                    k = self._chunk(size, cap, seconds / units if units else None, len(payloads) - nxt, slots)
-                    submit(list(range(nxt, min(len(payloads), nxt + k))))
-                    nxt += k
-                if not futures:
+                tasks.fill(slots)
+                if not tasks.futures:
                     return
-                done, lost_since = self._wait({f for f, _ in futures.values()}, lost_since)
+                done, lost_since = self._wait(tasks.pending(), lost_since)
                 for f in done:
-                    _, idx = futures.pop(f.key)
-                    try:
-                        outs, took = f.result()
-                    except KilledWorker:
-                        f.release()
-                        if len(idx) > 1:
-                            singles.extend(idx)  # blame the right unit: one per task
-                            continue
-                        outs, took = [Outcome([], self._lost())], 0.0
-                    except Exception as e:  # noqa: BLE001 - the sandbox catches every case: systemic
-                        raise InfrastructureError(
-                            f"the Dask workers cannot run the cases: {type(e).__name__}: {str(e)[:300]} (is the "
-                            f"same workbench installed in the workers' environment?)") from None
-                    f.release()
-                    if took:
-                        seconds, units = seconds + took, units + len(idx)
-                    for i, out in zip(idx, outs):
-                        yield i, out
+                    yield from tasks.collect(f)
         finally:
-            for f, _ in futures.values():
-                try:
-                    f.cancel()
-                except Exception:  # noqa: BLE001
-                    pass
+            tasks.cancel()
 
     def _wait(self, remaining, lost_since):
         """Futures done within 5 s; raises :class:`InfrastructureError` after ``lost_timeout`` without workers."""
@@ -407,6 +379,79 @@ class DaskExecutor:
         if time.monotonic() - lost_since > self.lost_timeout:
             raise InfrastructureError(f"the Dask cluster has had no workers for {self.lost_timeout:.0f} s")
         return set(), lost_since
+
+
+class _Tasks:
+    """The Dask tasks of one :meth:`DaskExecutor.imap_unordered` call: what to submit next, what came back.
+
+    ``nxt`` is the next payload to submit; ``singles`` the units of lost chunks, resubmitted one
+    per task; ``seconds`` / ``units`` the measured work (adaptive chunk sizes).
+    """
+
+    def __init__(self, executor: DaskExecutor, fn: Callable[[Any], Any], payloads: Sequence[Any],
+                 limits: CaseLimits, size: int, cap: int) -> None:
+        self.executor, self.fn, self.payloads, self.limits = executor, fn, payloads, limits
+        self.size, self.cap = size, cap
+        self.tag, self.count = uuid.uuid4().hex[:12], 0
+        self.nxt, self.singles = 0, []
+        self.futures: dict[str, tuple[Any, list[int]]] = {}
+        self.seconds = self.units = 0.0
+
+    def pending(self) -> set:
+        return {f for f, _ in self.futures.values()}
+
+    def submit(self, idx: list[int]) -> None:
+        """One task of the units ``idx`` (:func:`~workbench.study.dask_worker.run_chunk`)."""
+        from .dask_worker import run_chunk
+
+        try:
+            f = self.executor._client.submit(run_chunk, self.fn, [self.payloads[i] for i in idx], self.limits,
+                                             pure=False, key=f"cases-{self.tag}-{self.count}")
+        except Exception as e:  # noqa: BLE001
+            raise InfrastructureError(f"cannot submit to the Dask scheduler: {type(e).__name__}: {e}") from None
+        self.count += 1
+        self.futures[f.key] = (f, idx)
+
+    def fill(self, slots: int) -> None:
+        """Submit until about two tasks per slot are in flight (lost units first, one per task)."""
+        while len(self.futures) < 2 * slots and (self.singles or self.nxt < len(self.payloads)):
+            if self.singles:
+                self.submit([self.singles.pop(0)])
+                continue
+            per_unit = self.seconds / self.units if self.units else None
+            k = self.executor._chunk(self.size, self.cap, per_unit, len(self.payloads) - self.nxt, slots)
+            self.submit(list(range(self.nxt, min(len(self.payloads), self.nxt + k))))
+            self.nxt += k
+
+    def collect(self, f) -> list[tuple[int, Outcome]]:
+        """The ``(index, Outcome)`` of the finished task ``f`` (none when its lost chunk is resubmitted)."""
+        from distributed.scheduler import KilledWorker
+
+        _, idx = self.futures.pop(f.key)
+        try:
+            outs, took = f.result()
+        except KilledWorker:
+            f.release()
+            if len(idx) > 1:
+                self.singles.extend(idx)  # blame the right unit: one per task
+                return []
+            return [(idx[0], Outcome([], self.executor._lost()))]
+        except Exception as e:  # noqa: BLE001 - the sandbox catches every case: systemic
+            raise InfrastructureError(
+                f"the Dask workers cannot run the cases: {type(e).__name__}: {str(e)[:300]} (is the "
+                f"same workbench installed in the workers' environment?)") from None
+        f.release()
+        if took:
+            self.seconds, self.units = self.seconds + took, self.units + len(idx)
+        return list(zip(idx, outs))
+
+    def cancel(self) -> None:
+        """Cancel what is still in flight (the caller stopped early or failed)."""
+        for f, _ in self.futures.values():
+            try:
+                f.cancel()
+            except Exception:  # noqa: BLE001
+                pass
 
 
 def _allowed_failures(dask_scheduler=None) -> int:

@@ -7,11 +7,11 @@ executor (a cluster that cannot start stops the run before anything is written),
 units and stores each unit's rows as they arrive.  A unit whose process crashed keeps the rows
 of the models that finished; the model that was running gets a failed row with the crash's
 reason and ``failure`` kind, and for a kind whose models are computed one by one the remaining
-models are run again in a fresh process (:func:`_complete`).  :func:`run_study` is
-``run_cases(SWEEP, ...)``; :func:`summarize` counts a stored table.
-
-``open_run_manifest``, ``finish_run``, ``package_versions``, ``git_commit``, ``read_manifest``,
-``_now`` and ``_write_manifest`` moved to :mod:`workbench.study.session` and are re-exported here.
+models are run again in a fresh process (:func:`_complete`).  How the run is carried out
+(resume, progress, flushing, batch size, limits, cache) is one frozen
+:class:`~workbench.study.run_config.RunConfig`.  :func:`run_study` is ``run_cases(SWEEP, ...)``;
+:func:`summarize` counts a stored table.  Tests run the real pipeline on fake models by passing
+their own kind (``tests/study/study_fakes.py``: ``sweep_kind(lookup)``), never through a flag.
 
 Checked by ``tests/study/test_store.py``, ``tests/study/test_executors.py``, ``tests/study/test_cli.py``,
 ``tests/study/test_kinds.py``, ``tests/study/test_retry.py`` and ``tests/motion/test_motion_run.py``.
@@ -20,9 +20,9 @@ Checked by ``tests/study/test_store.py``, ``tests/study/test_executors.py``, ``t
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 from .executors import Executor, SerialExecutor
 from .kinds import SWEEP, StudyKind
@@ -31,22 +31,12 @@ from .outcomes import CaseLimits, Outcome
 from .params import flatten_params
 from .plan import Unit
 from .rows import failed_rows
-from .session import (  # all but RunSession re-exported (their old home; deprecated here)
-    RunSession,
-    _now,
-    _write_manifest,
-    finish_run,
-    git_commit,
-    open_run_manifest,
-    package_versions,
-    read_manifest,
-    study_name,
-)
+from .run_config import RunConfig
+from .session import RunSession, read_manifest, utc_now
 from .spec import Study
 from .store import read_columns
 
-__all__ = ["RunSummary", "finish_run", "open_run_manifest", "run_cases", "run_study", "read_manifest",
-           "package_versions", "git_commit", "study_name", "summarize"]
+__all__ = ["MAX_ADAPTIVE_CHUNK", "RunSummary", "run_cases", "run_study", "summarize"]
 
 #: failure kinds that make the exit code 3 ("the infrastructure failed": --resume retries them)
 _INFRA_EXIT = ("killed", "lost")
@@ -124,21 +114,21 @@ def _cached(units: list[Unit], cache: Any, session: RunSession, separable: bool,
 MAX_ADAPTIVE_CHUNK = 256
 
 
-def _execute(kind: StudyKind, spec: Any, session: RunSession, executor: Executor, chunk_size: int,
-             options: Any, recorded: dict[str, dict[str, Any]], limits: CaseLimits, cache: Any = None,
-             retry_failed: bool = False, adaptive: bool = False) -> int:
+def _execute(kind: StudyKind, spec: Any, session: RunSession, executor: Executor, config: RunConfig,
+             recorded: dict[str, dict[str, Any]], limits: CaseLimits, cache: Any = None) -> int:
     """Submit the session's units (those the cache does not hold); store each outcome; rerun the models left after a crash.
 
     Returns the number of cases submitted (the others came whole from the cache).
     """
-    separable = getattr(kind, "separable_models", True)
+    separable = kind.separable_models
     pending = list(session.todo) if cache is None else _cached(list(session.todo), cache, session, separable,
-                                                                ok_only=retry_failed)
+                                                                ok_only=config.retry_failed)
     n_submitted = len(pending)
+    chunk_size = config.batch_size or kind.batch_size(len(session.todo), executor.slots)
+    extra = {"max_chunk": MAX_ADAPTIVE_CHUNK} if config.batch_size is None and executor.adapts_chunks else {}
     while pending:
-        payloads = [kind.payload(spec, u.case, u.models, options) for u in pending]
+        payloads = [kind.payload(spec, u.case, u.models) for u in pending]
         requeue: list[Unit] = []
-        extra = {"max_chunk": MAX_ADAPTIVE_CHUNK} if adaptive and getattr(executor, "adapts_chunks", False) else {}
         for i, out in executor.imap_unordered(kind.task, payloads, limits, chunk_size, **extra):
             unit = pending[i]
             rows, more = _complete(unit, out, recorded[unit.case.case_id], separable)
@@ -152,23 +142,8 @@ def _execute(kind: StudyKind, spec: Any, session: RunSession, executor: Executor
     return n_submitted
 
 
-def run_cases(
-    kind: StudyKind,
-    spec: Any,
-    folder: str | Path,
-    executor: Executor | None = None,
-    *,
-    resume: bool = False,
-    retry_failed: bool = False,
-    force: bool = False,
-    progress: bool | None = None,
-    flush_rows: int | None = None,
-    flush_seconds: float = 2.0,
-    batch_size: int | None = None,
-    limits: CaseLimits | None = None,
-    cache: Any = None,
-    **options: Any,
-) -> RunSummary:
+def run_cases(kind: StudyKind, spec: Any, folder: str | Path, executor: Executor | None = None,
+              config: RunConfig = RunConfig()) -> RunSummary:
     """Run every (remaining) case of ``spec``, a validated study of ``kind``, into ``folder``.
 
     Parameters
@@ -178,85 +153,41 @@ def run_cases(
     spec : object
         What ``kind.load`` returned.
     folder : path-like
-        Output folder (created; locked while the run lasts).  Without ``resume`` it must not
-        hold results yet (``force``: they are discarded).
+        Output folder (created; locked while the run lasts).  Without ``config.resume`` it must
+        not hold results yet (``config.force``: they are discarded).
     executor : Executor, optional
-        Default :class:`SerialExecutor`.  Entered (before anything is written) and exited here.
-    resume : bool
-        Compute only what is not stored (:mod:`workbench.study.plan`: failed rows of the
-        infrastructure kinds are retried); refuses a folder whose manifest has another config hash.
-    retry_failed : bool
-        With ``resume``: also recompute rows that failed for any other reason.
-    force : bool
-        Discard the folder's stored results first.
-    progress : bool, optional
-        A bar (True), nothing (False), or (None) a bar on a terminal and log lines otherwise.
-    flush_rows, flush_seconds : int, float
-        When buffered rows are written as a part (also on a timer); ``flush_rows`` defaults to
-        ``kind.flush_rows``.  An executor without isolation journals every case at once
+        Default :class:`SerialExecutor`.  Entered (``with executor:``, before anything is
+        written) and exited here.  An executor without isolation journals every case at once
         (the next run of the folder stores what a crash left there).
-    batch_size : int, optional
-        Units per task (per message to the isolated child); default ``kind.batch_size(n,
-        executor.slots)``, and an executor that adapts (Dask) then sizes later tasks by the
-        measured time per unit (at most :data:`MAX_ADAPTIVE_CHUNK`).
-    limits : CaseLimits, optional
-        Per-case limits; default ``kind.limits(spec)`` (``[solver] max_case_seconds`` /
-        ``max_case_memory``).
-    cache : ResultCache or path-like, optional
-        Reuse rows computed before for the same case, model and model code version, and store
-        the new ones (:mod:`workbench.study.cache`); ignored with a custom ``model_lookup`` /
-        ``arc_actuation``.
-    **options
-        Passed to ``kind.run_options`` (sweep: ``model_lookup``, ``arc_actuation``, see
-        :func:`~workbench.study.evaluate.evaluate_case`; picklable for processes).
+    config : RunConfig
+        How the run is carried out (:class:`~workbench.study.run_config.RunConfig`: resume,
+        retries, progress, flushing, batch size, limits, cache).
 
     Raises
     ------
     StudyError
-        Options the kind refuses, a locked folder, folder/resume mismatch (user errors: exit 2).
+        A locked folder, folder/resume mismatch (user errors: exit 2).
     InfrastructureError
         The executor could not start or failed during the run (exit 3; finished cases are stored).
     """
-    run_opts = kind.run_options(spec, **options)
     cases = kind.expand(spec)
     recorded = {c.case_id: kind.recorded_params(spec, c) for c in cases}
-    flat_memo: dict[int, tuple] = {}  # shared robot sections flattened once (flatten_params)
     executor = executor or SerialExecutor()
-    limits = limits if limits is not None else (kind.limits(spec) if hasattr(kind, "limits") else CaseLimits())
+    limits = config.limits if config.limits is not None else kind.limits(spec)
+    if config.flush_rows is None:
+        config = replace(config, flush_rows=kind.flush_rows)
     folder = Path(folder)
-    lock = FolderLock(folder).acquire(_now())
+    lock = FolderLock(folder).acquire(utc_now())
+    entered = False
     try:
-        executor.__enter__()
+        with executor:
+            entered = True
+            session, n_computed, cache = _run_session(kind, spec, folder, executor, config, cases, recorded,
+                                                      limits, lock)
     except BaseException:
-        lock.release(remove_folder=True)
+        if not entered:
+            lock.release(remove_folder=True)
         raise
-    try:
-        session = RunSession.open(
-            folder, spec, cases, (flatten_params(p, flat_memo) for p in recorded.values()),
-            getattr(executor, "name", type(executor).__name__), models=kind.models(spec),
-            separable=getattr(kind, "separable_models", True), resume=resume, retry_failed=retry_failed,
-            force=force, progress=progress, flush_rows=kind.flush_rows if flush_rows is None else flush_rows,
-            flush_seconds=flush_seconds, lock=lock, flush_each=not getattr(executor, "isolates_cases", True),
-            limits=limits)
-        if cache is not None and not any(options.get(k) for k in ("model_lookup", "arc_actuation")):
-            from .cache import ResultCache
-
-            cache = cache if isinstance(cache, ResultCache) else ResultCache(cache)
-        else:
-            cache = None
-        with session:
-            chunk = batch_size or kind.batch_size(len(session.todo), getattr(executor, "slots", 1))
-            try:
-                n_computed = _execute(kind, spec, session, executor, chunk, run_opts, recorded, limits, cache,
-                                      retry_failed, adaptive=batch_size is None)
-            finally:
-                if cache is not None:
-                    session.run_rec["cache"] = {"folder": str(cache.folder), "hits": cache.hits,
-                                                "writes": cache.writes}
-    except BaseException as e:
-        executor.__exit__(type(e), e, e.__traceback__)
-        raise
-    executor.__exit__(None, None, None)
     summary = summarize(session.folder, n_cases=len(cases), n_run=len(session.todo),
                         wall_time=time.perf_counter() - session.t0)
     summary.n_cached = cache.hits if cache is not None else 0
@@ -264,31 +195,30 @@ def run_cases(
     return summary
 
 
-def run_study(
-    study: Study,
-    folder: str | Path,
-    executor: Executor | None = None,
-    *,
-    resume: bool = False,
-    retry_failed: bool = False,
-    force: bool = False,
-    model_lookup: Callable | None = None,
-    arc_actuation: Callable | None = None,
-    progress: bool | None = None,
-    flush_rows: int = 256,
-    flush_seconds: float = 2.0,
-    batch_size: int | None = None,
-    limits: CaseLimits | None = None,
-    cache: Any = None,
-) -> RunSummary:
-    """Run every (remaining) case of the sweep study ``study`` into ``folder``: ``run_cases(SWEEP, ...)``.
+def _run_session(kind, spec, folder, executor, config, cases, recorded, limits, lock):
+    """Open the run session (inside the entered executor), compute, close; ``(session, n_computed, cache)``."""
+    flat_memo: dict[int, tuple] = {}  # shared robot sections flattened once (flatten_params)
+    session = RunSession.open(folder, spec, cases, (flatten_params(p, flat_memo) for p in recorded.values()),
+                              executor.name, config, models=kind.models(spec), separable=kind.separable_models,
+                              lock=lock, flush_each=not executor.isolates_cases, limits=limits)
+    cache = config.cache
+    if cache is not None:
+        from .cache import ResultCache
 
-    See :func:`run_cases` for the parameters; ``model_lookup`` and ``arc_actuation`` are passed to
-    :func:`~workbench.study.evaluate.evaluate_case`.
-    """
-    return run_cases(SWEEP, study, folder, executor, resume=resume, retry_failed=retry_failed, force=force,
-                     progress=progress, flush_rows=flush_rows, flush_seconds=flush_seconds, batch_size=batch_size,
-                     limits=limits, cache=cache, model_lookup=model_lookup, arc_actuation=arc_actuation)
+        cache = cache if isinstance(cache, ResultCache) else ResultCache(cache)
+    with session:
+        try:
+            n_computed = _execute(kind, spec, session, executor, config, recorded, limits, cache)
+        finally:
+            if cache is not None:
+                session.run_rec["cache"] = {"folder": str(cache.folder), "hits": cache.hits, "writes": cache.writes}
+    return session, n_computed, cache
+
+
+def run_study(study: Study, folder: str | Path, executor: Executor | None = None,
+              config: RunConfig = RunConfig()) -> RunSummary:
+    """Run every (remaining) case of the sweep study ``study`` into ``folder``: ``run_cases(SWEEP, ...)``."""
+    return run_cases(SWEEP, study, folder, executor, config)
 
 
 def summarize(folder: str | Path, *, n_cases: int | None = None, n_run: int = 0,

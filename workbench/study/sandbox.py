@@ -35,7 +35,7 @@ import sys
 import threading
 import time
 from multiprocessing.connection import Connection
-from typing import Any, Callable, Iterator, Sequence
+from typing import Any, Callable, Generator, Iterator, Sequence
 
 from .outcomes import Crash, Outcome, crash_from_exit
 
@@ -172,40 +172,64 @@ class Sandbox:
         size = max(1, len(payloads) if chunk is None else int(chunk))
         todo = list(range(len(payloads)))
         while todo:
-            messages = [todo[k:k + size] for k in range(0, len(todo), size)]
-            sent = done = 0
+            done = [0]  # units of ``todo`` answered (read by the cleanup when the caller stops early)
             finished = False
             try:
-                for m, idx in enumerate(messages):
-                    if m == sent:  # the child is idle: the first message, or one too large to send ahead
-                        crash = self._send(message(idx))
-                        if crash is not None:
-                            for i in todo[done:]:
-                                yield i, Outcome([], crash)
-                            return
-                        sent += 1
-                    dead = False
-                    for k, i in enumerate(idx):
-                        out, state = self._collect(seconds)
-                        if state == "abort":  # the child could not read this message: its units fail alike
-                            for j in idx[k:]:
-                                done += 1
-                                yield j, out
-                            break
-                        done += 1
-                        yield i, out
-                        if state == "dead":
-                            dead = True
-                            break
-                        if k == 0 and sent == m + 1 < len(messages):
-                            sent += self._send_ahead(message(messages[sent]))
-                    if dead:
-                        break
-                finished = True
+                stop = yield from self._one_child(todo, size, message, seconds, done)
+                finished = not stop
             finally:
-                if not finished and self._proc is not None and done < len(todo):
+                if not finished and self._proc is not None and done[0] < len(todo):
                     self._discard()  # the caller stopped listening: the child is mid-chunk
-            todo = todo[done:]
+            if stop:
+                return
+            todo = todo[done[0]:]
+
+    def _one_child(self, todo: list[int], size: int, message: Callable[[list[int]], bytes], seconds: float | None,
+                   done: list[int]) -> Generator[tuple[int, Outcome], None, bool]:
+        """The units ``todo`` in messages of ``size`` to one child, until it dies (:meth:`run_many`).
+
+        Returns ``True`` when no child could be started (every unit left was yielded failed).
+        """
+        messages = [todo[k:k + size] for k in range(0, len(todo), size)]
+        sent = 0
+        for m, idx in enumerate(messages):
+            if m == sent:  # the child is idle: the first message, or one too large to send ahead
+                crash = self._send(message(idx))
+                if crash is not None:
+                    for i in todo[done[0]:]:
+                        yield i, Outcome([], crash)
+                    return True
+                sent += 1
+            ahead = None
+            if sent == m + 1 < len(messages):
+                ahead = messages[sent]
+            dead, n_ahead = yield from self._units(idx, seconds, done, ahead and (lambda a=ahead: message(a)))
+            sent += n_ahead
+            if dead:
+                break
+        return False
+
+    def _units(self, idx: list[int], seconds: float | None, done: list[int],
+               ahead: Callable[[], bytes] | None) -> Generator[tuple[int, Outcome], None, tuple[bool, int]]:
+        """The outcomes of the message ``idx`` the child runs; returns ``(child died, messages sent ahead)``.
+
+        ``ahead`` builds the next message, sent once the child has answered the first unit.
+        """
+        n_ahead = 0
+        for k, i in enumerate(idx):
+            out, state = self._collect(seconds)
+            if state == "abort":  # the child could not read this message: its units fail alike
+                for j in idx[k:]:
+                    done[0] += 1
+                    yield j, out
+                return False, n_ahead
+            done[0] += 1
+            yield i, out
+            if state == "dead":
+                return True, n_ahead
+            if k == 0 and ahead is not None:
+                n_ahead = self._send_ahead(ahead())
+        return False, n_ahead
 
     def _send_ahead(self, data: bytes) -> int:
         """Queue the next message for a child that is busy with the one before; 1 if sent, 0 if it must wait.

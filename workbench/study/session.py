@@ -20,7 +20,6 @@ Every study kind runs through one :class:`RunSession` (:func:`workbench.study.ru
    time and the outcome, and releases the lock.
 
 ``open_run_manifest``, ``finish_run``, ``package_versions``, ``git_commit``, ``read_manifest``,
-``_now`` and ``_write_manifest`` are re-exported by :mod:`workbench.study.runner` (their old home).
 
 Checked by ``tests/study/test_store.py``, ``tests/study/test_session.py``, ``tests/study/test_lock.py``
 and ``tests/study/test_retry.py``.
@@ -47,6 +46,7 @@ from .messages import StudyError
 from .outcomes import CaseLimits
 from .plan import Unit, plan_units
 from .progress import Progress
+from .run_config import RunConfig
 from .store import MANIFEST, CorruptPart, ResultStore, SchemaMismatch, atomic_write_bytes
 
 __all__ = ["RunSession", "Unit", "finish_run", "git_commit", "open_run_manifest", "package_versions",
@@ -56,7 +56,8 @@ _PACKAGES = ("trunk-workbench", "exudyn", "numpy", "scipy", "pandas", "pyarrow",
              "distributed", "dask-jobqueue", "pydantic", "tqdm")
 
 
-def _now() -> str:
+def utc_now() -> str:
+    """The current UTC time as ISO 8601 (seconds): the times of the manifest's run records and the lock."""
     return _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
 
 
@@ -173,7 +174,7 @@ def finish_run(folder: Path, manifest: dict[str, Any], run_rec: dict[str, Any], 
     finally:
         if bar is not None:
             bar.close()
-        run_rec["end"] = _now()
+        run_rec["end"] = utc_now()
         run_rec["wall_time"] = round(time.perf_counter() - t0, 3)
         _write_manifest(folder, manifest)
 
@@ -225,6 +226,7 @@ class RunSession:
     _stop: threading.Event = field(default_factory=threading.Event)
     _timer: threading.Thread | None = None
     _closed: bool = False
+    _pending: dict = field(default_factory=dict)  # case id -> models not recorded yet (what is computing)
 
     @property
     def bar(self) -> Any:
@@ -232,30 +234,35 @@ class RunSession:
 
     @classmethod
     def open(cls, folder: str | Path, spec: Any, cases: Sequence[Any], param_rows: Iterable[Mapping[str, Any]],
-             executor_name: str, *, models: Sequence[str] = (), separable: bool = True, resume: bool = False,
-             retry_failed: bool = False, force: bool = False, progress: bool | None = None,
-             flush_rows: int = 256, flush_seconds: float = 2.0, lock: FolderLock | None = None,
-             flush_each: bool = False, limits: CaseLimits | None = None) -> "RunSession":
+             executor_name: str, config: RunConfig = RunConfig(), *, models: Sequence[str] = (),
+             separable: bool = True, lock: FolderLock | None = None, flush_each: bool = False,
+             limits: CaseLimits | None = None) -> "RunSession":
         """Open (or continue) the run of ``cases`` of ``spec`` in ``folder``.
 
         Parameters
         ----------
         folder : path-like
         spec : object
-            The validated study: ``path``, ``name``, ``config_hash`` and ``resolved()`` are recorded.
+            The validated study: ``path``, ``name``, ``config_hash``, ``overrides`` and
+            ``resolved()`` are recorded.
         cases : sequence of Case
         param_rows : iterable of dict
             The flattened ``p.*`` parameters of every case (fix the column types).
         executor_name : str
+        config : RunConfig
+            ``resume``, ``retry_failed``, ``force``, ``progress``, ``progress_seconds``,
+            ``flush_rows`` (``None``: 256) and ``flush_seconds`` are used here.
         models : sequence of str
             The models every case writes a row for (``kind.models(spec)``).
         separable : bool
             Models of a case can be computed one by one (sweeps); ``False``: a case is
             recomputed whole (series-parallel).
-        resume, retry_failed, force
-            Continue the stored run; also retry model failures; discard stored results first.
         lock : FolderLock, optional
             A lock the caller already holds (else taken here); released by :meth:`close`.
+        flush_each : bool
+            Journal every unit's rows at once (an executor without isolation).
+        limits : CaseLimits, optional
+            Recorded in the run record.
 
         Raises
         ------
@@ -263,19 +270,20 @@ class RunSession:
             Locked folder, folder/resume mismatch, corrupt manifest or part, other column types.
         """
         folder = Path(folder)
-        lock = lock if lock is not None and lock.held else FolderLock(folder).acquire(_now())
+        lock = lock if lock is not None and lock.held else FolderLock(folder).acquire(utc_now())
         try:
-            return cls._open_locked(folder, spec, cases, param_rows, executor_name, models, separable, resume,
-                                    retry_failed, force, progress, flush_rows, flush_seconds, lock, flush_each,
-                                    limits or CaseLimits())
+            return cls._open_locked(folder, spec, cases, param_rows, executor_name, config, tuple(models),
+                                    separable, lock, flush_each, limits or CaseLimits())
         except BaseException:
             lock.release(remove_folder=True)
             raise
 
     @classmethod
-    def _open_locked(cls, folder, spec, cases, param_rows, executor_name, models, separable, resume,
-                     retry_failed, force, progress, flush_rows, flush_seconds, lock, flush_each, limits):
-        if force:
+    def _open_locked(cls, folder, spec, cases, param_rows, executor_name, config, models, separable, lock,
+                     flush_each, limits):
+        resume, retry_failed = config.resume, config.retry_failed
+        flush_rows = 256 if config.flush_rows is None else config.flush_rows
+        if config.force:
             _discard_results(folder)
         config_hash = spec.config_hash
         resolved = spec.resolved()
@@ -285,7 +293,7 @@ class RunSession:
         })
         changes = presentation_changes(manifest.get("study") or {}, resolved) if manifest["runs"] else {}
         try:
-            store = ResultStore(folder, param_rows, flush_rows, flush_seconds, journal=flush_each)
+            store = ResultStore(folder, param_rows, flush_rows, config.flush_seconds, journal=flush_each)
             store.cleanup_temporaries()
             store.recover_journal()  # rows of an in-process run that died between its flushes
             stored = store.stored_rows()
@@ -295,16 +303,16 @@ class RunSession:
         except CorruptPart as e:
             raise StudyError([f"{e.path}: unreadable Parquet part ({e.reason}); move it out of {folder} (--resume "
                               f"then recomputes its cases) or use another --out"]) from None
-        plan = plan_units(cases, tuple(models), stored, retry_failed=retry_failed, separable=separable)
+        plan = plan_units(cases, models, stored, retry_failed=retry_failed, separable=separable)
         store.remove_rows(plan.remove)
         run_rec = {"host": socket.gethostname(), "pid": os.getpid(), "platform": platform.platform(),
-                   "executor": executor_name, "start": _now(), "end": None, "outcome": None,
+                   "executor": executor_name, "start": utc_now(), "end": None, "outcome": None,
                    "cases_to_run": len(plan.units), "cases_done": 0,
                    "limits": {"max_case_seconds": limits.seconds, "max_case_memory": limits.memory},
                    "study_file": spec.path}
         if plan.retried:
             run_rec["retried"] = plan.retried
-        if getattr(spec, "overrides", ()):
+        if spec.overrides:
             run_rec["overrides"] = list(spec.overrides)
         if changes:
             run_rec["changed"] = changes
@@ -319,21 +327,25 @@ class RunSession:
             manifest["versions"] = package_versions()
             manifest["git"] = git_commit()
         _write_manifest(folder, manifest)
-        bar = Progress(len(plan.units), spec.name, progress)
+        bar = Progress(len(plan.units), spec.name, config.progress, every_seconds=config.progress_seconds)
         session = cls(folder=folder, manifest=manifest, run_rec=run_rec, store=store, todo=plan.units, lock=lock,
                       progress=bar, flush_each=flush_each)
+        session._pending = {u.case.case_id: list(u.models) for u in plan.units}
         session._start_timer()
         return session
 
     # -- running ------------------------------------------------------------------------------
     def _start_timer(self) -> None:
+        wait = min(0.5, self.progress.every_seconds)
+
         def loop() -> None:
-            while not self._stop.wait(0.5):
+            while not self._stop.wait(wait):
                 try:
                     if self.store.flush_if_due() is not None:
                         self._write_manifest()
                 except Exception:  # noqa: BLE001 - the main thread flushes again and reports
                     pass
+                self.progress.tick(self.in_progress())
 
         self._timer = threading.Thread(target=loop, name="workbench-flush", daemon=True)
         self._timer.start()
@@ -341,6 +353,15 @@ class RunSession:
     def _write_manifest(self) -> None:
         with self.store._lock:  # one writer of the manifest at a time (timer thread, main thread)
             _write_manifest(self.folder, self.manifest)
+
+    def in_progress(self) -> str:
+        """What is still computing: the first case not finished (in submission order), its models
+        not recorded yet, and how many cases follow it (the progress log's timer line)."""
+        pending = dict(self._pending)  # (the timer thread reads it while record() changes it)
+        if not pending:
+            return "finishing"
+        cid, models = next(iter(pending.items()))
+        return f"in progress: case {cid} (models {', '.join(models)}), {len(pending) - 1} more to go"
 
     def record(self, case_id: str, rows: list[dict[str, Any]], complete: bool = True) -> None:
         """Store the rows of one unit of case ``case_id``; ``complete``: no more units of it follow.
@@ -354,7 +375,11 @@ class RunSession:
         if any(r.get("status") != "ok" for r in rows):
             self._failed_ids.add(case_id)
         if not complete:
+            done = {r.get("model") for r in rows}
+            if case_id in self._pending:
+                self._pending[case_id] = [m for m in self._pending[case_id] if m not in done]
             return
+        self._pending.pop(case_id, None)
         if case_id in self._failed_ids:
             self.n_failed += 1
         else:

@@ -28,10 +28,6 @@ axis with a problem left out, lines about such keys dropped: :mod:`workbench.stu
 only a table wrong as a whole (``load: set only one of ...``) stops the case checks.  Validation imports no execution
 code (no cycle: ``spec`` -> ``checks`` -> ``build`` / ``expand`` / ``scenarios``).
 
-The message helpers (``_suggest``, ``_translate``, ``_pydantic_problems``, ``check_robot_value``)
-and ``canonical_json`` are re-exported from :mod:`workbench.study.messages` and
-:mod:`workbench.study.params` (deprecated here).
-
 Checked by ``tests/study/test_spec.py`` (every file of ``tests/study/bad_configs`` and its message).
 """
 
@@ -46,50 +42,11 @@ from typing import Any, Mapping, Sequence
 from pydantic import BaseModel, ValidationError
 
 from .report_keys import check_report
-from .checks import (
-    _NONNEG_LIST_FIELDS,
-    case_rules,
-    check_cases,
-    check_override,
-    check_named_params,
-    check_scenario,
-    check_sweep,
-    known_paths,
-    load_rules,
-)
-from .messages import (
-    _NONNEG_PAT,
-    _POSITIVE_PAT,
-    _ROBOT_UNITS,
-    UNITS,
-    StudyError,
-    _robot_unit,
-    check_robot_value,
-    fmt_loc,
-    known_keys,
-    num,
-    collapse_indexed,
-    pydantic_problems,
-    read_toml,
-    suggest,
-    translate,
-)
+from .checks import check_cases, check_named_params, check_scenario, check_sweep, known_paths, load_rules
+from .messages import StudyError, collapse_indexed, pydantic_problems, read_toml, suggest
 from .outcomes import CaseLimits
 from .params import canonical_json
-from .schema import (
-    _CFG,
-    DEFAULT_MAX_CASES,
-    LIMIT_KEYS,
-    SECTION_MODELS,
-    SWEEP_SECTIONS,
-    DerivedSection,
-    LoadSection,
-    ReportSection,
-    SolverSection,
-    StudyFile,
-    StudySection,
-    SweepSection,
-)
+from .schema import DEFAULT_MAX_CASES, LIMIT_KEYS, SECTION_MODELS, SWEEP_SECTIONS, StudyFile
 
 __all__ = [
     "Study",
@@ -99,15 +56,6 @@ __all__ = [
     "DEFAULT_MAX_CASES",
     "SWEEP_SECTIONS",
 ]
-
-# The old private names of the helpers that moved (deprecated: import the public names from
-# workbench.study.messages, .checks and .schema).  The other imported names above are
-# re-exported unchanged (canonical_json, check_robot_value, check_override, the sections, ...).
-_suggest, _fmt_loc, _num, _translate, _known_keys, _pydantic_problems = (
-    suggest, fmt_loc, num, translate, known_keys, pydantic_problems)
-_UNITS, _SECTION_MODELS = UNITS, SECTION_MODELS
-_check_scenario, _load_rules, _case_rules, _known_paths, _check_sweep = (
-    check_scenario, load_rules, case_rules, known_paths, check_sweep)
 
 
 # ---------------------------------------------------------------------------------------

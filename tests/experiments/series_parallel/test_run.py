@@ -12,6 +12,7 @@ from workbench.experiments.series_parallel.expand import expand_motions
 from workbench.experiments.series_parallel.kind import KIND
 from workbench.experiments.series_parallel.spec import load_series_parallel_study
 from workbench.experiments.series_parallel.worker import evaluate_motion_case
+from workbench.study.run_config import RunConfig
 from workbench.study.runner import run_cases
 from workbench.study.spec import StudyError
 from workbench.study.store import MANIFEST
@@ -19,7 +20,7 @@ from workbench.study.store import MANIFEST
 
 def run_study_file(path, out, **kw):
     """Validate the series-parallel study file ``path`` and run it into ``out`` on the study pipeline."""
-    return run_cases(KIND, load_series_parallel_study(path), out, **kw)
+    return run_cases(KIND, load_series_parallel_study(path), out, config=RunConfig(**kw))
 
 TINY = """
 [study]

@@ -19,12 +19,15 @@ import copy
 import hashlib
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable, Sequence
+from dataclasses import replace
+from typing import Any, Sequence
 
-from ...study.expand import Case, expand
 from ...study.build import parameters_as_run
+from ...study.expand import Case, count_cases, expand
+from ...study.kinds import StudyKind
 from ...study.messages import StudyError, read_toml
 from ...study.outcomes import CaseLimits
+from ...study.overrides import apply_overrides
 from ...study.params import canonical_json
 from ...study.spec import Study, parse_study
 from .worker import CLOSED_SUFFIX, PLAN, evaluate_closed_loop_rows, row_models
@@ -46,6 +49,9 @@ class ClosedLoopStudy:
     name = property(lambda self: self.study.name)
     seed = property(lambda self: self.study.seed)
     max_cases = property(lambda self: self.study.max_cases)
+    overrides = property(lambda self: self.study.overrides)
+    notes = property(lambda self: self.study.notes)
+    warnings = property(lambda self: self.study.warnings)
 
     @property
     def plants(self) -> tuple[str, ...]:
@@ -69,11 +75,12 @@ class ClosedLoopStudy:
         return hashlib.sha256(canonical_json(payload).encode()).hexdigest()[:16]
 
 
-def load_closed_loop_study(path: str | Path, *, max_cases: int | None = None) -> ClosedLoopStudy:
-    """Read and validate a closed-loop study file; :class:`StudyError` lists every problem, one line each."""
+def load_closed_loop_study(path: str | Path, *, max_cases: int | None = None,
+                           overrides: Sequence[str] = ()) -> ClosedLoopStudy:
+    """Read and validate a closed-loop study file with the command-line ``key=value`` ``overrides``
+    applied (:mod:`workbench.study.overrides`); :class:`StudyError` lists every problem, one line each."""
     src = str(Path(path))
-    raw = read_toml(path)
-    data = copy.deepcopy(raw)
+    data = copy.deepcopy(apply_overrides(read_toml(path), overrides))
     problems: list[str] = []
     if isinstance(data.get("study"), dict):
         data["study"].pop("kind", None)
@@ -98,10 +105,10 @@ def load_closed_loop_study(path: str | Path, *, max_cases: int | None = None) ->
                             f"({', '.join(row_models(study.models))})")
     if problems:
         raise StudyError(problems)
-    return ClosedLoopStudy(study, str(reference))
+    return ClosedLoopStudy(replace(study, overrides=tuple(overrides)), str(reference))
 
 
-class ClosedLoopKind:
+class ClosedLoopKind(StudyKind):
     """The closed-loop study kind (see the module docstring)."""
 
     name = KIND_NAME
@@ -109,11 +116,16 @@ class ClosedLoopKind:
     separable_models = False  # the plan row and the loops of a case come from one controller run
     task = staticmethod(evaluate_closed_loop_rows)
 
-    def load(self, path: str | Path, max_cases: int | None = None) -> ClosedLoopStudy:
-        return load_closed_loop_study(path, max_cases=max_cases)
+    def load(self, path: str | Path, max_cases: int | None = None, overrides: Sequence[str] = ()
+             ) -> ClosedLoopStudy:
+        return load_closed_loop_study(path, max_cases=max_cases, overrides=overrides)
 
     def expand(self, spec: ClosedLoopStudy) -> list[Case]:
         return expand(spec.study)
+
+    def count(self, spec: ClosedLoopStudy) -> int:
+        """Number of cases, without expanding them."""
+        return count_cases(spec.study)
 
     def models(self, spec: ClosedLoopStudy) -> tuple[str, ...]:
         return spec.models
@@ -122,20 +134,9 @@ class ClosedLoopKind:
         """:func:`~workbench.study.build.parameters_as_run` (the scenario's final plan cables applied)."""
         return parameters_as_run(case.params)
 
-    def run_options(self, spec: ClosedLoopStudy, *, model_lookup: Callable | None = None,
-                    arc_actuation: Callable | None = None) -> Callable | None:
-        """``model_lookup`` replaces the registered plants (tests); ``arc_actuation`` does not apply."""
-        if arc_actuation is not None:
-            raise StudyError([f"{spec.path}: --arc-actuation does not apply to a closed_loop study (its cables come "
-                              f"from the controller)"])
-        return model_lookup
-
-    def batch_size(self, n_cases: int, slots: int) -> int:
-        return 1
-
-    def payload(self, spec: ClosedLoopStudy, case: Case, models: Sequence[str], options: Callable | None) -> tuple:
-        """``(case_id, params, plants, model_lookup)``: a case is computed whole, whatever ``models`` says."""
-        return case.case_id, case.params, spec.plants, options
+    def payload(self, spec: ClosedLoopStudy, case: Case, models: Sequence[str]) -> tuple:
+        """``(case_id, params, plants)``: a case is computed whole, whatever ``models`` says."""
+        return case.case_id, case.params, spec.plants
 
     def limits(self, spec: ClosedLoopStudy) -> CaseLimits:
         return spec.study.limits

@@ -40,7 +40,7 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
-from ...study.build import build_load, build_options, resolve_case
+from ...study.build import build_load, build_options, build_pipeline_options, resolve_case
 from ...study.params import flatten_params
 from ...study.rows import failed_rows, row_from_result
 from .controller import ControllerSettings, LoopTrace, cc_plan, run_closed_loop, run_open_loop
@@ -58,7 +58,7 @@ CLOSED_SUFFIX = "_closed_loop"
 CLOSED_FORM_STATUS = "closed form: CC arcs, no discretisation"
 
 
-def disc_columns(row_model: str, options) -> dict[str, Any]:
+def disc_columns(row_model: str, pipeline) -> dict[str, Any]:
     """The discretisation-error cells of one row of this kind (module docstring)."""
     from ...study.estimate import EXEMPT_STATUS
 
@@ -67,7 +67,7 @@ def disc_columns(row_model: str, options) -> dict[str, Any]:
     if plant in (PLAN, "cc"):
         return {"x.disc_tip_error": 0.0, "x.disc_order_observed": nan, "x.disc_order": nan,
                 "disc_status": CLOSED_FORM_STATUS}
-    if plant in getattr(options, "error_estimate_exempt", ()):
+    if plant in pipeline.error_estimate_exempt:
         return {"x.disc_tip_error": 0.0, "x.disc_order_observed": nan, "x.disc_order": nan,
                 "disc_status": EXEMPT_STATUS}
     return {"x.disc_tip_error": nan, "x.disc_order_observed": nan, "x.disc_order": nan,
@@ -168,7 +168,8 @@ def evaluate_closed_loop_case(case_id: str, params: Mapping[str, Any], plants: S
         load = build_load(robot, ran["load"])
         sc = ran["scenario"]
         ctx = {"case_id": case_id, "ran": ran, "robot": robot, "flat": flatten_params(ran),
-               "options": build_options(ran["solver"]), "path": loop_path(sc), "ell": robot.section_lengths,
+               "options": build_options(ran["solver"]), "pipeline": build_pipeline_options(ran["solver"]),
+               "path": loop_path(sc), "ell": robot.section_lengths,
                "settings": ControllerSettings(**{k: sc[k] for k in CONTROLLER_KEYS}),
                "kappa_d": null_space_target(robot, sc)}
         pretension = float(load.actuation.pretension)
@@ -184,12 +185,12 @@ def evaluate_closed_loop_case(case_id: str, params: Mapping[str, Any], plants: S
             plant = _plant(m, robot, ctx["options"], pretension, model_lookup)
             rows.append(_loop_row(name, loop, plant, ctx, cable_map, closed))
     for r in rows:
-        if r.get("status") == "ok" and ctx["options"].error_estimate != "none":
-            r.update(disc_columns(str(r["model"]), ctx["options"]))
+        if r.get("status") == "ok" and ctx["pipeline"].error_estimate != "none":
+            r.update(disc_columns(str(r["model"]), ctx["pipeline"]))
     return rows
 
 
 def evaluate_closed_loop_rows(payload: tuple) -> list[dict[str, Any]]:
-    """The kind's task: ``(case_id, params, plants, model_lookup)`` -> the rows of that case."""
-    case_id, params, plants, model_lookup = payload
-    return evaluate_closed_loop_case(case_id, params, plants, model_lookup)
+    """The kind's task: ``(case_id, params, plants)`` -> the rows of that case."""
+    case_id, params, plants = payload
+    return evaluate_closed_loop_case(case_id, params, plants)

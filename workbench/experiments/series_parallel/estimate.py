@@ -59,7 +59,7 @@ def discretization_columns(geo, targets: np.ndarray, sol: Mapping[str, Any], n: 
     from ...physics.series_parallel import stack_forward
 
     n_el = int(sol["n_elements"])
-    order = registry.MODELS["series_parallel"].order
+    order = registry.LABELS["series_parallel"].order
     noise = 10.0 * max(float(sol["length_tolerance"]), float(sol["fk_tolerance"]) * n * geo.height)
     L_vals, tips, ccs, res = [np.asarray(lengths).reshape(-1)], [fk_poses[-1, :3, 3]], [_cc_tip_error(fk_poses)], [n_el]
     status = "ok"

@@ -14,11 +14,12 @@ Checked by ``tests/experiments/series_parallel/test_run.py`` and ``tests/study/t
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
-from typing import Any, Callable, Sequence
+from typing import Any, Sequence
 
 from ...study.expand import Case
-from ...study.messages import StudyError
+from ...study.kinds import StudyKind
 from ...study.outcomes import CaseLimits
 from .expand import expand_motions
 from .spec import KIND_NAME, SeriesParallelStudy, load_series_parallel_study
@@ -27,7 +28,7 @@ from .worker import MODELS, evaluate_motion_rows
 __all__ = ["KIND", "SeriesParallelKind"]
 
 
-class SeriesParallelKind:
+class SeriesParallelKind(StudyKind):
     """The series-parallel study kind (see the module docstring)."""
 
     name = KIND_NAME
@@ -35,10 +36,8 @@ class SeriesParallelKind:
     separable_models = False
     task = staticmethod(evaluate_motion_rows)
 
-    def load(self, path: str | Path, max_cases: int | None = None, overrides: tuple[str, ...] = ()
+    def load(self, path: str | Path, max_cases: int | None = None, overrides: Sequence[str] = ()
              ) -> SeriesParallelStudy:
-        from dataclasses import replace
-
         return replace(load_series_parallel_study(path, max_cases=max_cases, overrides=overrides),
                        overrides=tuple(overrides))
 
@@ -52,17 +51,7 @@ class SeriesParallelKind:
         """The case's parameters: nothing is derived from them before a case runs."""
         return case.params
 
-    def run_options(self, spec: SeriesParallelStudy, *, model_lookup: Callable | None = None,
-                    arc_actuation: Callable | None = None) -> None:
-        """No options: ``model_lookup`` / ``arc_actuation`` (sweep-study test hooks) are refused."""
-        if model_lookup is not None or arc_actuation is not None:
-            raise StudyError([f"{spec.path}: --model-lookup / --arc-actuation do not apply to a series_parallel "
-                              f"motion study"])
-
-    def batch_size(self, n_cases: int, slots: int) -> int:
-        return 1
-
-    def payload(self, spec: SeriesParallelStudy, case: Case, models: Sequence[str], options: Any
+    def payload(self, spec: SeriesParallelStudy, case: Case, models: Sequence[str]
                 ) -> tuple[str, dict]:
         """``(case_id, params)``: a case is computed whole (every model), whatever ``models`` says."""
         return case.case_id, case.params

@@ -149,6 +149,10 @@ class SeriesParallelStudy:
     report : dict
     limits : CaseLimits
         ``[solver] max_case_seconds`` / ``max_case_memory``.
+    overrides : tuple of str
+        The command-line ``key=value`` overrides applied to the file.
+    notes, warnings : tuple of str
+        What ``workbench validate`` / ``run`` print (none today; part of the study-kind contract).
     """
 
     path: str
@@ -162,6 +166,8 @@ class SeriesParallelStudy:
     report: dict[str, Any] = field(default_factory=dict)
     limits: CaseLimits = field(default_factory=CaseLimits)
     overrides: tuple[str, ...] = ()
+    notes: tuple[str, ...] = ()
+    warnings: tuple[str, ...] = ()
 
     @property
     def models(self) -> tuple[str, ...]:

@@ -17,12 +17,15 @@ fluidic section, ``workbench/experiments/fruit_harvester/scoop.py``).  Checked b
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any, Callable, Sequence
+from dataclasses import replace
+from typing import Any, Sequence
 
 from ...study.build import parameters_as_run
 from ...study.expand import Case, count_cases, expand
+from ...study.kinds import StudyKind
 from ...study.messages import StudyError, read_toml
 from ...study.outcomes import CaseLimits
+from ...study.overrides import apply_overrides
 from ...study.spec import Study, parse_study
 from .worker import PLANS, evaluate_grasp_rows
 
@@ -33,9 +36,10 @@ KIND_NAME = "grasp"
 MODELS = ("cc", "contact")
 
 
-def load_grasp_study(path: str | Path, max_cases: int | None = None) -> Study:
-    """Read and validate a grasp study file (module docstring); :class:`StudyError` lists every problem."""
-    raw = read_toml(path)
+def load_grasp_study(path: str | Path, max_cases: int | None = None, overrides: Sequence[str] = ()) -> Study:
+    """Read and validate a grasp study file (module docstring) with the command-line ``key=value``
+    ``overrides`` applied (:mod:`workbench.study.overrides`); :class:`StudyError` lists every problem."""
+    raw = apply_overrides(read_toml(path), overrides)
     source = str(Path(path))
     st = raw.get("study")
     problems = []
@@ -57,10 +61,11 @@ def load_grasp_study(path: str | Path, max_cases: int | None = None) -> Study:
     if problems:
         raise StudyError([f"{source}: {p}" for p in problems])
     # the grasp tasks compute the rows (not the models' run()): their capability rows do not apply
-    return parse_study(raw, source=source, max_cases=max_cases, run_models=False)
+    study = parse_study(raw, source=source, max_cases=max_cases, run_models=False)
+    return replace(study, overrides=tuple(overrides))
 
 
-class GraspKind:
+class GraspKind(StudyKind):
     """The grasp study kind (module docstring)."""
 
     name = KIND_NAME
@@ -69,8 +74,8 @@ class GraspKind:
     separable_models = True
     task = staticmethod(evaluate_grasp_rows)
 
-    def load(self, path: str | Path, max_cases: int | None = None) -> Study:
-        return load_grasp_study(path, max_cases=max_cases)
+    def load(self, path: str | Path, max_cases: int | None = None, overrides: Sequence[str] = ()) -> Study:
+        return load_grasp_study(path, max_cases=max_cases, overrides=overrides)
 
     def expand(self, spec: Study) -> list[Case]:
         return expand(spec)
@@ -86,16 +91,7 @@ class GraspKind:
         """:func:`~workbench.study.build.parameters_as_run` (the scenario's tensions in ``p.load.*``)."""
         return parameters_as_run(case.params)
 
-    def run_options(self, spec: Study, *, model_lookup: Callable | None = None,
-                    arc_actuation: Callable | None = None) -> None:
-        """No options: the sweep kind's test hooks are refused."""
-        if model_lookup is not None or arc_actuation is not None:
-            raise StudyError([f"{spec.path}: --model-lookup / --arc-actuation do not apply to a grasp study"])
-
-    def batch_size(self, n_cases: int, slots: int) -> int:
-        return 1
-
-    def payload(self, spec: Study, case: Case, models: Sequence[str], options: Any) -> tuple:
+    def payload(self, spec: Study, case: Case, models: Sequence[str]) -> tuple:
         """``(case_id, params, models)``: one case, the models still to compute."""
         return case.case_id, case.params, tuple(models)
 

@@ -261,6 +261,7 @@ def solve(robot: Robot, load: LoadCase, options: SolverOptions,
 
 
 def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
-    """Registered model ``"spring_link"``: :func:`solve` with default :class:`SpringLinkParams`
-    except ``backend = options.spring_link_backend`` (the study key ``solver.spring_link_backend``)."""
-    return solve(robot, load, options, SpringLinkParams(backend=options.spring_link_backend))
+    """Registered model ``"spring_link"``: :func:`solve` with default :class:`SpringLinkParams` except
+    the model's own settings in ``options`` (``options.settings("spring_link")``: ``backend``, the
+    study key ``solver.spring_link_backend``)."""
+    return solve(robot, load, options, SpringLinkParams(**options.settings("spring_link")))
