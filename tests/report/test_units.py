@@ -5,7 +5,8 @@ from __future__ import annotations
 import pandas as pd
 
 from workbench.report.style import _case_title, axis_label, short_label, value_text
-from workbench.report.units import UNITS, label_of, unit_groups, unit_of
+from workbench.report.units import label_of, shown_unit, unit_groups
+from workbench.units import UNITS
 
 
 def test_known_keys_get_name_and_unit():
@@ -15,7 +16,7 @@ def test_known_keys_get_name_and_unit():
     assert label_of("tip_twist") == "tip twist [rad]"
     assert label_of("tendon_stretch") == "tendon stretch [m]"
     assert label_of("p.scenario.shape") == "trajectory"          # a category: no unit
-    assert unit_of("p.robot.n_sections") == ""                   # dimensionless
+    assert shown_unit("p.robot.n_sections") == ""                   # dimensionless
     # every robot.*, load.*, scenario.* entry names a unit or is explicitly unitless/categorical
     assert all(u is None or isinstance(u, str) for k, (_, u) in UNITS.items())
 

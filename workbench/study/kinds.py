@@ -153,7 +153,7 @@ def get_kind(name: str) -> StudyKind:
         Unknown kind (the message lists the known ones).
     """
     try:
-        target = registry.KINDS[name]
+        target = registry.KINDS[name].target
     except KeyError:
         raise KeyError(f"unknown study kind {name!r}; known kinds: {', '.join(registry.KINDS)}") from None
     return registry.resolve(target)

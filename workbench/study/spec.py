@@ -60,10 +60,7 @@ from .checks import (
 from .messages import (
     _NONNEG_PAT,
     _POSITIVE_PAT,
-    _ROBOT_UNITS,
-    UNITS,
     StudyError,
-    _robot_unit,
     check_robot_value,
     fmt_loc,
     known_keys,
@@ -105,7 +102,7 @@ __all__ = [
 # re-exported unchanged (canonical_json, check_robot_value, check_override, the sections, ...).
 _suggest, _fmt_loc, _num, _translate, _known_keys, _pydantic_problems = (
     suggest, fmt_loc, num, translate, known_keys, pydantic_problems)
-_UNITS, _SECTION_MODELS = UNITS, SECTION_MODELS
+_SECTION_MODELS = SECTION_MODELS
 _check_scenario, _load_rules, _case_rules, _known_paths, _check_sweep = (
     check_scenario, load_rules, case_rules, known_paths, check_sweep)
 
