@@ -20,7 +20,7 @@ field metadata (:mod:`workbench.study.columns`), the study messages
 (:mod:`workbench.report.units`).  Imports only the registry (data), so validation stays free
 of execution code.
 
-Checked by ``tests/test_units.py``, ``tests/report/test_units.py`` and
+Checked by ``tests/test_unit_table.py``, ``tests/report/test_units.py`` and
 ``tests/study/test_messages.py``.
 """
 
