@@ -126,10 +126,11 @@ class KindInfo:
         ``"module:attribute"`` of a mapping ``key -> (name, unit)`` extending the unit table
         (:mod:`workbench.units`) by the kind's parameters and extra columns.
     lines : str or None
-        ``"module:function"`` of ``lines(study) -> {case_id: [(model, points), ...]}``: extra
-        polylines of the report's 3-D view (``points``: ``(k, n, 3)`` in the robot's base frame,
-        drawn in the model's colour); called with the report's
-        :class:`~workbench.report.load.ResultSet`.
+        ``"module:function"`` of ``lines(study)``, called once per report with its
+        :class:`~workbench.report.load.ResultSet`; it returns a function of one case's rows
+        ``{model: row}`` -> ``[(model, points), ...]``: extra polylines of the report's 3-D
+        view (``points``: ``(k, n, 3)``, ``k`` lines of ``n`` points in the robot's base frame,
+        drawn in the model's colour).
     axes : str or None
         ``"module:function"`` of ``axes(columns) -> [column]``: the parameter columns that vary
         the kind's cases, used where a sweep study's ``[sweep]`` keys would be (the kind's
@@ -214,7 +215,9 @@ SCENARIOS: Mapping[str, str] = {
 KINDS: Mapping[str, KindInfo] = {
     "sweep": KindInfo("workbench.study.kinds:SWEEP"),
     "series_parallel": KindInfo("workbench.experiments.series_parallel.kind:KIND",
-                                units="workbench.experiments.series_parallel.units:QUANTITIES"),
+                                units="workbench.experiments.series_parallel.units:QUANTITIES",
+                                lines="workbench.experiments.series_parallel.view:leg_lines",
+                                axes="workbench.experiments.series_parallel.view:pose_columns"),
     "grasp": KindInfo("workbench.experiments.whole_arm_grasp.kind:KIND"),
     "closed_loop": KindInfo("workbench.experiments.closed_loop.kind:KIND"),
 }
