@@ -1,7 +1,7 @@
 """The old import paths of the moved experiment code still give the same objects (deprecated shims).
 
 Guards the moves of issue 12: study/scenarios.py, physics/wire_delay.py,
-physics/hannan_walker_trajectory.py, report/_studies_b.py and report/_motion.py now forward to
+physics/hannan_walker_trajectory.py, and report/_studies_b.py now forward to
 workbench/experiments/ through registry strings.
 """
 
@@ -30,9 +30,6 @@ MOVED = [
     ("workbench.study.scenarios", "hannan_walker_line", "workbench.experiments.hannan_walker.scenario", "hannan_walker_line"),
     ("workbench.report._studies_b", "circle_fit", "workbench.experiments.fruit_harvester.envelope", "circle_fit"),
     ("workbench.report._studies_b", "HARVESTER_LIMITS", "workbench.experiments.fruit_harvester.envelope", "HARVESTER_LIMITS"),
-    ("workbench.report._motion", "motion_figures", "workbench.experiments.series_parallel.figures", "motion_figures"),
-    ("workbench.report._motion", "motion_overview_figure", "workbench.experiments.series_parallel.figures", "motion_overview_figure"),
-    ("workbench.report._motion", "motion_legs_figure", "workbench.experiments.series_parallel.figures", "motion_legs_figure"),
 ]
 
 
@@ -42,7 +39,7 @@ def test_old_path_gives_the_moved_object(old_mod, old, new_mod, new):
 
 
 @pytest.mark.parametrize("mod", ["workbench.physics.wire_delay", "workbench.physics.hannan_walker_trajectory",
-                                 "workbench.study.scenarios", "workbench.report._studies_b", "workbench.report._motion"])
+                                 "workbench.study.scenarios", "workbench.report._studies_b"])
 def test_shims_say_deprecated_and_reject_unknown_names(mod):
     m = importlib.import_module(mod)
     assert "Deprecated" in m.__doc__ or "deprecated" in m.__doc__

@@ -145,7 +145,7 @@ def test_fig6_tilts_of_45_degrees_about_mid_height_round_trip(axis, sign):
     lengths returns the pose to 1e-6 m, and the legs stay in the mild-force regime (no leg near
     buckling: all axial forces < 1 kN, measured leg compression <= 0.41 kN; about the platform centre the IK
     branch folds at 26.8 deg, see test_rx_limit_is_a_fold_of_the_ik_branch)."""
-    from workbench.motion.worker import module_target
+    from workbench.experiments.series_parallel.worker import module_target
 
     T = module_target(GEO.height, ("rx", "ry")[axis], sign * math.radians(45.0), 0.5)
     assert T[2, 3] < GEO.height  # the platform swings down and sideways, as in bending

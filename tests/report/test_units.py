@@ -35,11 +35,11 @@ def test_case_titles_carry_units():
     assert title == "payload mass = 0.1 kg, trajectory = line"
 
 
-def test_motion_amplitude_unit_depends_on_the_motion():
-    df = pd.DataFrame({"p.motion.value": [0.2, 0.5, -0.2, 1.0],
-                       "p.motion.shape": ["x", "rx", "z", "bending"]})
-    groups = unit_groups(df, "p.motion.value")
+def test_pose_amplitude_unit_depends_on_the_pose():
+    df = pd.DataFrame({"p.pose.value": [0.2, 0.5, -0.2, 1.0],
+                       "p.pose.shape": ["x", "rx", "z", "bending"]})
+    groups = unit_groups(df, "p.pose.value")
     assert set(groups) == {"m", "rad"}
     assert list(groups["m"]) == [0, 2] and list(groups["rad"]) == [1, 3]
-    title = _case_title({"p.motion.value": 0.5, "p.motion.shape": "rx"}, ["p.motion.value", "p.motion.shape"], {})
+    title = _case_title({"p.pose.value": 0.5, "p.pose.shape": "rx"}, ["p.pose.value", "p.pose.shape"], {})
     assert title == "motion amplitude = 0.5 rad, motion = rx"

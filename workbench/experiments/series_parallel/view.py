@@ -47,5 +47,5 @@ def leg_lines(study) -> Callable[[Mapping[str, Mapping[str, Any]]], list[tuple[s
 
 
 def pose_columns(columns: Sequence[str]) -> list[str]:
-    """The commanded-pose parameter columns (``p.motion.*``) among ``columns``."""
-    return [c for c in columns if str(c).startswith("p.motion.")]
+    """The commanded-pose parameter columns (``p.pose.*``) among ``columns``."""
+    return [c for c in columns if str(c).startswith("p.pose.")]
