@@ -141,8 +141,11 @@ def test_registry_imports_nothing_from_the_workbench_and_every_row_resolves():
     p, tree = MODULES["workbench.registry"]
     assert _imports("workbench.registry", p, tree) == []
     targets = [m.target for m in registry.MODELS.values() if m.target] + list(registry.PRESETS.values())
-    targets += list(registry.SCENARIOS.values()) + list(registry.KINDS.values())
+    targets += list(registry.SCENARIOS.values()) + [k.target for k in registry.KINDS.values()]
     targets += [t for f in registry.FIGURES.values() for t in (f.matches, f.figures)]
+    hooks = [t for r in (*registry.KINDS.values(), *registry.FIGURES.values())
+             for t in (getattr(r, "units", None), getattr(r, "lines", None), getattr(r, "axes", None)) if t]
+    assert all(registry.resolve(t) is not None for t in hooks)
     for t in targets:
         assert callable(registry.resolve(t)) or t.endswith(("SWEEP", "KIND")), t
     with pytest.raises(ValueError):

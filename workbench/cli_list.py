@@ -41,7 +41,7 @@ def list_lines(topic: str) -> list[str]:
         from .study.scenarios import scenario_parameters
 
         return [f"{name}: {_params(scenario_parameters(name))}" for name in registry.SCENARIOS]
-    return [f"{name}: {target}" for name, target in registry.KINDS.items()]
+    return [f"{name}: {row.target}" for name, row in registry.KINDS.items()]
 
 
 def list_command(args) -> int:

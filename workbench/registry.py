@@ -15,8 +15,8 @@ import importlib
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-__all__ = ["Capabilities", "FIGURES", "FigureSet", "KINDS", "LABELS", "MODELS", "ModelInfo", "PRESETS", "RowLabel",
-           "SCENARIOS", "resolve", "row_info"]
+__all__ = ["Capabilities", "FIGURES", "FigureSet", "KINDS", "KindInfo", "LABELS", "MODELS", "ModelInfo", "PRESETS",
+           "RowLabel", "SCENARIOS", "resolve", "row_info"]
 
 
 @dataclass(frozen=True)
@@ -113,13 +113,52 @@ class RowLabel:
 class FigureSet:
     """A study-specific set of report figures: ``matches(results) -> bool`` and ``figures(...)``.
 
-    ``findings`` (optional): ``"module:function"`` of ``findings(results, cmp) -> [str]``, the
-    study-specific sentences of the report's Findings section (numbers from the data).
+    Attributes
+    ----------
+    matches, figures : str
+        ``"module:function"`` of ``matches(results) -> bool`` and of the figures.
+    findings : str or None
+        ``"module:function"`` of ``findings(results, cmp) -> [str]``, the study-specific
+        sentences of the report's Findings section (numbers from the data).
+    units : str or None
+        ``"module:attribute"`` of a mapping ``key -> (name, unit)`` that extends the unit table
+        (:mod:`workbench.units`) by the keys of this study (its scenario parameters, its
+        extras); the keys must not be in the generic table.
     """
 
     matches: str
     figures: str
     findings: str | None = None
+    units: str | None = None
+
+
+@dataclass(frozen=True)
+class KindInfo:
+    """A study kind: its code and the plug-in points the generic report calls for its results.
+
+    Attributes
+    ----------
+    target : str
+        ``"module:attribute"`` of the :class:`~workbench.study.kinds.StudyKind` object.
+    units : str or None
+        ``"module:attribute"`` of a mapping ``key -> (name, unit)`` extending the unit table
+        (:mod:`workbench.units`) by the kind's parameters and extra columns.
+    lines : str or None
+        ``"module:function"`` of ``lines(study)``, called once per report with its
+        :class:`~workbench.report.load.ResultSet`; it returns a function of one case's rows
+        ``{model: row}`` -> ``[(model, points), ...]``: extra polylines of the report's 3-D
+        view (``points``: ``(k, n, 3)``, ``k`` lines of ``n`` points in the robot's base frame,
+        drawn in the model's colour).
+    axes : str or None
+        ``"module:function"`` of ``axes(columns) -> [column]``: the parameter columns that vary
+        the kind's cases, used where a sweep study's ``[sweep]`` keys would be (the kind's
+        study file has no ``[sweep]``).
+    """
+
+    target: str
+    units: str | None = None
+    lines: str | None = None
+    axes: str | None = None
 
 
 MODELS: Mapping[str, ModelInfo] = {
@@ -202,24 +241,31 @@ SCENARIOS: Mapping[str, str] = {
 }
 
 #: ``[study] kind`` -> the :class:`~workbench.study.kinds.StudyKind` object that loads, expands and runs it.
-KINDS: Mapping[str, str] = {
-    "sweep": "workbench.study.kinds:SWEEP",
-    "series_parallel": "workbench.experiments.series_parallel.kind:KIND",
-    "grasp": "workbench.experiments.whole_arm_grasp.kind:KIND",
-    "closed_loop": "workbench.experiments.closed_loop.kind:KIND",
+KINDS: Mapping[str, KindInfo] = {
+    "sweep": KindInfo("workbench.study.kinds:SWEEP"),
+    "series_parallel": KindInfo("workbench.experiments.series_parallel.kind:KIND",
+                                units="workbench.experiments.series_parallel.units:QUANTITIES",
+                                lines="workbench.experiments.series_parallel.view:leg_lines",
+                                axes="workbench.experiments.series_parallel.view:pose_columns"),
+    "grasp": KindInfo("workbench.experiments.whole_arm_grasp.kind:KIND"),
+    "closed_loop": KindInfo("workbench.experiments.closed_loop.kind:KIND"),
 }
 
 #: Study-specific figures, in report order (before the generic figures).
 FIGURES: Mapping[str, FigureSet] = {
     "wire_delay_arm": FigureSet("workbench.experiments.wire_delay.figures_arm:matches",
-                                "workbench.experiments.wire_delay.figures_arm:figures"),
+                                "workbench.experiments.wire_delay.figures_arm:figures",
+                                units="workbench.experiments.wire_delay.units:QUANTITIES"),
     "wire_delay": FigureSet("workbench.experiments.wire_delay.figures:matches",
                             "workbench.experiments.wire_delay.figures:figures",
-                            "workbench.experiments.wire_delay.findings:findings"),
+                            "workbench.experiments.wire_delay.findings:findings",
+                            units="workbench.experiments.wire_delay.units:QUANTITIES"),
     "hannan_walker": FigureSet("workbench.experiments.hannan_walker.figures:matches",
-                               "workbench.experiments.hannan_walker.figures:figures"),
+                               "workbench.experiments.hannan_walker.figures:figures",
+                               units="workbench.experiments.hannan_walker.units:QUANTITIES"),
     "hannan_walker_3d": FigureSet("workbench.experiments.hannan_walker.figures_3d:matches",
-                                  "workbench.experiments.hannan_walker.figures_3d:figures"),
+                                  "workbench.experiments.hannan_walker.figures_3d:figures",
+                                  units="workbench.experiments.hannan_walker.units:QUANTITIES"),
     "closed_loop": FigureSet("workbench.experiments.closed_loop.figures:matches",
                              "workbench.experiments.closed_loop.figures:figures"),
     "fruit_harvester": FigureSet("workbench.experiments.fruit_harvester.figures:matches",

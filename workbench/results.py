@@ -59,9 +59,9 @@ def _json_cell(cell: Any) -> Any:
 def _meta(folder: Path, columns: list[str]) -> tuple[dict[str, str], dict[str, str]]:
     import pyarrow.parquet as pq
 
-    from .report.units import unit_of
     from .study.columns import column_meta
     from .study.store import SCHEMA_FILE
+    from .units import unit_of
 
     units: dict[str, str] = {}
     frames: dict[str, str] = {}

@@ -68,8 +68,8 @@ def test_backbone_errors_against_the_arc_sagitta():
 
 
 def test_matches_and_table():
-    ok = pd.DataFrame({"model": ["series_parallel"] * 2, "p.motion.shape": ["s_shape"] * 2,
-                       "p.motion.n_modules": [3, 5], "p.motion.value": [0.5, 0.5], "robot_length": [1.5, 2.5],
+    ok = pd.DataFrame({"model": ["series_parallel"] * 2, "p.pose.shape": ["s_shape"] * 2,
+                       "p.pose.n_modules": [3, 5], "p.pose.value": [0.5, 0.5], "robot_length": [1.5, 2.5],
                        "x.backbone_max_error": [1e-3, 6e-4], "x.backbone_rms_error": [4e-4, 2e-4],
                        "x.polygon_max_error": [2e-2, 1.2e-2]})
     assert matches(SimpleNamespace(ok=ok)) and not matches(SimpleNamespace(ok=ok.iloc[:1]))

@@ -47,7 +47,7 @@ def _results(**cols) -> SimpleNamespace:
     ({"p.scenario.name": "wire_delay", "p.robot.preset": "cojocaru_tronconic"}, ["wire_delay"]),
     ({"p.scenario.name": "hannan_walker_line", "p.robot.preset": "hannan_walker"}, ["hannan_walker"]),
     ({"p.robot.preset": "shao_harvester"}, ["fruit_harvester"]),
-    ({"p.motion.kind": "module"}, ["series_parallel"]),
+    ({"p.pose.kind": "module"}, ["series_parallel"]),
 ])
 def test_study_figure_sets_each_matches_its_own_study(cols, sets):
     assert study_figure_sets(_results(**cols)) == sets

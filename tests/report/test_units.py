@@ -5,7 +5,8 @@ from __future__ import annotations
 import pandas as pd
 
 from workbench.report.style import case_title, axis_label, short_label, value_text
-from workbench.report.units import UNITS, label_of, unit_groups, unit_of
+from workbench.report.units import label_of, shown_unit, unit_groups
+from workbench.units import UNITS
 
 
 def test_known_keys_get_name_and_unit():
@@ -15,7 +16,7 @@ def test_known_keys_get_name_and_unit():
     assert label_of("tip_twist") == "tip twist [rad]"
     assert label_of("tendon_stretch") == "tendon stretch [m]"
     assert label_of("p.scenario.shape") == "trajectory"          # a category: no unit
-    assert unit_of("p.robot.n_sections") == ""                   # dimensionless
+    assert shown_unit("p.robot.n_sections") == ""                   # dimensionless
     # every robot.*, load.*, scenario.* entry names a unit or is explicitly unitless/categorical
     assert all(u is None or isinstance(u, str) for k, (_, u) in UNITS.items())
 
@@ -34,11 +35,11 @@ def test_case_titles_carry_units():
     assert title == "payload mass = 0.1 kg, trajectory = line"
 
 
-def test_motion_amplitude_unit_depends_on_the_motion():
-    df = pd.DataFrame({"p.motion.value": [0.2, 0.5, -0.2, 1.0],
-                       "p.motion.shape": ["x", "rx", "z", "bending"]})
-    groups = unit_groups(df, "p.motion.value")
+def test_pose_amplitude_unit_depends_on_the_pose():
+    df = pd.DataFrame({"p.pose.value": [0.2, 0.5, -0.2, 1.0],
+                       "p.pose.shape": ["x", "rx", "z", "bending"]})
+    groups = unit_groups(df, "p.pose.value")
     assert set(groups) == {"m", "rad"}
     assert list(groups["m"]) == [0, 2] and list(groups["rad"]) == [1, 3]
-    title = case_title({"p.motion.value": 0.5, "p.motion.shape": "rx"}, ["p.motion.value", "p.motion.shape"], {})
+    title = case_title({"p.pose.value": 0.5, "p.pose.shape": "rx"}, ["p.pose.value", "p.pose.shape"], {})
     assert title == "motion amplitude = 0.5 rad, motion = rx"

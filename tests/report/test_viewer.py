@@ -50,3 +50,24 @@ def test_dynamic_rows_give_time_frames(quickstart):
     got, pts = _model_frames(row, case_scene(row), "world")
     assert [f[0] for f in got] == [0.0, 0.5, 1.0]
     np.testing.assert_allclose(np.asarray(got[-1][1]), np.round(case_scene(row).rotation @ P.T, 6).T, atol=1e-6)
+
+
+def test_a_study_kinds_lines_hook_adds_polylines_in_model_colours(quickstart, monkeypatch):
+    """The viewer draws what the kind's registered ``lines`` hook returns, in the report's frame."""
+    from workbench.report import viewer
+
+    seg = np.array([[[0.0, 0.0, 0.0], [0.0, 0.0, 0.1]]])  # one line of two points, base frame
+    calls = []
+
+    def hook(study):
+        calls.append(study)
+        return lambda rows: [(m, seg) for m in rows if m == "ancf"]
+
+    monkeypatch.setattr(viewer, "kind_hook", lambda spec, name: hook if name == "lines" else None)
+    sc = viewer_scenes(quickstart)
+    assert len(calls) == 1
+    case = sc["cases"][0]
+    assert len(case["lines"]) == 1 and case["lines"][0][0] == viewer.model_color("ancf")
+    np.testing.assert_allclose(case["lines"][0][1][0], case["base"], atol=1e-6)  # the base point in world
+    monkeypatch.undo()
+    assert all(c["lines"] == [] for c in viewer_scenes(quickstart)["cases"])  # a sweep study: no hook

@@ -128,7 +128,7 @@ def assumption_rows(study: ResultSet) -> list[Assumption]:
     kind = (spec.get("study") or {}).get("kind") if isinstance(spec.get("study"), Mapping) else None
     rows = _preset_rows(study)
     rows += _module_rows(study, "scenario", registry.SCENARIOS.get(scen.get("name", "")))
-    rows += _module_rows(study, "", registry.KINDS.get(kind) if kind else None)
+    rows += _module_rows(study, "", registry.KINDS[kind].target if kind in registry.KINDS else None)
     rep = spec.get("report") if isinstance(spec.get("report"), Mapping) else {}
     seen = {r.key for r in rows}
     for key, text in (rep.get("assumptions") or {}).items():

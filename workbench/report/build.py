@@ -26,7 +26,7 @@ import pandas as pd
 
 from .. import registry
 from ..compare.table import compare_table
-from ..study.store import MANIFEST, array_shapes
+from ..study.store import MANIFEST
 from .casetable import case_table
 from .figures import GENERIC_FIGURES
 from .findings import opening_sections
@@ -220,16 +220,6 @@ def _recover(out: Path) -> None:
             shutil.rmtree(p, ignore_errors=True)
 
 
-def _leg_nodes(study: ResultSet) -> int | None:
-    if not (study.path / MANIFEST).exists():
-        return None
-    try:
-        shape = array_shapes(study.path).get("legs")
-    except Exception:  # noqa: BLE001 - a folder without the schema part: no leg shapes
-        return None
-    return int(shape[2]) if shape and len(shape) == 4 else None
-
-
 def build_report(data_dir: str | Path, out_dir: str | Path | None = None, *, formats: Sequence[str] = ("png", "svg")) -> Path:
     """Write the comparison report of a study folder.
 
@@ -278,7 +268,7 @@ def build_report(data_dir: str | Path, out_dir: str | Path | None = None, *, for
             opening = opening_sections(study, cmp, lambda f: _write_figures([f], tmp / "figures", formats)[0])
             figs = _all_figures(study, code_categories(study, cmp))
             figure_html = _write_figures(figs, tmp / "figures", formats)
-        scenes = viewer_scenes(study, _leg_nodes(study))
+        scenes = viewer_scenes(study)
         table = case_table(study, cmp, figs, [c["id"] for c in scenes["cases"]])
         ctx = PageContext(study=study, cmp=cmp, summary=summary, failed=failed, failed_columns=tuple(fcols),
                           figures_html=tuple(figure_html), figure_names=tuple(f.name for f in figs),

@@ -17,6 +17,7 @@ from matplotlib.figure import Figure
 
 from ..compare.convergence import is_cc_pair
 from .headline import baseline_cases, baseline_value, sensitivity_keys
+from .kind_hooks import kind_hook
 from .load import ResultSet, numeric, sweep_keys
 from .style import ReportFigure, axis_label, fmt, model_color, pair_label, short_label
 
@@ -72,10 +73,11 @@ def error_bar_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFigure]
 
 
 def _other_keys(study: ResultSet, col: str) -> list[str]:
-    """The configured sweep keys other than the sensitivity ones (series-parallel: the motion), as columns."""
+    """The configured sweep keys (else the kind's ``axes`` hook) other than the sensitivity ones, as columns."""
     keys = [f"p.{k}" for k in sweep_keys(study.spec)]
-    if not keys:
-        keys = [c for c in study.results.columns if str(c).startswith("p.motion.")]
+    hook = kind_hook(study.spec, "axes") if not keys else None
+    if hook is not None:
+        keys = list(hook(list(study.results.columns)))
     sens = set(sensitivity_keys(study))
     return [k for k in keys if k != col and k not in sens and k in study.results.columns]
 

@@ -39,7 +39,7 @@ import pandas as pd
 import pyarrow as pa
 
 from ..compare.table import REQUIRED_COLUMNS, add_derived_columns
-from ..study.store import MANIFEST, read_table
+from ..study.store import MANIFEST, current_name, read_table
 
 __all__ = ["DIMENSIONLESS_AXES", "MANIFEST_NAMES", "ResultSet", "Study", "canonical_order", "load_results",
            "load_study", "numeric", "sweep_keys"]
@@ -226,7 +226,8 @@ def _plot_axes(df: pd.DataFrame, ok: pd.DataFrame, spec: Mapping[str, Any], rep:
     axes: list[str] = []
     for a in rep.get("axes") or []:
         # numeric or categorical (e.g. robot.base_orientation) axes, named with or without "p."
-        for col in (str(a), f"p.{a}"):
+        # (a column renamed since the folder was written: by its current name, as the table)
+        for col in (current_name(str(a)), current_name(f"p.{a}")):
             if col in df.columns and any_varies(col):
                 axes.append(col)
                 break
@@ -289,7 +290,7 @@ def load_results(data_dir: str | Path) -> ResultSet:
         reference=str(rep.get("reference") or "cc"),
         models=models,
         derived=derived,
-        labels={str(k): str(v) for k, v in (rep.get("labels") or {}).items()},
+        labels={current_name(str(k)): str(v) for k, v in (rep.get("labels") or {}).items()},
         categories=categories,
         expected_cases=_expected_cases(manifest),
         frame=frame,

@@ -19,7 +19,7 @@ from matplotlib.figure import Figure
 from ..compare.table import DERIVED_LABELS
 from ..registry import row_info
 from .load import ResultSet
-from .units import UNIT_DEPENDS_ON, label_of, unit_of
+from .units import label_of, shown_unit, unit_depends_on
 
 __all__ = [
     "STYLE",
@@ -188,11 +188,11 @@ def value_text(col: str, v: Any, labels: Mapping[str, str] | None = None, row: M
         m = re.search(r"\[([^\]]+)\]", labels[col])
         unit = m.group(1) if m else ""
     if unit is None:
-        unit = unit_of(col) or ""
-        dep = UNIT_DEPENDS_ON.get(col[2:] if col.startswith("p.") else col)
+        unit = shown_unit(col) or ""
+        dep = unit_depends_on(col)
         if dep is not None and row is not None:
-            other = row.get(dep[0], row.get(f"p.{dep[0]}"))
-            unit = dep[1].get(str(other), "")
+            other = row.get(dep.column, row.get(f"p.{dep.column}"))
+            unit = dep.units.get(str(other), "")
     return f"{fmt(float(v))} {unit}".strip()
 
 

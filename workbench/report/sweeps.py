@@ -21,7 +21,7 @@ from matplotlib.colors import LogNorm, Normalize
 from matplotlib.figure import Figure
 
 from .load import ResultSet, numeric
-from .units import UNIT_DEPENDS_ON, label_of, unit_groups
+from .units import label_of, unit_depends_on, unit_groups
 from .style import (
     THRESHOLDS,
     ReportFigure,
@@ -132,11 +132,11 @@ def _metric_panel(ax, study: ResultSet, cmp: pd.DataFrame, a: str, pairs, col: s
 
 
 def _dependent_unit_column(cmp: pd.DataFrame, a: str) -> str | None:
-    """The column that sets the unit of axis ``a`` (:data:`.units.UNIT_DEPENDS_ON`), if the table has it."""
-    dep = UNIT_DEPENDS_ON.get(a[2:] if a.startswith("p.") else a)
+    """The column that sets the unit of axis ``a`` (:func:`.units.unit_depends_on`), if the table has it."""
+    dep = unit_depends_on(a)
     if dep is None:
         return None
-    return next((c for c in (dep[0], f"p.{dep[0]}") if c in cmp.columns), None)
+    return next((c for c in (dep.column, f"p.{dep.column}") if c in cmp.columns), None)
 
 
 def _line_keys(g: pd.DataFrame, a: str, dep_col: str) -> pd.Series:

@@ -3,8 +3,8 @@
 :func:`viewer_scenes` turns the ok rows into the JSON that ``assets/viewer.js`` draws: per case
 the models' backbones in the report's frame (world by default), over time for dynamic cases
 (the stored ``series.backbone`` frames; the final shape otherwise), the disks and tendon
-routing of the case's robot (:func:`.scene.case_scene`), gravity, and for series-parallel
-stacks the leg centrelines (``legs``) as extra polylines.  Coordinates are rounded to 1 µm to
+routing of the case's robot (:func:`.scene.case_scene`), gravity, and the extra polylines a
+study kind registers (its ``lines`` hook, :mod:`.kind_hooks`).  Coordinates are rounded to 1 µm to
 keep the page small.  The viewer is a small vendored canvas script (no library, no network):
 an orthographic view of a few polylines needs nothing more, and it keeps every report one
 offline file of modest size.  Checked by ``tests/report/test_viewer.py`` and the browser tests.
@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from ..compare.table import array_cell, row_positions
+from .kind_hooks import kind_hook
 from .load import ResultSet
 from .scene import base_vectors_in, case_scene, gravity_in, to_frame
 from .shapes import backbone_frames
@@ -47,7 +48,7 @@ def _model_frames(row: dict, scene, frame: str) -> tuple[list, np.ndarray] | Non
     return [[float(tt[-1]) if tt is not None and tt.size else 0.0, _r(W)]], W
 
 
-def _case(study: ResultSet, cid: str, rows: dict[str, dict]) -> dict[str, Any] | None:
+def _case(study: ResultSet, cid: str, rows: dict[str, dict], lines=None) -> dict[str, Any] | None:
     row0 = next(iter(rows.values()))
     scene = case_scene(row0)
     models, pts = {}, []
@@ -68,7 +69,7 @@ def _case(study: ResultSet, cid: str, rows: dict[str, dict]) -> dict[str, Any] |
     L = float(row0.get("robot_length") or 0.0) or float(np.linalg.norm(hi - lo)) or 1.0
     physics = [m for m in models if m != study.reference]
     main = physics[0] if physics else next(iter(models))
-    extra = _leg_lines(rows, scene, study.frame)
+    extra = _extra_lines(lines(rows) if lines is not None else [], scene, study.frame)
     return {
         "id": str(cid), "title": case_title(row0, study.axes, study.labels) + f"  [{str(cid)[:8]}]",
         "L": L, "extent": float(max(np.max(np.maximum(hi, base) - np.minimum(lo, base)), 1e-3 * L)), "center": _r(0.5 * (np.minimum(lo, base) + np.maximum(hi, base))), "base": _r(base),
@@ -80,34 +81,24 @@ def _case(study: ResultSet, cid: str, rows: dict[str, dict]) -> dict[str, Any] |
     }
 
 
-def _leg_lines(rows: dict[str, dict], scene, frame: str) -> list:
-    """Series-parallel legs: ``[[color, points], ...]`` of every leg of the ``series_parallel`` row."""
+def _extra_lines(lines: list, scene, frame: str) -> list:
+    """``[[color, points], ...]``: the kind's ``(model, (k, n, 3) base-frame points)`` in ``frame``, model colours."""
     out = []
-    for m, r in rows.items():
-        legs = array_cell(r.get("legs"))
-        n_nodes = r.get("_legs_nodes")
-        if legs is None or not n_nodes:
-            continue
-        L = to_frame(legs.reshape(-1, int(n_nodes), 3), scene, frame)
-        out += [[model_color(m), _r(leg)] for leg in L]
+    for m, P in lines:
+        out += [[model_color(m), _r(line)] for line in to_frame(P, scene, frame)]
     return out
 
 
-def viewer_scenes(study: ResultSet, leg_nodes: int | None = None) -> dict[str, Any]:
-    """``{"frame", "cases": [...], "left_out": n}`` for ``assets/viewer.js`` (ok rows, canonical order).
-
-    ``leg_nodes``: nodes per series-parallel leg (the ``legs`` column's stored shape), if any.
-    """
+def viewer_scenes(study: ResultSet) -> dict[str, Any]:
+    """``{"frame", "cases": [...], "left_out": n}`` for ``assets/viewer.js`` (ok rows, canonical order)."""
     ok = study.ok
     ids = list(dict.fromkeys(ok["case_id"]))
+    hook = kind_hook(study.spec, "lines")
+    lines = hook(study) if hook is not None else None
     cases = []
     for cid in ids[:MAX_VIEWER_CASES]:
-        rows = {}
-        for _, r in ok[ok["case_id"] == cid].iterrows():
-            d = r.to_dict()
-            d["_legs_nodes"] = leg_nodes
-            rows[str(r["model"])] = d
-        c = _case(study, cid, rows)
+        rows = {str(r["model"]): r.to_dict() for _, r in ok[ok["case_id"] == cid].iterrows()}
+        c = _case(study, cid, rows, lines)
         if c is not None:
             cases.append(c)
     return {"frame": study.frame, "cases": cases, "left_out": max(0, len(ids) - MAX_VIEWER_CASES)}

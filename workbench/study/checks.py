@@ -27,7 +27,7 @@ from pydantic import ValidationError
 
 from .build import build_load, build_options, build_robot
 from .expand import count_cases, sweep_blocks
-from .messages import UNITS, StudyError, check_robot_value, join_key, num, pydantic_problems, suggest
+from .messages import StudyError, check_robot_value, join_key, num, param_unit, pydantic_problems, suggest
 from .params import canonical_json
 from .scenarios import SCENARIOS, load_with_scenario, scenario_parameters
 from .schema import LIMIT_KEYS, SAMPLED_BLOCKS, SECTION_MODELS, SWEEP_SECTIONS, SweepSection
@@ -76,7 +76,7 @@ def check_named_params(section: str, raw: Mapping[str, Any], defaults: Mapping[s
         if k not in defaults:
             problems.append(f"{section}.{k}: unknown parameter of {owner}{suggest(k, list(defaults))}")
             continue
-        cv, prob = check_robot_value(k, v, defaults[k])
+        cv, prob = check_robot_value(k, v, defaults[k], section)
         if prob:
             problems.append(join_key(f"{section}.{k}", prob))
         else:
@@ -92,7 +92,7 @@ def load_rules(load: dict[str, Any], where: str) -> list[str]:
         if vals is not None:
             for i, v in enumerate(vals):
                 if v < 0:
-                    out.append(f"{where}.{name}[{i}]: must be >= 0 [{UNITS[name]}], got {num(v)}")
+                    out.append(f"{where}.{name}[{i}]: must be >= 0 [{param_unit(name)}], got {num(v)}")
             if len(vals) == 0:
                 out.append(f"{where}.{name}: must not be empty")
     given = [k for k in ("bend_angle", "tensions", "length_changes") if load.get(k) is not None]
@@ -400,7 +400,7 @@ def check_override(path: str, value: Any, base: dict[str, dict[str, Any]],
     if section == "robot":
         return check_robot_value(key, value, preset_defaults[key])
     if section == "scenario":
-        return check_robot_value(key, value, scenario_parameters(base["scenario"]["name"])[key])
+        return check_robot_value(key, value, scenario_parameters(base["scenario"]["name"])[key], "scenario")
     model = SECTION_MODELS[section]
     data = dict(base[section])
     data[key] = value

@@ -1,43 +1,45 @@
 """Units and frames of the result-table columns (what the store writes into the Parquet field metadata).
 
-:data:`COLUMNS` maps each result column the runner writes (``docs/architecture.md``, "Result
-tables") to ``(unit, frame)``; ``unit`` ``""`` is dimensionless, ``None`` a category or text;
-``frame`` ``"base"`` / ``"world"`` for vectors, ``None`` otherwise.  :func:`column_meta` also
-knows ``series.<name>`` (same unit and frame as the column of that name, sampled at ``time``)
-and the ``p.load.*`` / ``p.solver.*`` parameters whose unit the study format fixes
-(:data:`workbench.study.messages.UNITS`).  Robot and scenario parameters are preset-specific:
-their units are left open here (the report's unit table, ``workbench.report.units``, names the
-known ones; :func:`workbench.results.load` uses both).  Checked by ``tests/study/test_results.py``.
+:data:`COLUMNS` names the result columns the runner writes (``docs/architecture.md``, "Result
+tables"); each takes its unit from the one unit table (:func:`workbench.units.unit_of`; ``""``
+dimensionless, ``None`` a category or text).  :data:`FRAMES` names the frame of the vector
+columns (``"base"`` / ``"world"``).  :func:`column_meta` also knows ``series.<name>`` (same unit
+and frame as the column of that name, sampled at ``time``) and the ``p.load.*`` /
+``p.solver.*`` parameters whose unit the study format fixes (dimensionless ones carry none).  Robot and scenario parameters are preset-specific and
+``x.*`` extras study-specific: the field metadata leaves their units open (:func:`workbench.results.load` takes them from the
+unit table).  Checked by ``tests/study/test_results.py``.
 """
 
 from __future__ import annotations
 
-from .messages import UNITS
+from ..units import unit_of
 
-__all__ = ["COLUMNS", "column_meta", "field_metadata"]
+__all__ = ["COLUMNS", "FRAMES", "column_meta", "field_metadata"]
 
-COLUMNS: dict[str, tuple[str | None, str | None]] = {
-    "case_id": (None, None), "model": (None, None), "status": (None, None), "error": (None, None),
-    "failure": (None, None), "wall_time": ("s", None), "robot_length": ("m", None),
-    "robot_gravity": ("m/s^2", None),
-    "tip_x": ("m", "base"), "tip_y": ("m", "base"), "tip_z": ("m", "base"),
-    "tip_world_x": ("m", "world"), "tip_world_y": ("m", "world"), "tip_world_z": ("m", "world"),
-    "tip_frame": ("m", "base"),  # homogeneous base <- tip transform: rotation dimensionless, translation [m]
-    "length_change": ("m", None), "tip_twist": ("rad", None), "converged": (None, None), "iterations": ("", None),
-    "stations": ("m", None), "positions": ("m", "base"), "tendon_tensions": ("N", None),
-    "joint_angles": ("rad", None), "time": ("s", None),
-    "tip_position": ("m", "base"), "commands": (None, None), "tendon_stretch": ("m", None),
-    "tendon_lengths": ("m", None), "backbone": ("m", "base"), "backbone_time": ("s", None),
+#: the result columns the runner writes (the study kinds' own columns are not described here)
+COLUMNS = (
+    "case_id", "model", "status", "error", "failure", "wall_time", "robot_length", "robot_gravity",
+    "tip_x", "tip_y", "tip_z", "tip_world_x", "tip_world_y", "tip_world_z", "tip_frame", "length_change",
+    "tip_twist", "converged", "iterations", "stations", "positions", "tendon_tensions", "joint_angles", "time",
+    "tip_position", "commands", "tendon_stretch", "tendon_lengths", "backbone", "backbone_time",
+)
+
+#: the frame of each vector-valued result column (the tip transform: base <- tip)
+FRAMES: dict[str, str] = {
+    "tip_x": "base", "tip_y": "base", "tip_z": "base", "tip_world_x": "world", "tip_world_y": "world",
+    "tip_world_z": "world", "tip_frame": "base", "positions": "base", "tip_position": "base", "backbone": "base",
 }
 
 
 def column_meta(name: str) -> tuple[str | None, str | None]:
     """``(unit, frame)`` of column ``name`` (``(None, None)`` when not known here)."""
     if name.startswith("series."):
-        return COLUMNS.get(name[len("series."):], (None, None))
+        return column_meta(name[len("series."):])
     if name.startswith(("p.load.", "p.solver.")):
-        return UNITS.get(name.rsplit(".", 1)[1]), ("base" if name.endswith(("tip_force", "tip_torque")) else None)
-    return COLUMNS.get(name, (None, None))
+        return unit_of(name) or None, ("base" if name.endswith(("tip_force", "tip_torque")) else None)
+    if name not in COLUMNS:  # preset, scenario and study-specific keys: left open
+        return None, None
+    return unit_of(name), FRAMES.get(name)
 
 
 def field_metadata(name: str) -> dict[bytes, bytes] | None:

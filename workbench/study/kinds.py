@@ -168,7 +168,7 @@ def get_kind(name: str) -> StudyKind:
         The registered object is not a :class:`StudyKind`.
     """
     try:
-        target = registry.KINDS[name]
+        target = registry.KINDS[name].target
     except KeyError:
         raise KeyError(f"unknown study kind {name!r}; known kinds: {', '.join(registry.KINDS)}") from None
     kind = registry.resolve(target)

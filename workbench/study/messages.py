@@ -4,8 +4,9 @@ Shared by the validation of every study kind (:mod:`workbench.study.spec` and th
 kind's ``workbench/experiments/series_parallel/spec.py``): the :class:`StudyError` they raise,
 the "did you mean" suggestion, the translation of pydantic errors into one line each, the
 typing of preset and scenario parameters by their defaults (:func:`check_robot_value`) and
-the one TOML reader (:func:`read_toml`; each caller keeps its own wording).  Imports nothing
-from the workbench, so validation never pulls in execution code.
+the one TOML reader (:func:`read_toml`; each caller keeps its own wording).  Units come from the
+one unit table (:func:`workbench.units.unit_of`); imports nothing else from the workbench, so
+validation never pulls in execution code.
 
 Checked by ``tests/study/test_spec.py`` (the messages of ``tests/study/bad_configs``),
 ``tests/motion/test_motion_spec.py`` and ``tests/study/test_messages.py``.
@@ -22,8 +23,10 @@ from typing import Any
 
 from pydantic import BaseModel, ValidationError
 
+from ..units import unit_of
+
 __all__ = [
-    "StudyError", "UNITS", "suggest", "fmt_loc", "num", "translate", "known_keys", "pydantic_problems",
+    "StudyError", "param_unit", "suggest", "fmt_loc", "num", "translate", "known_keys", "pydantic_problems",
     "check_robot_value", "collapse_indexed", "join_key", "read_toml", "MAX_COUNT", "MAX_DEPTH",
 ]
 
@@ -36,13 +39,9 @@ class StudyError(ValueError):
         super().__init__("\n".join(self.problems))
 
 
-#: Units per ``[load]`` / ``[solver]`` key, for messages.
-UNITS = {
-    "bend_angle": "rad", "bend_plane": "rad", "tensions": "N", "length_changes": "m",
-    "pretension": "N", "tip_force": "N", "tip_torque": "N m", "duration": "s", "ramp_time": "s",
-    "start_delays": "s", "ramp_durations": "s", "time_step": "s", "max_case_seconds": "s",
-    "max_case_memory": "bytes",
-}
+def param_unit(name: str) -> str | None:
+    """The unit of ``[load]`` / ``[solver]`` key ``name`` (bare, as in a message's key path), else ``None``."""
+    return unit_of(f"load.{name}") or unit_of(f"solver.{name}")
 
 
 def suggest(key: str, known: list[str]) -> str:
@@ -78,7 +77,7 @@ def translate(err: dict, prefix: tuple, model: type[BaseModel] | None) -> str:
     full = prefix + loc
     typ, inp = err["type"], err.get("input")
     key = str(loc[-1]) if loc else ""
-    unit = UNITS.get(key) or next((UNITS[str(p)] for p in reversed(loc) if str(p) in UNITS), None)
+    unit = param_unit(key) or next((u for u in map(param_unit, map(str, reversed(loc))) if u), None)
     u = f" [{unit}]" if unit else ""
     if typ == "extra_forbidden":
         known = known_keys(model, loc[:-1])
@@ -137,17 +136,22 @@ def pydantic_problems(exc: ValidationError, prefix: tuple, model: type[BaseModel
 # ---------------------------------------------------------------------------------------
 _POSITIVE_PAT = re.compile(r"(length|diameter|modulus|stiffness|offset|radius|thickness|^n_|_count$|per_section$|^k_|_per_disk$)")
 _NONNEG_PAT = re.compile(r"(density|mass|gravity|spacing|friction)")
-_ROBOT_UNITS = {"length": "m", "diameter": "m", "offset": "m", "modulus": "Pa", "stiffness": "N",
-                "density": "kg/m^3", "mass": "kg", "gravity": "m/s^2", "angle": "rad", "radius": "m"}
+#: a preset or scenario parameter the unit table does not list takes the unit of the first
+#: quantity its name contains: word -> a key of that quantity in :data:`workbench.units.UNITS`
+_QUANTITY_OF_WORD = {"length": "robot.length", "diameter": "robot.diameter", "offset": "robot.tendon_offset",
+                     "modulus": "robot.youngs_modulus", "stiffness": "robot.tendon_stiffness",
+                     "density": "robot.density", "mass": "robot.payload_mass", "gravity": "robot.gravity",
+                     "angle": "load.bend_angle", "radius": "robot.length"}
 
 
-def _robot_unit(key: str) -> str:
+def _robot_unit(key: str, section: str = "robot") -> str:
+    """``" [unit]"`` of parameter ``key`` of ``section`` (``robot`` or ``scenario``), else ``""``."""
     if key.endswith("_direction"):  # a direction vector (e.g. gravity_direction): signed, no unit
         return ""
-    for k, u in _ROBOT_UNITS.items():
-        if k in key:
-            return f" [{u}]"
-    return ""
+    unit = unit_of(f"{section}.{key}")
+    if unit is None:
+        unit = next((unit_of(q) for w, q in _QUANTITY_OF_WORD.items() if w in key), None)
+    return f" [{unit}]" if unit else ""
 
 
 #: Upper bound of integer preset / scenario parameters (counts of sections, disks, tendons,
@@ -155,9 +159,9 @@ def _robot_unit(key: str) -> str:
 MAX_COUNT = 10_000
 
 
-def _check_list(key: str, value: Any, default: tuple | list) -> tuple[Any, str | None]:
+def _check_list(key: str, value: Any, default: tuple | list, section: str = "robot") -> tuple[Any, str | None]:
     """A list override of a list-valued default: numbers (or what the default holds), finite, sane by name."""
-    u = _robot_unit(key)
+    u = _robot_unit(key, section)
     if not isinstance(value, list):
         return value, f"must be a list (like the default {list(default)!r}), got {type(value).__name__} {value!r}"
     if not value:
@@ -222,16 +226,17 @@ def join_key(key: str, problem: str) -> str:
     return f"{key}: {problem}"
 
 
-def check_robot_value(key: str, value: Any, default: Any) -> tuple[Any, str | None]:
-    """Check one robot override against the preset default's type and physical sanity.
+def check_robot_value(key: str, value: Any, default: Any, section: str = "robot") -> tuple[Any, str | None]:
+    """Check one robot (or, ``section="scenario"``, scenario) override against the default's type and sanity.
 
     Integers are bounded by :data:`MAX_COUNT`; list defaults take lists whose entries are
-    checked like scalars (``"[i] must be finite"``: the caller prefixes the key).  Returns
-    ``(coerced_value, problem_or_None)``.
+    checked like scalars (``"[i] must be finite"``: the caller prefixes the key).  The unit in a
+    message is the unit table's for ``<section>.<key>``, else the quantity the name says.
+    Returns ``(coerced_value, problem_or_None)``.
     """
-    u = _robot_unit(key)
+    u = _robot_unit(key, section)
     if isinstance(default, (list, tuple)):
-        return _check_list(key, value, default)
+        return _check_list(key, value, default, section)
     if isinstance(default, bool):
         if not isinstance(value, bool):
             return value, f"must be a boolean (true/false), got {type(value).__name__} {value!r}"
@@ -252,7 +257,7 @@ def check_robot_value(key: str, value: Any, default: Any) -> tuple[Any, str | No
                 return value, None
             if default is None and isinstance(value, list):
                 return _check_list(key, value, [0.0] if all(
-                    isinstance(x, (int, float)) and not isinstance(x, bool) for x in value) else [""])
+                    isinstance(x, (int, float)) and not isinstance(x, bool) for x in value) else [""], section)
             return value, f"must be a number{u}, got {type(value).__name__} {value!r}"
         v = float(value)
         if not math.isfinite(v):

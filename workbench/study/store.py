@@ -21,6 +21,10 @@ that adds columns, so columns never go missing (e.g. when the first part holds o
 rows).  Array columns are ``list<double>`` holding the row-major flattened array; their
 per-row shapes (``-1`` = leading length varies) are in the schema metadata
 ``workbench.shapes`` (JSON) -- see :func:`array_shapes`.
+
+Columns renamed after a folder was written are read under their current names
+(:data:`RENAMED_COLUMNS`, applied by :func:`read_table` and :func:`read_columns`), so old
+result folders stay readable; nothing is rewritten on disk.
 """
 
 from __future__ import annotations
@@ -45,10 +49,8 @@ import pyarrow.parquet as pq
 from .columns import field_metadata
 from .outcomes import failure_of_error
 
-__all__ = ["CorruptPart", "ResultStore", "SchemaMismatch", "StoredRow", "atomic_write_bytes", "check_parts",
-           "read_columns",
-           "read_table",
-           "array_shapes", "MANIFEST", "SCHEMA_FILE"]
+__all__ = ["CorruptPart", "RENAMED_COLUMNS", "ResultStore", "SchemaMismatch", "StoredRow", "atomic_write_bytes",
+           "check_parts", "current_name", "read_columns", "read_table", "array_shapes", "MANIFEST", "SCHEMA_FILE"]
 
 MANIFEST = "_manifest.json"
 SCHEMA_FILE = "part-0000000000000000000-schema.parquet"
@@ -414,10 +416,38 @@ class ResultStore:
                 (self.folder / JOURNAL).unlink(missing_ok=True)
 
 
+#: Read-side aliases of renamed columns, old name prefix -> current prefix: a folder written
+#: before the rename is read under the current names.  ``p.motion.*`` of the series-parallel study
+#: (the commanded platform pose) is ``p.pose.*``.  Checked by ``tests/study/test_renamed_columns.py``.
+RENAMED_COLUMNS: dict[str, str] = {"p.motion.": "p.pose."}
+
+
+def current_name(name: str) -> str:
+    """The current name of a stored column ``name`` (:data:`RENAMED_COLUMNS`); other names unchanged."""
+    for old, new in RENAMED_COLUMNS.items():
+        if name.startswith(old):
+            return new + name[len(old):]
+    return name
+
+
+def _current_columns(df):
+    """``df`` with old column names renamed; an old column merges into its current one where both exist."""
+    for c in [c for c in df.columns if current_name(c) != c]:
+        new = current_name(c)
+        if new in df.columns:  # a folder resumed after the rename: old rows hold the old column
+            df[new] = df[new].where(df[new].notna(), df[c])
+            df = df.drop(columns=[c])
+        else:
+            df = df.rename(columns={c: new})
+    return df
+
+
 def read_columns(folder: str | Path, columns: list[str]):
     """The columns of ``columns`` that the folder's table has, as a pandas DataFrame.
 
     Columns the folder does not have (written by an older version) are filled with ``None``.
+    Columns are named by their current names (:func:`current_name`; an old name asked for
+    comes back under its current one).
 
     Raises
     ------
@@ -435,9 +465,11 @@ def read_columns(folder: str | Path, columns: list[str]):
         names = set(pq.read_schema(folder / SCHEMA_FILE).names) if (folder / SCHEMA_FILE).exists() else None
     except (OSError, pa.ArrowException) as e:
         raise CorruptPart(folder / SCHEMA_FILE, str(e).splitlines()[0] if str(e) else type(e).__name__) from None
-    want = [c for c in columns if names is None or c in names]
+    columns = list(dict.fromkeys(map(current_name, columns)))
+    stored = names if names is not None else set(columns)
+    want = [c for c in sorted(stored) if current_name(c) in columns] if names is not None else columns
     try:
-        df = pd.read_parquet(folder, columns=want)
+        df = _current_columns(pd.read_parquet(folder, columns=want))
     except (OSError, pa.ArrowException, ValueError) as e:
         _raise_corrupt_part(folder, e)
     for c in columns:
@@ -465,10 +497,10 @@ def _raise_corrupt_part(folder: Path, e: Exception):
 
 
 def read_table(folder: str | Path):
-    """The result table of a study folder as a pandas DataFrame (same as ``pd.read_parquet``)."""
+    """The result table of a study folder as a pandas DataFrame (``pd.read_parquet``, columns by current name)."""
     import pandas as pd
 
-    return pd.read_parquet(Path(folder))
+    return _current_columns(pd.read_parquet(Path(folder)))
 
 
 def array_shapes(folder: str | Path) -> dict[str, list[int]]:

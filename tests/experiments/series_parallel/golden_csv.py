@@ -35,12 +35,11 @@ def golden_frame(folder: str | Path) -> pd.DataFrame:
 
 def main(argv: list[str]) -> int:
     from workbench.experiments.series_parallel.kind import KIND
-    from workbench.experiments.series_parallel.spec import load_series_parallel_study
     from workbench.study.runner import run_cases
 
     study, csv = argv
     with tempfile.TemporaryDirectory() as tmp:
-        run_cases(KIND, load_series_parallel_study(study), Path(tmp) / "run")
+        run_cases(KIND, KIND.load(study), Path(tmp) / "run")
         golden_frame(Path(tmp) / "run").to_csv(csv, index=False, float_format="%.12e", lineterminator="\n")
     return 0
 

@@ -8,10 +8,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from workbench.experiments.series_parallel.expand import expand_motions
+from workbench.experiments.series_parallel.expand import expand_poses
 from workbench.experiments.series_parallel.kind import KIND
 from workbench.experiments.series_parallel.spec import load_series_parallel_study
-from workbench.experiments.series_parallel.worker import evaluate_motion_case
+from workbench.experiments.series_parallel.worker import evaluate_pose_case
 from workbench.study.run_config import RunConfig
 from workbench.study.runner import run_cases
 from workbench.study.spec import StudyError
@@ -33,6 +33,10 @@ module = [ { axis = "rz", amplitude = 0.1, samples = 1 } ]
 [report]
 reference = "target"
 """
+
+
+def run_motion_study(path, out, resume=False):
+    return run_cases(KIND, KIND.load(path), out, resume=resume)
 
 
 @pytest.fixture(scope="module")
@@ -67,7 +71,7 @@ def test_tiny_study_rows_and_round_trip(tiny_run):
     assert np.asarray(sp["positions"]).reshape(-1, 3).shape == (2, 3)
     # CC through one platform on the axis: straight (curvature 0), exact position
     assert cc["x.cc_curvature"] < 1e-6 and cc["x.cc_max_error"] < 1e-9
-    assert {c for c in df.columns if c.startswith("p.motion.")} >= {"p.motion.shape", "p.motion.value"}
+    assert {c for c in df.columns if c.startswith("p.pose.")} >= {"p.pose.shape", "p.pose.value"}
     man = json.loads((out / MANIFEST).read_text())
     assert man["study"]["study"]["kind"] == "series_parallel" and man["n_cases"] == 1
 
@@ -89,14 +93,14 @@ def test_failed_ik_is_a_failed_row_with_reason(monkeypatch, tmp_path):
 
     p = tmp_path / "t.toml"
     p.write_text(TINY)
-    case = expand_motions(load_series_parallel_study(p))[0]
+    case = expand_poses(load_series_parallel_study(p))[0]
 
     def failing(*a, **k):
         return sp.ModuleIK(np.full(6, np.nan), False, 3, float("nan"), "leg 2 static solve failed (test)",
                            *(np.full((6, 3), np.nan),) * 4, np.full((6, 5, 3), np.nan))
 
     monkeypatch.setattr(worker, "module_inverse", failing)
-    rows = {r["model"]: r for r in evaluate_motion_case(case.case_id, case.params)}
+    rows = {r["model"]: r for r in evaluate_pose_case(case.case_id, case.params)}
     assert rows["target"]["status"] == "ok"
     assert rows["series_parallel"]["status"] == "failed"
     assert rows["series_parallel"]["error"] == "IK: leg 2 static solve failed (test)"
@@ -113,10 +117,10 @@ def test_report_of_a_series_parallel_study_has_the_overview_figure(tiny_run, tmp
 
 def test_report_legs_figure_names_the_extremes_of_the_table(tiny_run, tmp_path):
     """The legs figure's sentence quotes the largest compression ratio and smallest gap of the table."""
-    from workbench.experiments.series_parallel.figures import motion_figures
+    from workbench.experiments.series_parallel.figures import pose_figures
 
     df = pd.read_parquet(tiny_run[1])
-    figs = {f.name: f for f in motion_figures(df)}
+    figs = {f.name: f for f in pose_figures(df)}
     assert "motion_legs" in figs
     sp = df[(df["model"] == "series_parallel") & (df["status"] == "ok")]
     text = figs["motion_legs"].summary

@@ -7,9 +7,9 @@ import textwrap
 import numpy as np
 import pytest
 
-from workbench.experiments.series_parallel.expand import expand_motions, motion_values
+from workbench.experiments.series_parallel.expand import amplitude_values, expand_poses
 from workbench.experiments.series_parallel.spec import is_series_parallel_study, load_series_parallel_study
-from workbench.experiments.series_parallel.worker import stack_targets
+from workbench.experiments.series_parallel.worker import module_target, stack_targets
 from workbench.study.spec import StudyError
 
 GOOD = """
@@ -38,7 +38,7 @@ def test_good_file_loads_and_is_recognised(tmp_path):
     s = load_series_parallel_study(p)
     assert s.geometry["height"] == 0.4 and s.geometry["rod_diameter"] == 0.006  # defaults filled in
     assert s.solver["n_elements"] == 4
-    assert len(expand_motions(s)) == 5
+    assert len(expand_poses(s)) == 5
 
 
 def test_generic_and_broken_files_are_not_motion_studies(tmp_path):
@@ -92,28 +92,28 @@ def test_no_motions_is_an_error(tmp_path):
 
 
 def test_expansion_is_deterministic_and_ids_depend_only_on_values(tmp_path):
-    a = expand_motions(load_series_parallel_study(_write(tmp_path, GOOD, "a.toml")))
-    b = expand_motions(load_series_parallel_study(_write(tmp_path, GOOD, "b.toml")))
+    a = expand_poses(load_series_parallel_study(_write(tmp_path, GOOD, "a.toml")))
+    b = expand_poses(load_series_parallel_study(_write(tmp_path, GOOD, "b.toml")))
     assert [c.case_id for c in a] == [c.case_id for c in b]
     assert len({c.case_id for c in a}) == len(a)
     # renaming the study or reordering the motions does not change the ids
     swapped = GOOD.replace('name = "t"', 'name = "other"')
     mod = 'module = [ { axis = "x", amplitude = 0.1, samples = 3 } ]\n'
     swapped = swapped.replace(mod, "").replace("[motions]\n", "[motions]\n" + mod)
-    c = expand_motions(load_series_parallel_study(_write(tmp_path, swapped, "c.toml")))
+    c = expand_poses(load_series_parallel_study(_write(tmp_path, swapped, "c.toml")))
     assert sorted(x.case_id for x in c) == sorted(x.case_id for x in a)
     # a changed parameter changes every id
-    d = expand_motions(load_series_parallel_study(_write(tmp_path, GOOD.replace("height = 0.4", "height = 0.41"), "d.toml")))
+    d = expand_poses(load_series_parallel_study(_write(tmp_path, GOOD.replace("height = 0.4", "height = 0.41"), "d.toml")))
     assert not {x.case_id for x in d} & {x.case_id for x in a}
     # the pinned id of one case (guards against accidental changes of the id recipe)
     first = a[0]
-    assert first.params["motion"] == {"kind": "module", "shape": "x", "value": -0.1, "n_modules": 1, "plane": 0.0}
+    assert first.params["pose"] == {"kind": "module", "shape": "x", "value": -0.1, "n_modules": 1, "plane": 0.0}
 
 
-def test_motion_values():
-    assert motion_values(0.2, 4, True) == pytest.approx([-0.2, -0.2 / 3, 0.2 / 3, 0.2])
-    assert motion_values(0.2, 3, True)[1] == 0.0
-    assert motion_values(1.0, 2, False) == [0.5, 1.0]
+def test_amplitude_values():
+    assert amplitude_values(0.2, 4, True) == pytest.approx([-0.2, -0.2 / 3, 0.2 / 3, 0.2])
+    assert amplitude_values(0.2, 3, True)[1] == 0.0
+    assert amplitude_values(1.0, 2, False) == [0.5, 1.0]
 
 
 def test_stack_targets_geometry():
@@ -139,22 +139,20 @@ def test_stack_targets_geometry():
 
 
 def test_pivot_is_part_of_tilt_cases_only(tmp_path):
-    """rx / ry with a pivot are their own cases (own ids, ``motion.pivot`` column); without one the
-    motion dict has no pivot key, so the ids of earlier studies do not change."""
+    """rx / ry with a pivot are their own cases (own ids, ``pose.pivot`` column); without one the
+    pose dict has no pivot key, so the ids of earlier studies do not change."""
     text = GOOD.replace('module = [ { axis = "x", amplitude = 0.1, samples = 3 } ]',
                         'module = [ { axis = "rx", amplitude = 0.5, samples = 1 }, '
                         '{ axis = "rx", amplitude = 0.5, samples = 1, pivot = 0.5 } ]')
-    cases = expand_motions(load_series_parallel_study(_write(tmp_path, text)))
-    mods = [c for c in cases if c.params["motion"]["kind"] == "module"]
+    cases = expand_poses(load_series_parallel_study(_write(tmp_path, text)))
+    mods = [c for c in cases if c.params["pose"]["kind"] == "module"]
     assert len(mods) == 2 and mods[0].case_id != mods[1].case_id
-    assert "pivot" not in mods[0].params["motion"]
-    assert mods[1].params["motion"]["pivot"] == 0.5 and mods[1].swept["motion.pivot"] == 0.5
+    assert "pivot" not in mods[0].params["pose"]
+    assert mods[1].params["pose"]["pivot"] == 0.5 and mods[1].swept["pose.pivot"] == 0.5
 
 
 def test_module_target_rotates_about_the_pivot():
     from scipy.spatial.transform import Rotation
-
-    from workbench.experiments.series_parallel.worker import module_target
 
     h, a = 0.5, 0.7
     R = Rotation.from_rotvec([a, 0.0, 0.0]).as_matrix()

@@ -46,17 +46,17 @@ ABOUT = StudyAbout(
 def matches(results) -> bool:
     """A series-parallel study with ``s_shape`` stacks at two or more module counts."""
     ok = results.ok
-    if ok.empty or "p.motion.shape" not in ok or "p.motion.n_modules" not in ok:
+    if ok.empty or "p.pose.shape" not in ok or "p.pose.n_modules" not in ok:
         return False
-    s = ok[ok["p.motion.shape"] == "s_shape"]
-    return s["p.motion.n_modules"].nunique() >= 2
+    s = ok[ok["p.pose.shape"] == "s_shape"]
+    return s["p.pose.n_modules"].nunique() >= 2
 
 
 def s_shape_table(results_ok: pd.DataFrame) -> pd.DataFrame:
     """One row per ok ``series_parallel`` S-shape row: n, amplitude, trunk length and the errors over it."""
-    s = results_ok[(results_ok["p.motion.shape"] == "s_shape") & (results_ok["model"] == "series_parallel")]
+    s = results_ok[(results_ok["p.pose.shape"] == "s_shape") & (results_ok["model"] == "series_parallel")]
     t = pd.DataFrame({
-        "n": s["p.motion.n_modules"].astype(int), "amplitude": s["p.motion.value"].astype(float),
+        "n": s["p.pose.n_modules"].astype(int), "amplitude": s["p.pose.value"].astype(float),
         "L": s["robot_length"].astype(float), "backbone": s["x.backbone_max_error"].astype(float),
         "rms": s["x.backbone_rms_error"].astype(float), "polygon": s["x.polygon_max_error"].astype(float),
     })
@@ -117,16 +117,16 @@ def _shapes_figure(ok: pd.DataFrame, t: pd.DataFrame) -> ReportFigure:
     fig = Figure(figsize=(5.2, 5.6), layout="constrained")
     ax = fig.subplots()
     a = t["amplitude"].max() if not t.empty else 0.0
-    sp = ok[(ok["model"] == "series_parallel") & (ok["p.motion.shape"] == "s_shape") & (ok["p.motion.value"] == a)]
+    sp = ok[(ok["model"] == "series_parallel") & (ok["p.pose.shape"] == "s_shape") & (ok["p.pose.value"] == a)]
     drawn = False
     for i, n in enumerate(sorted(t["n"].unique())):
-        r = sp[sp["p.motion.n_modules"] == n]
+        r = sp[sp["p.pose.n_modules"] == n]
         if r.empty:
             continue
         r = r.iloc[0]
         L = float(r["robot_length"])
         if not drawn:
-            C = commanded_curve(stack_targets, "s_shape", a, n, L / n, float(r["p.motion.plane"]), n_points=400)
+            C = commanded_curve(stack_targets, "s_shape", a, n, L / n, float(r["p.pose.plane"]), n_points=400)
             ax.plot(C[:, 0] / L, C[:, 2] / L, color="#ff7f0e", lw=3, alpha=0.5, label="commanded S-curve")
             drawn = True
         P = np.asarray(r["positions"], dtype=float).reshape(-1, 3) / L

@@ -19,10 +19,10 @@ from ...report.style import fmt
 __all__ = ["findings"]
 
 
-def _motion(row) -> str:
-    pivot = row.get("p.motion.pivot")
+def _pose_text(row) -> str:
+    pivot = row.get("p.pose.pivot")
     about = "" if pivot is None or (isinstance(pivot, float) and np.isnan(pivot)) else f" about {fmt(pivot)} h"
-    return f"{row['p.motion.kind']} {row['p.motion.shape']} {fmt(float(row['p.motion.value']))}{about}"
+    return f"{row['p.pose.kind']} {row['p.pose.shape']} {fmt(float(row['p.pose.value']))}{about}"
 
 
 def findings(results, cmp: pd.DataFrame) -> list[str]:
@@ -35,9 +35,9 @@ def findings(results, cmp: pd.DataFrame) -> list[str]:
         dl, dt = numeric(sp["x.disc_length_error"]), numeric(sp["x.disc_tip_error"])
         i, j = int(np.nanargmax(dl)), int(np.nanargmax(dt))
         rt = numeric(sp["x.fk_position_error"]) if "x.fk_position_error" in sp else np.array([np.nan])
-        out.append(f"IK insertion lengths: discretisation error up to {fmt(1e3 * dl[i])} mm ({_motion(sp.iloc[i])}); "
+        out.append(f"IK insertion lengths: discretisation error up to {fmt(1e3 * dl[i])} mm ({_pose_text(sp.iloc[i])}); "
                    f"applied to the converged module these lengths would move the platform by up to "
-                   f"{fmt(1e3 * dt[j])} mm ({_motion(sp.iloc[j])}), while FK(IK) meets the target to "
+                   f"{fmt(1e3 * dt[j])} mm ({_pose_text(sp.iloc[j])}), while FK(IK) meets the target to "
                    f"{fmt(np.nanmax(rt))} m (solver precision, not the physics' accuracy).")
         missing = int(np.sum(~np.isfinite(dl)))
         if missing:
@@ -45,6 +45,6 @@ def findings(results, cmp: pd.DataFrame) -> list[str]:
     if "x.max_leg_compression" in sp:
         c = numeric(sp["x.max_leg_compression"])
         k = int(np.nanargmax(c))
-        out.append(f"Largest leg compression {fmt(c[k])} N ({_motion(sp.iloc[k])}), "
+        out.append(f"Largest leg compression {fmt(c[k])} N ({_pose_text(sp.iloc[k])}), "
                    f"{fmt(float(sp['x.buckling_ratio'].iloc[k]))} x the clamped-clamped Euler load of that leg.")
     return out

@@ -21,9 +21,9 @@ from typing import Any, Sequence
 from ...study.expand import Case
 from ...study.kinds import StudyKind
 from ...study.outcomes import CaseLimits
-from .expand import expand_motions
+from .expand import expand_poses
 from .spec import KIND_NAME, SeriesParallelStudy, load_series_parallel_study
-from .worker import MODELS, evaluate_motion_rows
+from .worker import MODELS, evaluate_pose_rows
 
 __all__ = ["KIND", "SeriesParallelKind"]
 
@@ -34,7 +34,7 @@ class SeriesParallelKind(StudyKind):
     name = KIND_NAME
     flush_rows = 64
     separable_models = False
-    task = staticmethod(evaluate_motion_rows)
+    task = staticmethod(evaluate_pose_rows)
 
     def load(self, path: str | Path, max_cases: int | None = None, overrides: Sequence[str] = ()
              ) -> SeriesParallelStudy:
@@ -42,7 +42,7 @@ class SeriesParallelKind(StudyKind):
                        overrides=tuple(overrides))
 
     def expand(self, spec: SeriesParallelStudy) -> list[Case]:
-        return expand_motions(spec)
+        return expand_poses(spec)
 
     def models(self, spec: SeriesParallelStudy) -> tuple[str, ...]:
         return MODELS

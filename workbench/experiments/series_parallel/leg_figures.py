@@ -63,15 +63,15 @@ def _box(ax, pts: np.ndarray) -> None:
     ax.view_init(elev=18, azim=-60)
 
 
-def _motion_name(row: Mapping[str, Any]) -> str:
-    shape = str(row["p.motion.shape"])
-    piv = row.get("p.motion.pivot")
+def _pose_name(row: Mapping[str, Any]) -> str:
+    shape = str(row["p.pose.shape"])
+    piv = row.get("p.pose.pivot")
     return shape + (f" @ {fmt(float(piv))} h" if shape in ("rx", "ry") and piv is not None and np.isfinite(piv)
                     and float(piv) != 1.0 else "")
 
 
 def _amplitude(row: Mapping[str, Any]) -> str:
-    shape, v = str(row["p.motion.shape"]), float(row["p.motion.value"])
+    shape, v = str(row["p.pose.shape"]), float(row["p.pose.value"])
     unit = _UNIT.get(shape)
     if unit == "mm":
         return f"{fmt(1e3 * v)} mm"
@@ -82,7 +82,7 @@ def _amplitude(row: Mapping[str, Any]) -> str:
 
 def _extremes(rows: pd.DataFrame) -> list[dict]:
     """The ok rows of one motion at its most negative and most positive amplitude (one if they coincide)."""
-    ok = rows[rows["status"] == "ok"].sort_values("p.motion.value", kind="mergesort")
+    ok = rows[rows["status"] == "ok"].sort_values("p.pose.value", kind="mergesort")
     if ok.empty:
         return []
     picks = [ok.iloc[0].to_dict(), ok.iloc[-1].to_dict()]
@@ -91,11 +91,11 @@ def _extremes(rows: pd.DataFrame) -> list[dict]:
 
 def module_legs_figure(df: pd.DataFrame) -> tuple[Figure, list[str]] | None:
     """Fig 6 counterpart: every single-module motion at its extreme amplitudes; ``None`` without legs."""
-    sp = df[(df["model"] == "series_parallel") & (df["p.motion.kind"] == "module")]
+    sp = df[(df["model"] == "series_parallel") & (df["p.pose.kind"] == "module")]
     groups = []
     if sp.empty:
         return None
-    for name, g in sp.groupby(sp.apply(_motion_name, axis=1), sort=False):
+    for name, g in sp.groupby(sp.apply(_pose_name, axis=1), sort=False):
         picks = [r for r in _extremes(g) if row_legs(r) is not None]
         if picks:
             groups.append((name, picks))
@@ -119,8 +119,8 @@ def module_legs_figure(df: pd.DataFrame) -> tuple[Figure, list[str]] | None:
 
 def stack_legs_figure(df: pd.DataFrame) -> tuple[Figure, list[str]] | None:
     """Fig 10 counterpart: every stack shape and amplitude, all modules' legs (x-z and y-z side views)."""
-    sp = df[(df["model"] == "series_parallel") & (df["p.motion.kind"] == "stack") & (df["status"] == "ok")]
-    rows = [r for r in sp.sort_values(["p.motion.shape", "p.motion.value"], kind="mergesort").to_dict("records")
+    sp = df[(df["model"] == "series_parallel") & (df["p.pose.kind"] == "stack") & (df["status"] == "ok")]
+    rows = [r for r in sp.sort_values(["p.pose.shape", "p.pose.value"], kind="mergesort").to_dict("records")
             if row_legs(r) is not None]
     if not rows:
         return None
@@ -131,7 +131,7 @@ def stack_legs_figure(df: pd.DataFrame) -> tuple[Figure, list[str]] | None:
     axs = fig.subplots(1, 2 * len(rows), sharey=True)
     for j, r in enumerate(rows):
         legs = row_legs(r)
-        unit = "m" if r["p.motion.shape"] == "translation" else "rad"
+        unit = "m" if r["p.pose.shape"] == "translation" else "rad"
         for v, (a, name) in enumerate(((0, "x"), (1, "y"))):
             ax = axs[2 * j + v]
             for k in range(legs.shape[0]):
@@ -145,7 +145,7 @@ def stack_legs_figure(df: pd.DataFrame) -> tuple[Figure, list[str]] | None:
             ax.set_aspect("equal", adjustable="box")
             ax.set_xlabel(f"world {name} [m]")
             if v == 0:
-                ax.set_title(f"{r['p.motion.shape']} = {fmt(float(r['p.motion.value']))} {unit}", fontsize=9, loc="left")
+                ax.set_title(f"{r['p.pose.shape']} = {fmt(float(r['p.pose.value']))} {unit}", fontsize=9, loc="left")
     axs[0].set_ylabel("world z [m]")
     return fig, [str(r["case_id"]) for r in rows]
 

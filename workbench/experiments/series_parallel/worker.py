@@ -45,7 +45,7 @@ from ...study.rows import fail_non_finite, failed_rows
 from .backbone import CURVE_SHAPES, backbone_errors
 from .estimate import discretization_columns, stress_columns
 
-__all__ = ["stack_targets", "module_target", "evaluate_motion_case", "evaluate_motion_batch", "evaluate_motion_rows",
+__all__ = ["stack_targets", "module_target", "evaluate_pose_case", "evaluate_pose_batch", "evaluate_pose_rows",
            "MODELS"]
 
 MODELS = ("target", "series_parallel", "cc_fit")
@@ -249,8 +249,8 @@ def _physics_row(row: dict[str, Any], state: dict[str, Any], geo, targets: np.nd
         return
     state["fk_poses"] = fk.poses  # kept for the CC fit even if what follows raises
     extras.update(_fk_errors(geo, fk, targets, n))
-    if state.get("motion", {}).get("shape") in CURVE_SHAPES:  # stacks: distance from the commanded curve
-        m = state["motion"]
+    if state.get("pose", {}).get("shape") in CURVE_SHAPES:  # stacks: distance from the commanded curve
+        m = state["pose"]
         extras.update(backbone_errors(stack_targets, m["shape"], m["value"], n, h, m["plane"], fk.leg_positions,
                                       fk.poses[:, :3, 3]))
     extras.update(stress_columns(geo, modules))
@@ -263,11 +263,11 @@ def _physics_row(row: dict[str, Any], state: dict[str, Any], geo, targets: np.nd
 
 
 def _series_parallel_row(base: Mapping[str, Any], geo, targets: np.ndarray, sol: Mapping[str, Any], n: int,
-                         h: float, motion: Mapping[str, Any] | None = None) -> tuple[dict[str, Any], np.ndarray | None]:
+                         h: float, pose: Mapping[str, Any] | None = None) -> tuple[dict[str, Any], np.ndarray | None]:
     """The ``series_parallel`` row (any exception: a failed row with its reason) and the FK poses."""
     t0 = time.perf_counter()
     row = {**base, "model": "series_parallel"}
-    state: dict[str, Any] = {"motion": dict(motion) if motion is not None and motion.get("kind") == "stack" else {}}
+    state: dict[str, Any] = {"pose": dict(pose) if pose is not None and pose.get("kind") == "stack" else {}}
     try:
         _physics_row(row, state, geo, targets, sol, n, h, t0)
     except Exception as e:  # noqa: BLE001
@@ -307,7 +307,7 @@ def _cc_fit_row(base: Mapping[str, Any], fk_poses: np.ndarray | None, n: int, h:
     return cc
 
 
-def evaluate_motion_case(case_id: str, params: Mapping[str, Any]) -> list[dict[str, Any]]:
+def evaluate_pose_case(case_id: str, params: Mapping[str, Any]) -> list[dict[str, Any]]:
     """The three rows (target, series_parallel, cc_fit) of one case.
 
     Nothing raises: any exception becomes a failed row with its reason (a target that cannot be
@@ -316,7 +316,7 @@ def evaluate_motion_case(case_id: str, params: Mapping[str, Any]) -> list[dict[s
     from ...physics.series_parallel import ModuleGeometry
 
     flat = flatten_params(params)
-    m, sol = params["motion"], params["solver"]
+    m, sol = params["pose"], params["solver"]
     geo = ModuleGeometry(**{k: tuple(v) if isinstance(v, list) else v for k, v in params["geometry"].items()})
     n, h = int(m["n_modules"]), geo.height
     cells = {"robot_length": n * h, "robot_gravity": 0.0}
@@ -336,11 +336,11 @@ def evaluate_motion_case(case_id: str, params: Mapping[str, Any]) -> list[dict[s
     return rows
 
 
-def evaluate_motion_batch(batch: list[tuple[str, Mapping[str, Any]]]) -> list[list[dict[str, Any]]]:
+def evaluate_pose_batch(batch: list[tuple[str, Mapping[str, Any]]]) -> list[list[dict[str, Any]]]:
     """A list of ``(case_id, params)`` -> one row list per case."""
-    return [evaluate_motion_case(cid, p) for cid, p in batch]
+    return [evaluate_pose_case(cid, p) for cid, p in batch]
 
 
-def evaluate_motion_rows(payload: tuple[str, Mapping[str, Any]]) -> list[dict[str, Any]]:
+def evaluate_pose_rows(payload: tuple[str, Mapping[str, Any]]) -> list[dict[str, Any]]:
     """The kind's task: the three rows of one case ``payload = (case_id, params)``."""
-    return evaluate_motion_case(*payload)
+    return evaluate_pose_case(*payload)
