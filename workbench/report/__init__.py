@@ -4,16 +4,14 @@
 and ``_manifest.json``; conventions in :mod:`workbench.report.load`) and writes
 ``reports/<study>/report.html`` (figures inlined as PNG, no external references),
 ``figures/*.png|svg`` and the metric tables as CSV.  Command line:
-``python -m workbench.report data/<study> [--out DIR]`` (:func:`main`).  ``Study`` and
-``load_study`` are the deprecated names of :class:`ResultSet` and :func:`load_results`.
+``python -m workbench.report data/<study> [--out DIR]`` (:func:`main`).
 """
 
 from typing import Any
 
-__all__ = ["ResultSet", "Study", "build_report", "load_results", "load_study", "main"]
+__all__ = ["ResultSet", "build_report", "load_results", "main"]
 
-_LAZY = {"build_report": ".build", "main": ".command", "ResultSet": ".load", "Study": ".load",
-         "load_results": ".load", "load_study": ".load"}
+_LAZY = {"build_report": ".build", "main": ".command", "ResultSet": ".load", "load_results": ".load"}
 
 
 def __getattr__(name: str) -> Any:
