@@ -131,7 +131,8 @@ def test_sweep_keys_name_every_block_in_order_once():
 
     sweep = {"product": {"load.bend_angle": [0.1, 0.2], "robot.length": [0.5]},
              "zip": {"robot.gravity": [0.0, 9.81], "load.bend_angle": [1.0, 2.0]},
-             "cases": [{"solver.tendon_model": "eyelets"}, {"solver.tendon_model": "continuum", "robot.n_sections": 2}],
+             "cases": [{"solver.tendon_model": "eyelets"},
+                       {"solver.tendon_model": "continuum", "robot.n_sections": 2}],
              "random": {"n": 4, "robot.tendon_offset": {"low": 0.01, "high": 0.02}}}
     assert sweep_keys(sweep) == ["load.bend_angle", "robot.length", "robot.gravity", "solver.tendon_model",
                                  "robot.n_sections", "robot.tendon_offset"]

@@ -17,7 +17,8 @@ ABOUT = StudyAbout(
               "the scoop instead of a tip mass -- and can the centre-of-arc Jacobian close the loop on it?"),
     assumptions=(
         Assumption("", "the paper gives 12 FPAs in 3 groups, no force law",
-                   what="chambers", value="three chamber lines at the tendon stand-in's 0/120/240 deg and 22 mm, F = A p"),
+                   what="chambers",
+                   value="three chamber lines at the tendon stand-in's 0/120/240 deg and 22 mm, F = A p"),
         Assumption("", "the 270 deg scoop then needs 0.54 MPa, within the paper's 0.6 MPa",
                    what="chamber area", value="A = 3e-4 m^2"),
         Assumption("", "the paper gives L and mass only",

@@ -29,13 +29,15 @@ ABOUT = StudyAbout(
               "length: tangent angle at mid-length, top parallel to the base); inverse then forward kinematics in "
               "Exudyn, and the distance of the physical trunk from the curve"),
     assumptions=(
-        Assumption("geometry.height", what="module height [m]", source="assumed, ModuleGeometry default (the paper gives no sizes)"),
+        Assumption("geometry.height", what="module height [m]",
+                   source="assumed, ModuleGeometry default (the paper gives no sizes)"),
         Assumption("geometry.rod_diameter", what="rod diameter [m]", source="assumed, ModuleGeometry default"),
         Assumption("geometry.platform_radius", what="platform radius [m]", source="assumed, ModuleGeometry default"),
         Assumption("solver.n_elements", what="GE beam elements per leg", source="discretisation choice"),
         Assumption("", what="trunk centreline = mean of the six legs at equal fractions of their lengths",
                    source="measurement definition (the paper shows pictures only)"),
-        Assumption("", what="more modules = more identical modules (the trunk grows with n); errors divided by the length",
+        Assumption("", what="more modules = more identical modules (the trunk grows with n); errors divided by the "
+                             "length",
                    source="reading of 'if it has more sections' / 'more modules should be connected'"),
     ),
     paper_rows=("Huang et al. Sec. 4.2 / Fig 10d-e: 'the s-shaped orientation would be imitated better if it has "

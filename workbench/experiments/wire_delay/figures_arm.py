@@ -34,15 +34,19 @@ ABOUT = StudyAbout(
               "delay -- and the two upper sections are passive, i.e. their motors hold, compensate or release the "
               "wires that run through the bending section 1?"),
     assumptions=(
-        Assumption("robot.section_length", what="section length H [m]", source="assumed: 3 x 0.35 m (the paper: 'more than one meter')"),
-        Assumption("robot.rod_diameter", what="steel backbone rod diameter [m]", source="assumed, preset cojocaru_tronconic"),
+        Assumption("robot.section_length", what="section length H [m]",
+                   source="assumed: 3 x 0.35 m (the paper: 'more than one meter')"),
+        Assumption("robot.rod_diameter", what="steel backbone rod diameter [m]",
+                   source="assumed, preset cojocaru_tronconic"),
         Assumption("robot.base_disk_diameter", what="disk diameter at the base [m]", source="assumed, preset"),
         Assumption("robot.disk_diameter_step", what="disk diameter step per section [m]", source="assumed, preset"),
         Assumption("robot.wire_diameter", what="steel wire diameter [m]", source="assumed, preset"),
         Assumption("robot.gravity", what="gravity [m/s^2]", source="as the paper's kinematic experiment"),
-        Assumption("scenario.move_time", what="duration of every wire's move [s]", source="assumed (the paper gives none)"),
+        Assumption("scenario.move_time", what="duration of every wire's move [s]",
+                   source="assumed (the paper gives none)"),
         Assumption("load.pretension", what="wire pretension [N]", source="assumed"),
-        Assumption("scenario.passive", what="what the upper motors do", source="swept: the paper's decoupled command is 'held'"),
+        Assumption("scenario.passive", what="what the upper motors do",
+                   source="swept: the paper's decoupled command is 'held'"),
     ),
     paper_rows=("Cojocaru et al. Sec. 5.2: the three-segment arm of more than one meter",
                 "Sec. 3: 'the three segments are controlled separately, without considering the interaction between "
