@@ -7,7 +7,8 @@
     df.loc[0, "positions"].shape                     # (n_stations, 3), metres, base frame
     df.attrs["units"]["tip_x"], df.attrs["frames"]["tip_x"]   # 'm', 'base'
 
-What :func:`load` does to the stored table (``pandas.read_parquet`` of the folder):
+What :func:`load` does to the stored table (read by :func:`workbench.study.folder.read_folder`, the
+read the report starts from too):
 
 - array cells become numpy arrays of their stored per-row shape (``workbench.shapes`` in the
   schema part: ``positions`` ``(n_stations, 3)``, ``tip_frame`` ``(4, 4)``, ``series.tip_position``
@@ -15,7 +16,8 @@ What :func:`load` does to the stored table (``pandas.read_parquet`` of the folde
 - list parameters stored as JSON strings (``p.load.tensions = '[1.0,0.0]'``) become lists;
 - ``attrs``: ``units`` and ``frames`` per column (the Parquet field metadata, else
   :mod:`workbench.study.columns` and the report's unit table; a unit not known stays out -- never
-  guessed), ``manifest`` (the run's ``_manifest.json``), ``sweep_axes`` (the swept ``p.*`` columns).
+  guessed), ``manifest`` (the run's ``_manifest.json``), ``sweep_axes`` (the swept ``p.*`` columns,
+  :func:`workbench.study.folder.swept_columns`).
 
 It lives at the top of the package (beside the CLI) because it is the notebook-facing face of
 two layers: the store's format (``workbench.study``) and the report's unit table.
@@ -104,18 +106,11 @@ def load(folder: str | Path, *, ok_only: bool = False):
     """
     import pandas as pd
 
-    from .study.session import read_manifest
-    from .study.store import MANIFEST, array_shapes, read_columns
+    from .study.folder import read_folder, swept_columns
+    from .study.store import SCHEMA_FILE, array_shapes
 
-    folder = Path(folder)
-    if not (folder / MANIFEST).exists():
-        raise FileNotFoundError(f"{folder}: not a study result folder (no {MANIFEST})")
-    import pyarrow.parquet as pq
-
-    from .study.store import SCHEMA_FILE
-
-    names = pq.read_schema(folder / SCHEMA_FILE).names if (folder / SCHEMA_FILE).exists() else None
-    df = read_columns(folder, names) if names else pd.read_parquet(folder)
+    read = read_folder(folder)
+    folder, df = read.path, read.table
     if ok_only:
         df = df[df["status"] == "ok"].reset_index(drop=True)
     shapes = array_shapes(folder) if (folder / SCHEMA_FILE).exists() else {}
@@ -127,23 +122,9 @@ def load(folder: str | Path, *, ok_only: bool = False):
                 df[c] = df[c].astype(object).map(_json_cell)
         elif c in shapes or (len(df) and any(isinstance(v, (list, np.ndarray)) for v in df[c].head(50))):
             df[c] = df[c].astype(object).map(lambda v, s=shapes.get(c, []): _shape_cell(v, s))
-    manifest = read_manifest(folder)
     units, frames = _meta(folder, list(df.columns))
-    swept = _sweep_axes(manifest, df)
-    df.attrs.update(units=units, frames=frames, manifest=manifest, sweep_axes=swept)
+    df.attrs.update(units=units, frames=frames, manifest=read.manifest, sweep_axes=swept_columns(read.spec, df.columns))
     return df
-
-
-def _sweep_axes(manifest: dict, df) -> list[str]:
-    """The ``p.*`` columns the study swept (in the order of the ``[sweep]`` section)."""
-    sweep = (manifest.get("study") or {}).get("sweep") or {}
-    out: list[str] = []
-    for block, body in sweep.items():
-        entries = body if isinstance(body, list) else [body]
-        for entry in entries:
-            if isinstance(entry, dict):
-                out += [f"p.{k}" for k in entry if k != "n" and f"p.{k}" in df.columns]
-    return list(dict.fromkeys(out))
 
 
 # ---------------------------------------------------------------------------------------

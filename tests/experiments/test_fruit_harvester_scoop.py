@@ -85,7 +85,7 @@ def test_small_study_report_has_the_scoop_figures(small_study_run, tmp_path):
     from workbench.report.build import build_report
     from workbench.study import read_table
 
-    from workbench.experiments.fruit_harvester.scoop_notes import ASSUMPTIONS, QUESTION
+    from workbench.experiments.fruit_harvester.scoop_notes import ABOUT
 
     out = small_study_run(Path(__file__).resolve().parents[2] / "tests/regression/studies/fruit_harvester_fluidic.toml")
     df = read_table(out)
@@ -98,5 +98,5 @@ def test_small_study_report_has_the_scoop_figures(small_study_run, tmp_path):
     import html as _html
 
     text = _html.unescape(html)
-    assert QUESTION[:40] in text and all(a in text for a, _, _ in ASSUMPTIONS)
+    assert ABOUT.question[:40] in text and all(a.what in text for a in ABOUT.assumptions)
     assert "Findings: fluidic: the section's length changes by 16.1 % of L in the physics" in text

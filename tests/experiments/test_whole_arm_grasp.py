@@ -106,12 +106,12 @@ def test_small_study_report_has_the_grasp_figures(small_run, tmp_path):
     html = build_report(out, tmp_path / "report", formats=()).read_text()
     for name in ("grasp_wraps", "grasp_contact", "grasp_sweep", "grasp_pull", "grasp_carry"):
         assert f"data-figure='{name}'" in html, name
-    from workbench.experiments.whole_arm_grasp.notes import ASSUMPTIONS, QUESTION
+    from workbench.experiments.whole_arm_grasp.notes import ABOUT
 
     import html as _html
 
     text = _html.unescape(html)
-    assert QUESTION[:40] in text and all(a in text for a, _, _ in ASSUMPTIONS)
+    assert ABOUT.question[:40] in text and all(a.what in text for a in ABOUT.assumptions)
     assert "Findings: CC's plan ignores the object" in text and "held the object in 2 of 2 cases" in text
 
 

@@ -1,4 +1,6 @@
-"""Synthetic study folders in the result-table schema of docs/architecture.md.
+"""Synthetic study folders in the layout the study runner writes (``_manifest.json`` with the spec under
+``"study"``, a zero-row schema part, parts of that schema), read by the one loader
+(:mod:`workbench.study.folder`).
 
 The "cc" rows are exact constant-curvature arcs (closed form); the physics rows are the
 same arc with a softened curvature plus the Euler-Bernoulli cantilever sag under a
@@ -15,6 +17,8 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+import pyarrow as pa
+import pyarrow.parquet as pq
 
 L = 0.5
 M = 33
@@ -147,11 +151,12 @@ def dynamic_rows(models=("cc", "beam3d")):
 
 
 def manifest(name, sweep, models, report=None):
-    spec = {"name": name, "sweep": sweep, "models": list(models)}
+    """A runner manifest: the resolved spec under ``"study"`` (sweep axes as a ``product`` block), provenance."""
+    spec = {"study": {"name": name, "models": list(models)}, "sweep": {"product": sweep} if sweep else {}}
     if report:
         spec["report"] = report
     return {
-        "spec": spec,
+        "study": spec,
         "config_hash": "3f2a9c01d4e5",
         "versions": {"workbench": "0.1.0", "exudyn": "1.13.6", "numpy": "2.4.6"},
         "git_commit": "0123456789abcdef0123456789abcdef01234567",
@@ -161,6 +166,16 @@ def manifest(name, sweep, models, report=None):
         # a URL in provenance must not leak into the report as a link
         "repository": "https://example.org/trunk-workbench.git",
     }
+
+
+def write_parts(folder: Path, df: pd.DataFrame, n_parts: int = 2) -> None:
+    """``df`` as the runner stores it: a zero-row schema part, then ``n_parts`` parts of that one schema."""
+    schema = pa.Table.from_pandas(df, preserve_index=False).schema.remove_metadata()
+    pq.write_table(schema.empty_table(), folder / "part-0000000000000000000-schema.parquet")
+    step = -(-len(df) // n_parts)
+    for i in range(n_parts):
+        part = pa.Table.from_pandas(df.iloc[i * step:(i + 1) * step], schema=schema, preserve_index=False)
+        pq.write_table(part, folder / f"part-1000000000000000000-1-{i:06d}.parquet")
 
 
 def write_runner_study(folder: Path) -> Path:
@@ -179,8 +194,7 @@ def write_runner_study(folder: Path) -> Path:
             rows += static_rows([params], models=("cc", "ancf"))
     df = pd.DataFrame(rows)
     df["robot_gravity"] = 9.81
-    df.iloc[:0].to_parquet(folder / "part-0000000000000000000-schema.parquet")
-    df.to_parquet(folder / "part-1795320381551990903-14418-000000.parquet")
+    write_parts(folder, df, n_parts=1)
     man = {
         "study": {
             "study": {"name": "runner_layout", "description": "CC vs ANCF on a two-section rod", "seed": 1,
@@ -243,9 +257,6 @@ def write_study(folder: Path, kind: str) -> Path:
         sweep = {"actuation.delay": [0.0, 0.5]}
     else:
         raise ValueError(kind)
-    df = pd.DataFrame(rows)
-    half = len(df) // 2
-    df.iloc[:half].to_parquet(folder / "part-00000.parquet")
-    df.iloc[half:].to_parquet(folder / "part-00001.parquet")
-    (folder / "manifest.json").write_text(json.dumps(manifest(f"synthetic_{kind}", sweep, models, report), indent=1))
+    write_parts(folder, pd.DataFrame(rows))
+    (folder / "_manifest.json").write_text(json.dumps(manifest(f"synthetic_{kind}", sweep, models, report), indent=1))
     return folder

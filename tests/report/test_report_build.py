@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import base64
+import json
 import re
 from html.parser import HTMLParser
 from pathlib import Path
@@ -12,7 +13,7 @@ import pytest
 
 from synth_study import write_study
 from workbench.report.build import build_report
-from workbench.report.load import load_study
+from workbench.report.load import load_results
 
 
 class _Collector(HTMLParser):
@@ -155,12 +156,12 @@ def test_default_out_dir_is_the_run_folder_name(tmp_path, monkeypatch):
     assert not (tmp_path / "reports" / "synthetic_none").exists()
 
 
-def test_load_study_axes_from_manifest_and_fallback(tmp_path):
+def test_load_results_axes_from_manifest_and_fallback(tmp_path):
     data = write_study(tmp_path / "d2", "2d")
-    st = load_study(data)
+    st = load_results(data)
     assert st.axes == ("gamma", "kappaL")  # report.axes names derived columns
-    (data / "manifest.json").unlink()
-    st = load_study(data)
+    (data / "_manifest.json").write_text(json.dumps({"study": {}}))  # no name, no sweep, no report section
+    st = load_results(data)
     assert set(st.axes) == {"kappaL", "p.robot.gamma"}  # p.* columns that vary; bend angle as kappa L
     assert st.name == "d2"
 
@@ -169,9 +170,12 @@ def test_missing_folder_and_columns_raise_clear_errors(tmp_path):
     with pytest.raises(FileNotFoundError, match="does not exist"):
         build_report(tmp_path / "nope")
     (tmp_path / "empty").mkdir()
+    with pytest.raises(FileNotFoundError, match="no _manifest.json"):
+        build_report(tmp_path / "empty")
+    (tmp_path / "empty" / "_manifest.json").write_text("{}")
     with pytest.raises(FileNotFoundError, match="Parquet"):
         build_report(tmp_path / "empty")
-    pd.DataFrame({"case_id": ["a"], "status": ["ok"]}).to_parquet(tmp_path / "empty" / "p.parquet")
+    pd.DataFrame({"case_id": ["a"], "status": ["ok"]}).to_parquet(tmp_path / "empty" / "part-0.parquet")
     with pytest.raises(ValueError, match="model"):
         build_report(tmp_path / "empty")
 
@@ -180,7 +184,7 @@ def test_study_runner_layout(tmp_path):
     from synth_study import write_runner_study
 
     data = write_runner_study(tmp_path / "data" / "whatever")
-    st = load_study(data)
+    st = load_results(data)
     assert st.name == "runner_layout"
     assert st.axes == ("kappaL", "gamma")  # bend angle and derived.gravity_parameter as groups
     path = build_report(data, tmp_path / "out", formats=("png",))
@@ -207,10 +211,10 @@ def test_categorical_sweep_axis(tmp_path):
     for p in data.glob("*.parquet"):
         p.unlink()
     pd.concat([df, other]).to_parquet(data / "part-0.parquet")
-    man = json.loads((data / "manifest.json").read_text())
-    man["spec"]["sweep"] = {"solver.tendon_model": ["continuum", "eyelets"], "load.bend_angle": [0.1]}
-    (data / "manifest.json").write_text(json.dumps(man))
-    st = load_study(data)
+    man = json.loads((data / "_manifest.json").read_text())
+    man["study"]["sweep"] = {"product": {"solver.tendon_model": ["continuum", "eyelets"], "load.bend_angle": [0.1]}}
+    (data / "_manifest.json").write_text(json.dumps(man))
+    st = load_results(data)
     assert st.categories == {"p.solver.tendon_model": ("continuum", "eyelets")}
     path = build_report(data, tmp_path / "out", formats=("png",))
     parsed, text = _parse(path)

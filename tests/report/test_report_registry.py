@@ -1,7 +1,7 @@
 """The report reads the registry: model labels/colours, study figure sets; one report command line.
 
 workbench/report/style.py (model_label, model_color), report/build.py (study_figure_sets,
-report_command, main), report/load.py (ResultSet / load_results and their old names).
+report_command, main), report/load.py (ResultSet / load_results).
 """
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ import pytest
 
 from synth_study import write_runner_study, write_study
 from workbench import registry
-from workbench.report.load import ResultSet, Study, load_results, load_study
+from workbench.report.load import ResultSet, load_results
 from workbench.report.build import study_figure_sets
 from workbench.report.command import main
 from workbench.report.figures import GENERIC_FIGURES
@@ -59,14 +59,14 @@ def test_generic_figures_in_report_order():
         "compression_split_figures", "time_series_figures"]
 
 
-def test_result_set_old_names(tmp_path):
-    assert Study is ResultSet and load_study is load_results
+def test_load_results_gives_a_result_set(tmp_path):
     st = load_results(write_study(tmp_path / "d", "1d"))
     assert isinstance(st, ResultSet)
 
 
 def test_report_command_refuses_a_folder_without_runner_manifest(tmp_path, capsys):
-    data = write_study(tmp_path / "d", "1d")  # manifest.json, not _manifest.json
+    data = write_study(tmp_path / "d", "1d")
+    (data / "_manifest.json").rename(data / "manifest.json")  # not the runner's name
     assert main([str(data), "--out", str(tmp_path / "out")]) == 2
     assert capsys.readouterr().err.strip() == f"{data}: not a study result folder (no _manifest.json)"
 

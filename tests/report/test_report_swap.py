@@ -39,11 +39,11 @@ def test_a_kill_between_the_renames_is_recovered(tmp_path):
 
 def test_partial_run_gets_an_incomplete_banner(tmp_path):
     data = write_study(tmp_path / "data" / "p", "1d")
-    man = json.loads((data / "manifest.json").read_text())
+    man = json.loads((data / "_manifest.json").read_text())
     man["n_cases"] = 12                                                   # the synthetic 1d study has 8 cases
-    (data / "manifest.json").write_text(json.dumps(man))
+    (data / "_manifest.json").write_text(json.dumps(man))
     html = build_report(data, tmp_path / "rep", formats=()).read_text()
     assert "Incomplete: 4 of 12 cases not run" in html
     man["n_cases"] = 8
-    (data / "manifest.json").write_text(json.dumps(man))
+    (data / "_manifest.json").write_text(json.dumps(man))
     assert "Incomplete" not in build_report(data, tmp_path / "rep", formats=()).read_text()

@@ -124,3 +124,16 @@ def test_sobol_points_are_balanced_and_n_must_be_a_power_of_two(write_study):
             [sweep]
             sobol = { n = 6, "robot.length" = { low = 0.5, high = 1.5 } }
             """))
+
+
+def test_sweep_keys_name_every_block_in_order_once():
+    from workbench.study.expand import sweep_keys
+
+    sweep = {"product": {"load.bend_angle": [0.1, 0.2], "robot.length": [0.5]},
+             "zip": {"robot.gravity": [0.0, 9.81], "load.bend_angle": [1.0, 2.0]},
+             "cases": [{"solver.tendon_model": "eyelets"},
+                       {"solver.tendon_model": "continuum", "robot.n_sections": 2}],
+             "random": {"n": 4, "robot.tendon_offset": {"low": 0.01, "high": 0.02}}}
+    assert sweep_keys(sweep) == ["load.bend_angle", "robot.length", "robot.gravity", "solver.tendon_model",
+                                 "robot.n_sections", "robot.tendon_offset"]
+    assert sweep_keys(None) == sweep_keys({}) == sweep_keys({"product": 3}) == []  # unvalidated: no key

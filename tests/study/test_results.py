@@ -7,6 +7,7 @@ import json
 
 import numpy as np
 import pandas as pd
+import pyarrow as pa
 import pyarrow.parquet as pq
 import pytest
 
@@ -147,3 +148,28 @@ def test_xarray_missing_names_the_install(static_folder, monkeypatch):
     monkeypatch.setitem(sys.modules, "xarray", None)  # as if it were not installed
     with pytest.raises(ImportError, match="pip install xarray"):
         results.to_xarray(results.load(static_folder))
+
+
+def test_the_report_reads_the_same_table_and_axes(static_folder):
+    from workbench.report.load import load_results
+
+    df, st = results.load(static_folder), load_results(static_folder)
+    assert sorted(st.results["case_id"] + st.results["model"]) == sorted(df["case_id"] + df["model"])
+    assert set(st.results.columns) >= set(df.columns)
+    assert {a for a in st.axes if a.startswith("p.")} <= set(df.attrs["sweep_axes"])
+
+
+def test_parts_of_mixed_schemas_are_refused_not_concatenated(static_folder, tmp_path):
+    import shutil
+
+    from workbench.study.store import CorruptPart
+
+    folder = tmp_path / "mixed"
+    shutil.copytree(static_folder, folder)
+    part = sorted(p for p in folder.glob("part-*.parquet") if p.name != SCHEMA_FILE)[0]
+    t = pq.read_table(part)
+    i = t.schema.get_field_index("positions")  # list<double> in the schema, text in this part
+    t = t.set_column(i, "positions", pa.array(["not an array"] * len(t), pa.string()))
+    pq.write_table(t, part)
+    with pytest.raises(CorruptPart):
+        results.load(folder)

@@ -1,14 +1,16 @@
 """The report's Assumptions table: every parameter a source paper does not give, its value and source.
 
-Gathered from data, never from docstrings:
+Gathered from data, never from docstrings: the ``ASSUMED`` tuples of
+:class:`workbench.assumptions.Assumption` (read by :func:`workbench.assumptions.declared_assumptions`) of
 
-* the robot preset's ``ASSUMED`` (``workbench.robot.presets.preset_sources``), values from the
-  rows' ``p.robot.*`` when the study sets them, else the preset's default;
-* the scenario module's ``ASSUMED`` (``workbench.registry.SCENARIOS``), values from ``p.scenario.*``;
-* the study kind module's ``ASSUMED`` (``workbench.registry.KINDS``; keys ``"section.key"``, e.g.
-  the series-parallel module geometry), values from the rows;
-* the study's own ``[report] assumptions`` (``"section.key"`` -> text), values from the rows;
-* how the error bars are made (the discretisation estimate and the models' orders).
+* the robot preset's module (``workbench.registry.PRESETS``), values from the rows' ``p.robot.*``
+  when the study sets them, else the preset's default;
+* the scenario module (``workbench.registry.SCENARIOS``), values from ``p.scenario.*``;
+* the study kind module (``workbench.registry.KINDS``; keys ``"section.key"``, e.g. the
+  series-parallel module geometry), values from the rows;
+
+then the study's own ``[report] assumptions`` (``"section.key"`` -> text), values from the rows,
+and how the error bars are made (the discretisation estimate and the models' orders).
 
 A swept value is shown as its range with the baseline of the study's base section.  Checked by
 ``tests/report/test_findings.py``.
@@ -17,25 +19,16 @@ A swept value is shown as its range with the baseline of the study's base sectio
 from __future__ import annotations
 
 import sys
-from dataclasses import dataclass
 from typing import Any, Mapping
 
 import numpy as np
 
 from .. import registry
+from ..assumptions import Assumption, declared_assumptions
 from .load import ResultSet
 from .style import fmt
 
-__all__ = ["Assumption", "assumption_rows"]
-
-
-@dataclass(frozen=True)
-class Assumption:
-    """One row of the table: the parameter (``section.key``), the value used (text) and its source."""
-
-    key: str
-    value: str
-    source: str
+__all__ = ["assumption_rows"]
 
 
 def _text(v: Any) -> str:
@@ -85,27 +78,28 @@ def _module_of(target: str):
     return sys.modules[module]
 
 
+def _declared_rows(study: ResultSet, section: str, target: str | None,
+                   defaults: Mapping[str, Any] | None = None) -> list[Assumption]:
+    """The ``ASSUMED`` of the module of ``target`` as table rows (key ``section.key`` unless dotted)."""
+    if not target:
+        return []
+    out = []
+    for a in declared_assumptions(_module_of(target)):
+        key = a.key if "." in a.key else f"{section}.{a.key}"
+        default = None if defaults is None else defaults.get(a.key)
+        out.append(Assumption(key, a.source, value=_value(study, key, default)))
+    return out
+
+
 def _preset_rows(study: ResultSet) -> list[Assumption]:
     robot = study.spec.get("robot") if isinstance(study.spec.get("robot"), Mapping) else {}
     name = robot.get("preset")
     if not name or name not in registry.PRESETS:
         return []
-    from ..robot.presets import preset_parameters, preset_sources
+    from ..robot.presets import preset_parameters
 
     defaults = preset_parameters(name)
-    return [Assumption(f"robot.{k}", _value(study, f"robot.{k}", robot.get(k, defaults.get(k))), text)
-            for k, text in preset_sources(name)["assumed"].items()]
-
-
-def _module_rows(study: ResultSet, section: str, target: str | None) -> list[Assumption]:
-    if not target:
-        return []
-    mod = _module_of(target)
-    out = []
-    for k, text in dict(getattr(mod, "ASSUMED", {}) or {}).items():
-        key = k if "." in k else f"{section}.{k}"
-        out.append(Assumption(key, _value(study, key), text))
-    return out
+    return _declared_rows(study, "robot", registry.PRESETS[name], {k: robot.get(k, defaults.get(k)) for k in defaults})
 
 
 def _estimate_row(study: ResultSet) -> list[Assumption]:
@@ -113,8 +107,8 @@ def _estimate_row(study: ResultSet) -> list[Assumption]:
     if not models or "x.disc_tip_error" not in study.results:
         return []
     orders = ", ".join(f"{registry.row_info(m).label} {fmt(registry.row_info(m).order)}" for m in models)
-    return [Assumption("error bars", "Richardson, 1/2 and 1/4 resolution",
-                       f"each physics case re-solved with half and a quarter of the elements / links (dynamics: "
+    return [Assumption("error bars", value="Richardson, 1/2 and 1/4 resolution",
+                       source=f"each physics case re-solved with half and a quarter of the elements / links (dynamics: "
                        f"2x and 4x the time step); error = |q_N - q_N/2| / (2^p - 1) with the declared order p "
                        f"({orders}; dynamics at most 2), lowered to the observed order when smaller. A CC "
                        f"comparison is 'not converged' when its error bar exceeds 10 % of its error, unless error "
@@ -127,12 +121,12 @@ def assumption_rows(study: ResultSet) -> list[Assumption]:
     scen = spec.get("scenario") if isinstance(spec.get("scenario"), Mapping) else {}
     kind = (spec.get("study") or {}).get("kind") if isinstance(spec.get("study"), Mapping) else None
     rows = _preset_rows(study)
-    rows += _module_rows(study, "scenario", registry.SCENARIOS.get(scen.get("name", "")))
-    rows += _module_rows(study, "", registry.KINDS[kind].target if kind in registry.KINDS else None)
+    rows += _declared_rows(study, "scenario", registry.SCENARIOS.get(scen.get("name", "")))
+    rows += _declared_rows(study, "", registry.KINDS[kind].target if kind in registry.KINDS else None)
     rep = spec.get("report") if isinstance(spec.get("report"), Mapping) else {}
     seen = {r.key for r in rows}
     for key, text in (rep.get("assumptions") or {}).items():
         if key in seen:  # the study's own words replace the preset's
             rows = [r for r in rows if r.key != key]
-        rows.append(Assumption(str(key), _value(study, str(key)), str(text)))
+        rows.append(Assumption(str(key), str(text), value=_value(study, str(key))))
     return rows + _estimate_row(study)

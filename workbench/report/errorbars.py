@@ -16,9 +16,10 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from ..compare.convergence import is_cc_pair
+from ..study.expand import sweep_keys
 from .headline import baseline_cases, baseline_value, sensitivity_keys
 from .kind_hooks import kind_hook
-from .load import ResultSet, numeric, sweep_keys
+from .load import ResultSet, numeric
 from .style import ReportFigure, axis_label, fmt, model_color, pair_label, short_label
 
 __all__ = ["error_bar_figures", "sensitivity_figures"]
@@ -74,7 +75,7 @@ def error_bar_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFigure]
 
 def _other_keys(study: ResultSet, col: str) -> list[str]:
     """The configured sweep keys (else the kind's ``axes`` hook) other than the sensitivity ones, as columns."""
-    keys = [f"p.{k}" for k in sweep_keys(study.spec)]
+    keys = [f"p.{k}" for k in sweep_keys(study.spec.get("sweep"))]
     hook = kind_hook(study.spec, "axes") if not keys else None
     if hook is not None:
         keys = list(hook(list(study.results.columns)))

@@ -1,17 +1,15 @@
-"""Read a study folder (Parquet part files + manifest) into a :class:`ResultSet`.
+"""A study result folder as the report reads it: a :class:`ResultSet`.
 
-A folder the study runner wrote (``_manifest.json``) is read with
-:func:`workbench.study.store.read_table`; any other folder (e.g. the synthetic test folders with
-``manifest.json``) by concatenating its ``*.parquet`` parts.  Conventions (every key is optional):
+:func:`load_results` reads the folder with :func:`workbench.study.folder.read_folder` (the one
+read path, shared with :func:`workbench.results.load`: ``_manifest.json`` and the Parquet parts the
+study runner writes) and adds what the report needs.  Conventions (every key is optional):
 
-- the resolved spec is ``manifest["study"]`` (study runner) or ``manifest["spec"]``;
-- study name: ``spec["study"]["name"]``, ``spec["name"]`` or ``manifest["name"]``; default:
-  the folder name;
-- ``spec["sweep"]``: the swept axes: blocks ``{"product": {key: values}, "zip": {...},
-  "cases": [{key: value}, ...], "random": {"n": 4, key: {...}}, ...}``, or directly a mapping
-  ``{key: values}``, or a list of mappings with a ``"key"``/``"name"``/``"parameter"`` entry.
-  Axis ``k`` is the result column ``p.<k>``.  Axes with a dimensionless counterpart are
-  plotted as that group (:data:`DIMENSIONLESS_AXES`): ``load.bend_angle`` -> ``kappaL``,
+- the resolved spec is ``manifest["study"]``; the study name its ``[study] name``, else the
+  folder name;
+- ``spec["sweep"]``: the swept axes, the keys its blocks name (``product``, ``zip``, ``cases``,
+  ``random``, ...; :func:`workbench.study.expand.sweep_keys`).  Axis ``k`` is the result column
+  ``p.<k>``.  Axes with a dimensionless counterpart are plotted as that group
+  (:data:`DIMENSIONLESS_AXES`): ``load.bend_angle`` -> ``kappaL``,
   ``derived.gravity_parameter`` -> ``gamma``, ``robot.tendon_offset`` -> ``d_over_L``;
 - ``spec["report"]`` (optional):
   ``axes``: list of column names to plot against instead of the raw sweep axes (may name
@@ -20,31 +18,28 @@ A folder the study runner wrote (``_manifest.json``) is read with
   ``labels``: ``{column: axis label}``;
   ``reference``: reference model (default ``"cc"``);
   ``frame``: ``"world"`` (default) or ``"base"``, the frame of the shape figures and 3-D view.
-- provenance: ``config_hash``, ``versions`` (mapping), ``git`` (``{"commit", "dirty"}``) or
-  ``git_commit``, ``runs`` (list of ``{"host", "start", "end", "wall_time"}``) or ``host``,
-  ``start_time``, ``end_time`` (ISO 8601).
+- provenance (:mod:`.sections`): ``config_hash``, ``versions`` (mapping), ``git``
+  (``{"commit", "dirty"}``), ``runs`` (list of ``{"host", "start", "end", "wall_time"}``).
 
-Without a usable sweep entry the axes are the numeric ``p.*`` columns that vary.
+Without a usable sweep entry the axes are the numeric ``p.*`` columns that vary.  Checked by
+``tests/report/test_report_build.py``.
 """
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
 
 import numpy as np
 import pandas as pd
-import pyarrow as pa
 
 from ..compare.table import REQUIRED_COLUMNS, add_derived_columns
-from ..study.store import MANIFEST, current_name, read_table
+from ..study.expand import sweep_keys
+from ..study.folder import read_folder
+from ..study.store import current_name
 
-__all__ = ["DIMENSIONLESS_AXES", "MANIFEST_NAMES", "ResultSet", "Study", "canonical_order", "load_results",
-           "load_study", "numeric", "sweep_keys"]
-
-MANIFEST_NAMES = (MANIFEST, "manifest.json")
+__all__ = ["DIMENSIONLESS_AXES", "ResultSet", "canonical_order", "load_results", "numeric"]
 
 #: swept parameter column -> dimensionless column plotted instead (when it exists).
 DIMENSIONLESS_AXES = {
@@ -56,7 +51,7 @@ DIMENSIONLESS_AXES = {
 
 @dataclass(frozen=True)
 class ResultSet:
-    """The results of one study folder, ready for the report (alias ``Study``, deprecated).
+    """The results of one study folder, ready for the report.
 
     Attributes
     ----------
@@ -114,11 +109,8 @@ class ResultSet:
 
 
 def _spec_of(manifest: Mapping[str, Any]) -> Mapping[str, Any]:
-    for key in ("study", "spec"):
-        s = manifest.get(key)
-        if isinstance(s, Mapping):
-            return s
-    return {}
+    s = manifest.get("study")
+    return s if isinstance(s, Mapping) else {}
 
 
 def _has_values(v: Any) -> bool:
@@ -128,76 +120,6 @@ def _has_values(v: Any) -> bool:
         return len(v) > 0
     except TypeError:
         return False
-
-
-def sweep_keys(spec: Mapping[str, Any]) -> list[str]:
-    """Swept parameter keys from a resolved spec (tolerant of the forms in the module doc)."""
-    sw = spec.get("sweep") if isinstance(spec, Mapping) else None
-    keys: list[str] = []
-    if isinstance(sw, Mapping):
-        for k, v in sw.items():
-            if k == "cases" and isinstance(v, (list, tuple)):
-                for case in v:
-                    if isinstance(case, Mapping):
-                        keys += [str(c) for c in case if str(c) not in keys]
-                continue
-            if k == "n" and not isinstance(v, (list, tuple, Mapping)):
-                continue
-            if k in ("mode", "kind", "type", "product", "zip") and not isinstance(v, (list, tuple, Mapping)):
-                continue
-            if isinstance(v, Mapping) and not any(x in v for x in ("values", "start", "stop", "num", "min", "max", "low", "high")):
-                # nested axes, e.g. {"axes": {...}} or {"grid": {...}}
-                keys += sweep_keys({"sweep": v})
-            else:
-                keys.append(str(k))
-    elif isinstance(sw, (list, tuple)):
-        for item in sw:
-            if isinstance(item, Mapping):
-                for name in ("key", "name", "parameter", "param"):
-                    if name in item:
-                        keys.append(str(item[name]))
-                        break
-            elif isinstance(item, str):
-                keys.append(item)
-    return keys
-
-
-def _part_files(path: Path) -> list[Path]:
-    files = sorted(p for p in path.rglob("*.parquet") if not p.name.startswith((".", "_")))
-    if not files:
-        raise FileNotFoundError(f"no Parquet part files (*.parquet) under {path}")
-    return files
-
-
-def _read_parquet_folder(path: Path) -> pd.DataFrame:
-    """The result table of ``path``.
-
-    A runner folder (``_manifest.json``) is read with :func:`workbench.study.store.read_table`;
-    any other folder, or one whose parts do not share one schema (hand-written folders such as the
-    synthetic test studies), by concatenating every ``*.parquet`` part under it (tolerant path).
-    """
-    files = _part_files(path)
-    if (path / MANIFEST).exists():
-        try:
-            return read_table(path)
-        except pa.ArrowException:  # parts without one common schema: not written by ResultStore
-            pass
-    frames = [pd.read_parquet(f) for f in files]
-    frames = [f for f in frames if len(f.columns)]
-    return pd.concat(frames, ignore_index=True, sort=False) if frames else pd.DataFrame()
-
-
-def _read_manifest(path: Path) -> dict[str, Any]:
-    mpath = next((path / n for n in MANIFEST_NAMES if (path / n).exists()), None)
-    if mpath is None:
-        return {}
-    try:
-        manifest = json.loads(mpath.read_text())
-    except json.JSONDecodeError as exc:
-        raise ValueError(f"{mpath} is not valid JSON: {exc}") from exc
-    if not isinstance(manifest, dict):
-        raise ValueError(f"{mpath} must hold a JSON object, got {type(manifest).__name__}")
-    return manifest
 
 
 def _varies(df: pd.DataFrame, ok: pd.DataFrame, col: str) -> bool:
@@ -232,7 +154,7 @@ def _plot_axes(df: pd.DataFrame, ok: pd.DataFrame, spec: Mapping[str, Any], rep:
                 axes.append(col)
                 break
     if not axes:
-        for k in sweep_keys(spec):
+        for k in sweep_keys(spec.get("sweep")):
             col = k if k in df.columns else f"p.{k}"
             if any_varies(col):
                 axes.append(col)
@@ -246,31 +168,29 @@ def _plot_axes(df: pd.DataFrame, ok: pd.DataFrame, spec: Mapping[str, Any], rep:
 
 
 def load_results(data_dir: str | Path) -> ResultSet:
-    """Load ``data/<study>/``: Parquet part files and (optional) manifest.
+    """Load ``data/<study>/`` (a study runner's result folder) for the report.
 
     Raises
     ------
     FileNotFoundError
-        The folder or its Parquet files are missing.
+        The folder, its ``_manifest.json`` or its Parquet parts are missing.
     ValueError
-        The table lacks ``case_id``/``model``/``status`` or the manifest is not JSON.
+        The table lacks ``case_id``/``model``/``status``, the manifest is not a JSON object
+        (:class:`~workbench.study.messages.StudyError`) or a part is unreadable
+        (:class:`~workbench.study.store.CorruptPart`).
     """
-    path = Path(data_dir)
-    if not path.is_dir():
-        raise FileNotFoundError(f"study folder {path} does not exist")
-    df = _read_parquet_folder(path)
+    read = read_folder(data_dir)
+    path, df, manifest = read.path, read.table, read.manifest
     missing = [c for c in REQUIRED_COLUMNS if c not in df.columns]
     if missing:
         raise ValueError(f"result table in {path} lacks required column(s) {missing}")
     if "error" not in df.columns:
         df["error"] = ""
-    manifest = _read_manifest(path)
-    spec = _spec_of(manifest)
+    spec = read.spec
     rep = spec.get("report") if isinstance(spec.get("report"), Mapping) else {}
     derived = dict(rep.get("derived") or {})
     df = add_derived_columns(df, derived)
-    inner = spec.get("study") if isinstance(spec.get("study"), Mapping) else {}
-    name = str(inner.get("name") or spec.get("name") or manifest.get("name") or path.name)
+    name = read.name
     models = _model_order(df, spec)
     ok = df[df["status"].astype(str) == "ok"]
     axes = _plot_axes(df, ok, spec, rep)
@@ -327,12 +247,6 @@ def canonical_order(df: pd.DataFrame, axes, models) -> pd.DataFrame:
 def _expected_cases(manifest: Mapping[str, Any]) -> int | None:
     n = manifest.get("n_cases")
     return int(n) if isinstance(n, (int, float)) and not isinstance(n, bool) and n >= 0 else None
-
-
-#: Deprecated: use :class:`ResultSet` (the old name collides with :class:`workbench.study.Study`).
-Study = ResultSet
-#: Deprecated: use :func:`load_results` (the old name collides with :func:`workbench.study.load_study`).
-load_study = load_results
 
 
 def numeric(series: pd.Series) -> np.ndarray:

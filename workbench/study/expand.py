@@ -13,14 +13,14 @@ from __future__ import annotations
 
 import itertools
 from dataclasses import dataclass
-from typing import Any, Protocol
+from typing import Any, Mapping, Protocol
 
 import numpy as np
 
 from .params import canonical_json, case_id_for, case_id_from_sections, flatten_params
 from .schema import SAMPLED_BLOCKS
 
-__all__ = ["Case", "expand", "count_cases", "case_id_for", "flatten_params", "sweep_blocks"]
+__all__ = ["Case", "expand", "count_cases", "case_id_for", "flatten_params", "sweep_blocks", "sweep_keys"]
 
 
 class SweepSpec(Protocol):
@@ -52,6 +52,26 @@ class Case:
     index: int
     params: dict[str, dict[str, Any]]
     swept: dict[str, Any]
+
+
+def sweep_keys(sweep: Any) -> list[str]:
+    """The dotted keys a ``[sweep]`` section names, in block order, each once (the swept axes).
+
+    A mapping block (``product``, ``zip``, ``random`` / ``latin_hypercube`` / ``sobol``) names its
+    keys (``n`` is a sample count, not a key); a list block (``cases``) the keys of its entries.
+    Tolerates an unvalidated section (anything else names no key): the spec checks cross-key rules
+    with it, the result loaders (:mod:`workbench.study.folder`) read the axes of a stored run with it.
+    Checked by ``tests/study/test_expand.py``.
+    """
+    keys: list[str] = []
+    if not isinstance(sweep, Mapping):
+        return keys
+    for body in sweep.values():
+        if isinstance(body, Mapping):
+            keys += [str(k) for k in body if k != "n"]
+        elif isinstance(body, list):
+            keys += [str(k) for entry in body if isinstance(entry, Mapping) for k in entry]
+    return list(dict.fromkeys(keys))
 
 
 def sweep_blocks(study: SweepSpec) -> list[list[dict[str, Any]]]:

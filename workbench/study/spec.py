@@ -44,6 +44,7 @@ from pydantic import BaseModel, ValidationError
 from .report_keys import check_report
 from .checks import check_cases, check_named_params, check_scenario, check_sweep, known_paths, load_rules
 from .messages import StudyError, collapse_indexed, pydantic_problems, read_toml, suggest
+from .expand import sweep_keys
 from .outcomes import CaseLimits
 from .params import canonical_json
 from .schema import DEFAULT_MAX_CASES, LIMIT_KEYS, SECTION_MODELS, SWEEP_SECTIONS, StudyFile
@@ -244,19 +245,6 @@ def _resolve_robot(rraw: Any) -> tuple[dict[str, Any] | None, dict[str, Any], li
     return {"preset": preset, **values}, defaults, problems + more
 
 
-def _swept_paths(raw_sweep: Any) -> set[str]:
-    """Every dotted key a ``[sweep]`` table names (any block), for cross-key rules."""
-    if not isinstance(raw_sweep, dict):
-        return set()
-    out: set[str] = set()
-    for block, body in raw_sweep.items():
-        if isinstance(body, dict):
-            out.update(k for k in body if k != "n")
-        elif isinstance(body, list):
-            out.update(k for entry in body if isinstance(entry, dict) for k in entry)
-    return out
-
-
 def _load_and_derived_rules(sections: Mapping[str, BaseModel], rraw: Any,
                             preset_defaults: Mapping[str, Any], raw_sweep: Any = None) -> list[str]:
     """The load's cross-field rules; ``derived.gravity_parameter`` (set or swept) against ``robot.gravity``."""
@@ -265,7 +253,7 @@ def _load_and_derived_rules(sections: Mapping[str, BaseModel], rraw: Any,
     if load is not None:
         problems.extend(load_rules(load.model_dump(), "load"))
     derived = sections.get("derived")
-    swept = _swept_paths(raw_sweep)
+    swept = set(sweep_keys(raw_sweep))
     gamma = (derived is not None and derived.gravity_parameter is not None) or "derived.gravity_parameter" in swept
     if gamma and isinstance(rraw, dict):
         where = "derived.gravity_parameter" if derived is not None and derived.gravity_parameter is not None \
@@ -300,14 +288,7 @@ def _sensitivity_rules(rep: Any, base: dict[str, Any] | None, sweep: Mapping[str
     """``report.sensitivity`` keys are swept and set in their base section (the baseline value)."""
     if rep is None or base is None or not getattr(rep, "sensitivity", None):
         return []
-    swept: set[str] = set()
-    for block in sweep.values():
-        if isinstance(block, Mapping):
-            swept.update(k for k in block if "." in str(k))
-        elif isinstance(block, list):
-            for item in block:
-                if isinstance(item, Mapping):
-                    swept.update(item)
+    swept = set(sweep_keys(sweep))
     problems = []
     for i, key in enumerate(rep.sensitivity):
         section, _, name = str(key).partition(".")

@@ -14,9 +14,10 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
+from ...assumptions import Assumption
 from ...compare.table import array_cell, row_positions
 from ...report.style import ReportFigure, fmt, model_color, model_label
-from ..about import Assumption, StudyAbout, about_summary
+from ..about import StudyAbout, about_summary, from_preset
 from .worker import CLOSED_SUFFIX, PLAN
 
 __all__ = ["ABOUT", "matches", "figures", "loop_table"]
@@ -26,17 +27,16 @@ ABOUT = StudyAbout(
               "Hannan & Walker's resolved-rate / null-space controller (Eq 10-11, CC Jacobian) reads the physics "
               "tip at every control step and commands the cables; compared with the open-loop replay of its CC plan"),
     assumptions=(
-        Assumption("p.robot.joint_stiffness", "joint spring stiffness per section [N m/rad]",
-                   "assumed, preset hannan_walker"),
-        Assumption("p.robot.section_masses", "section masses [kg]", "assumed, preset hannan_walker"),
-        Assumption("p.robot.tendon_stiffness", "cable stiffness EA_t [N]", "assumed (1.6e5: ~1 mm steel), swept"),
-        Assumption("p.robot.payload_mass", "tip payload [kg]", "swept"),
-        Assumption("p.load.pretension", "cable pretension [N]", "assumed"),
-        Assumption("p.scenario.gain", "controller gain H1 of Eq 11", "assumed (1 = full resolved-rate step)"),
-        Assumption("p.scenario.steps_per_sample", "control steps per path sample", "assumed"),
-        Assumption("p.scenario.noise", "tip measurement noise, std per coordinate [m]", "assumed, swept"),
-        Assumption("", "quasi-static plant: each control step is a static equilibrium (warm-started re-solve)",
-                   "modelling choice: the paper's controller is kinematic"),
+        from_preset("hannan_walker", "joint_stiffness", "joint spring stiffness per section [N m/rad]"),
+        from_preset("hannan_walker", "section_masses", "section masses [kg]"),
+        from_preset("hannan_walker", "tendon_stiffness", "cable stiffness EA_t [N]", note="swept"),
+        Assumption("robot.payload_mass", what="tip payload [kg]", source="swept"),
+        Assumption("load.pretension", what="cable pretension [N]", source="assumed"),
+        Assumption("scenario.gain", what="controller gain H1 of Eq 11", source="assumed (1 = full resolved-rate step)"),
+        Assumption("scenario.steps_per_sample", what="control steps per path sample", source="assumed"),
+        Assumption("scenario.noise", what="tip measurement noise, std per coordinate [m]", source="assumed, swept"),
+        Assumption("", what="quasi-static plant: each control step is a static equilibrium (warm-started re-solve)",
+                   source="modelling choice: the paper's controller is kinematic"),
     ),
     paper_rows=("Hannan & Walker Eq 10-11 (resolved-rate control with null-space task) run in the loop on the "
                 "physics instead of open loop", "Sec. 5 line-tracking and grasp-approach experiments (Figs 7-12)"),

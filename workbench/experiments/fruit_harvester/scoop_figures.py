@@ -25,8 +25,9 @@ from matplotlib.figure import Figure
 from ...compare.table import array_cell, row_positions
 from ...report.style import ReportFigure, fmt
 from ...report.headline import baseline_cases
+from ..about import assumption_values
 from .scoop_findings import findings
-from .scoop_notes import ASSUMPTIONS, QUESTION, SEED_ROWS
+from .scoop_notes import ABOUT
 
 __all__ = ["matches", "figures"]
 
@@ -106,9 +107,9 @@ def _shapes_figure(pairs) -> ReportFigure | None:
                      f"CC arc length {fmt(1e3 * (_f(cc, 'robot_length') + _f(cc, 'length_change')))} mm", fontsize=9)
         ax.legend(frameon=False, fontsize=7)
     fig.suptitle("Shao harvester: the fruit in the scoop (CC arc vs physics, gravity)")
-    summary = (f"Question: {QUESTION} Findings: " + "; ".join(findings(pairs)) + ". Answers: " + "; ".join(SEED_ROWS)
-               + ". " + "; ".join(texts) + ". Assumptions: "
-               + "; ".join(f"{a}: {v} ({why})" if why else f"{a}: {v}" for a, v, why in ASSUMPTIONS) + ".")
+    summary = (f"Question: {ABOUT.question} Findings: " + "; ".join(findings(pairs)) + ". Answers: "
+               + "; ".join(ABOUT.paper_rows) + ". " + "; ".join(texts) + ". Assumptions: "
+               + "; ".join(assumption_values(ABOUT, pd.DataFrame())) + ".")
     return ReportFigure("scoop_shapes", "Harvester scoop: CC arc vs physics with the fruit", fig, summary)
 
 

@@ -16,10 +16,11 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
+from ...assumptions import Assumption
 from ...compare.table import row_positions
 from ...report.style import ReportFigure, fmt, model_color, model_label
 from ...robot.orientation import base_rotation_for
-from ..about import Assumption, StudyAbout, about_summary
+from ..about import StudyAbout, about_summary
 
 __all__ = ["ABOUT", "matches", "figures", "gravity_label"]
 
@@ -28,15 +29,15 @@ ABOUT = StudyAbout(
               "16 two-DOF joints, 16 cables, the paper's planar cable geometry (Eq 1) applied per cable plane -- "
               "under gravity in any direction?"),
     assumptions=(
-        Assumption("p.robot.joint_stiffness", "joint spring stiffness per section [N m/rad]",
-                   "assumed, preset hannan_walker: the paper gives none"),
-        Assumption("p.robot.section_masses", "section masses [kg]", "assumed, preset hannan_walker"),
-        Assumption("p.robot.tendon_stiffness", "cable stiffness EA_t [N]", "assumed: ~1 mm steel wire"),
-        Assumption("p.load.pretension", "cable pretension [N]", "assumed: keeps antagonists taut"),
-        Assumption("", "two-DOF joints as Cardan joints Rx(a) Ry(b), torsion locked, equal springs on both axes",
-                   "modelling choice: the paper says 'two-DOF joints' without their kinematics"),
-        Assumption("", "Eq 1 per cable plane, equal joint angles per section and plane (Eq 2-3)",
-                   "the paper's planar cable map extended plane by plane"),
+        Assumption("robot.joint_stiffness", what="joint spring stiffness per section [N m/rad]",
+                   source="assumed, preset hannan_walker: the paper gives none"),
+        Assumption("robot.section_masses", what="section masses [kg]", source="assumed, preset hannan_walker"),
+        Assumption("robot.tendon_stiffness", what="cable stiffness EA_t [N]", source="assumed: ~1 mm steel wire"),
+        Assumption("load.pretension", what="cable pretension [N]", source="assumed: keeps antagonists taut"),
+        Assumption("", what="two-DOF joints as Cardan joints Rx(a) Ry(b), torsion locked, equal springs on both axes",
+                   source="modelling choice: the paper says 'two-DOF joints' without their kinematics"),
+        Assumption("", what="Eq 1 per cable plane, equal joint angles per section and plane (Eq 2-3)",
+                   source="the paper's planar cable map extended plane by plane"),
     ),
     paper_rows=("Hannan & Walker Sec. 3: the 32-DOF, 16-cable robot (16 two-DOF joints, two antagonistic cable "
                 "pairs per section, 90 deg apart)", "Eq 1-3 applied per plane", "Eq 10-11 spatial resolved-rate plan"),

@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from ...assumptions import Assumption
 from .replay import cc_cable_plan
 
 __all__ = ["hannan_walker_line", "hannan_walker_spatial", "GIVEN", "ASSUMED"]
@@ -25,13 +26,13 @@ GIVEN: dict[str, str] = {
     "n_samples": "paper Figs 7-12: six snapshots",
 }
 #: Scenario parameters the paper does not give (its photos carry no numbers).
-ASSUMED: dict[str, str] = {
-    "start_x": "line start (0.25, 0.70) m, read off the paper's figures (no numbers given)",
-    "start_z": "see start_x",
-    "end_x": "line end (0.35, 0.60) m (no numbers given)",
-    "end_z": "see end_x",
-    "grasp_bend_angles": "q_d = (-0.3, 0.3, 1.0, 1.6) rad per section, a curled tip (not given)",
-}
+ASSUMED: tuple[Assumption, ...] = (
+    Assumption("start_x", "line start (0.25, 0.70) m, read off the paper's figures (no numbers given)"),
+    Assumption("start_z", "see start_x"),
+    Assumption("end_x", "line end (0.35, 0.60) m (no numbers given)"),
+    Assumption("end_z", "see end_x"),
+    Assumption("grasp_bend_angles", "q_d = (-0.3, 0.3, 1.0, 1.6) rad per section, a curled tip (not given)"),
+)
 
 
 def hannan_walker_line(

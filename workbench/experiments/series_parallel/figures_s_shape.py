@@ -15,8 +15,9 @@ import pandas as pd
 from matplotlib.figure import Figure
 from matplotlib.ticker import NullFormatter
 
+from ...assumptions import Assumption
 from ...report.style import ReportFigure, fmt
-from ..about import Assumption, StudyAbout, about_summary
+from ..about import StudyAbout, about_summary
 from .backbone import commanded_curve
 from .worker import stack_targets
 
@@ -28,14 +29,16 @@ ABOUT = StudyAbout(
               "length: tangent angle at mid-length, top parallel to the base); inverse then forward kinematics in "
               "Exudyn, and the distance of the physical trunk from the curve"),
     assumptions=(
-        Assumption("p.geometry.height", "module height [m]", "assumed, ModuleGeometry default (the paper gives no sizes)"),
-        Assumption("p.geometry.rod_diameter", "rod diameter [m]", "assumed, ModuleGeometry default"),
-        Assumption("p.geometry.platform_radius", "platform radius [m]", "assumed, ModuleGeometry default"),
-        Assumption("p.solver.n_elements", "GE beam elements per leg", "discretisation choice"),
-        Assumption("", "trunk centreline = mean of the six legs at equal fractions of their lengths",
-                   "measurement definition (the paper shows pictures only)"),
-        Assumption("", "more modules = more identical modules (the trunk grows with n); errors divided by the length",
-                   "reading of 'if it has more sections' / 'more modules should be connected'"),
+        Assumption("geometry.height", what="module height [m]",
+                   source="assumed, ModuleGeometry default (the paper gives no sizes)"),
+        Assumption("geometry.rod_diameter", what="rod diameter [m]", source="assumed, ModuleGeometry default"),
+        Assumption("geometry.platform_radius", what="platform radius [m]", source="assumed, ModuleGeometry default"),
+        Assumption("solver.n_elements", what="GE beam elements per leg", source="discretisation choice"),
+        Assumption("", what="trunk centreline = mean of the six legs at equal fractions of their lengths",
+                   source="measurement definition (the paper shows pictures only)"),
+        Assumption("", what="more modules = more identical modules (the trunk grows with n); errors divided by the "
+                             "length",
+                   source="reading of 'if it has more sections' / 'more modules should be connected'"),
     ),
     paper_rows=("Huang et al. Sec. 4.2 / Fig 10d-e: 'the s-shaped orientation would be imitated better if it has "
                 "more sections' (tested with n = 3, 5, 7)", "Sec. 5: 'to get better flexibility, more modules should "

@@ -18,6 +18,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Any, Sequence
 
+from ...assumptions import Assumption
 from ...study.expand import Case
 from ...study.kinds import StudyKind
 from ...study.outcomes import CaseLimits
@@ -65,17 +66,17 @@ KIND = SeriesParallelKind()
 
 #: What the paper does not give (Huang et al. state no dimensions or materials): the assumed module,
 #: as data for the report's Assumptions section (keys ``"geometry.<ModuleGeometry field>"``).
-ASSUMED: dict[str, str] = {
-    "geometry.height": "0.5 m module (the paper gives no dimensions); sized so one module reaches the Fig 6 "
-                       "translations (+-200 mm) and twists (+-30 deg)",
-    "geometry.base_radius": "0.12 m hole circle (not given)",
-    "geometry.platform_radius": "0.12 m attachment circle (not given)",
-    "geometry.base_angles_deg": "Stewart-like hole pairs at 120 k +- 15 deg (not given)",
-    "geometry.platform_angles_deg": "6-6 crossing, legs 2k / 2k+1 to 120 k -+ 45 deg (not given)",
-    "geometry.rod_diameter": "leg rod diameter (not given); bending stresses scale with it, the kinematics "
-                             "hardly do (no external load)",
-    "geometry.youngs_modulus": "spring steel, 200 GPa (the paper: flexible rods, no material)",
-    "geometry.yield_strength": "hardened and tempered spring steel 52CrMoV4 (EN 10089): Rp0.2 >= 1200 MPa "
-                               "(Saarstahl data sheet)",
-    "geometry.platform_mass": "0.5 kg (only with gravity; the studies run without)",
-}
+ASSUMED: tuple[Assumption, ...] = (
+    Assumption("geometry.height", "0.5 m module (the paper gives no dimensions); sized so one module reaches the "
+                                  "Fig 6 translations (+-200 mm) and twists (+-30 deg)"),
+    Assumption("geometry.base_radius", "0.12 m hole circle (not given)"),
+    Assumption("geometry.platform_radius", "0.12 m attachment circle (not given)"),
+    Assumption("geometry.base_angles_deg", "Stewart-like hole pairs at 120 k +- 15 deg (not given)"),
+    Assumption("geometry.platform_angles_deg", "6-6 crossing, legs 2k / 2k+1 to 120 k -+ 45 deg (not given)"),
+    Assumption("geometry.rod_diameter", "leg rod diameter (not given); bending stresses scale with it, the "
+                                        "kinematics hardly do (no external load)"),
+    Assumption("geometry.youngs_modulus", "spring steel, 200 GPa (the paper: flexible rods, no material)"),
+    Assumption("geometry.yield_strength", "hardened and tempered spring steel 52CrMoV4 (EN 10089): Rp0.2 >= 1200 "
+                                          "MPa (Saarstahl data sheet)"),
+    Assumption("geometry.platform_mass", "0.5 kg (only with gravity; the studies run without)"),
+)

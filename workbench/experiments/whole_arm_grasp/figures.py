@@ -24,8 +24,9 @@ from matplotlib.figure import Figure
 from ...compare.table import array_cell, row_positions
 from ...report.style import ReportFigure, fmt
 from ...report.headline import baseline_cases
+from ..about import assumption_values
 from .findings import findings
-from .notes import ASSUMPTIONS, QUESTION, SEED_ROWS
+from .notes import ABOUT
 
 __all__ = ["matches", "figures", "SCENARIO"]
 
@@ -129,9 +130,9 @@ def _wraps_figure(pairs) -> ReportFigure:
 
 def _summary(texts, found) -> str:
     """Question, findings (computed), the seed-paper rows answered, the panels, and the assumptions."""
-    return (f"Question: {QUESTION} Findings: " + "; ".join(found) + ". Answers: " + "; ".join(SEED_ROWS) + ". "
-            + "; ".join(texts) + ". Assumptions: " + "; ".join(f"{a}: {v} ({why})" if why else f"{a}: {v}"
-                                                         for a, v, why in ASSUMPTIONS) + ".")
+    return (f"Question: {ABOUT.question} Findings: " + "; ".join(found) + ". Answers: "
+            + "; ".join(ABOUT.paper_rows) + ". " + "; ".join(texts) + ". Assumptions: "
+            + "; ".join(assumption_values(ABOUT, pd.DataFrame())) + ".")
 
 
 def _surface_gap(row: pd.Series, centre, r: float, hw):

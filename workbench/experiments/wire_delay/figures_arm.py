@@ -18,10 +18,11 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
+from ...assumptions import Assumption
 from ...compare.table import array_cell
 from ...kinematics import forward_kinematics
 from ...report.style import ReportFigure, fmt, model_label
-from ..about import Assumption, StudyAbout, about_summary
+from ..about import StudyAbout, about_summary
 from .analysis import cc_reading, commanded_wire_lengths, wire_geometry
 from .figures import robot_and_load
 
@@ -33,15 +34,19 @@ ABOUT = StudyAbout(
               "delay -- and the two upper sections are passive, i.e. their motors hold, compensate or release the "
               "wires that run through the bending section 1?"),
     assumptions=(
-        Assumption("p.robot.section_length", "section length H [m]", "assumed: 3 x 0.35 m (the paper: 'more than one meter')"),
-        Assumption("p.robot.rod_diameter", "steel backbone rod diameter [m]", "assumed, preset cojocaru_tronconic"),
-        Assumption("p.robot.base_disk_diameter", "disk diameter at the base [m]", "assumed, preset"),
-        Assumption("p.robot.disk_diameter_step", "disk diameter step per section [m]", "assumed, preset"),
-        Assumption("p.robot.wire_diameter", "steel wire diameter [m]", "assumed, preset"),
-        Assumption("p.robot.gravity", "gravity [m/s^2]", "as the paper's kinematic experiment"),
-        Assumption("p.scenario.move_time", "duration of every wire's move [s]", "assumed (the paper gives none)"),
-        Assumption("p.load.pretension", "wire pretension [N]", "assumed"),
-        Assumption("p.scenario.passive", "what the upper motors do", "swept: the paper's decoupled command is 'held'"),
+        Assumption("robot.section_length", what="section length H [m]",
+                   source="assumed: 3 x 0.35 m (the paper: 'more than one meter')"),
+        Assumption("robot.rod_diameter", what="steel backbone rod diameter [m]",
+                   source="assumed, preset cojocaru_tronconic"),
+        Assumption("robot.base_disk_diameter", what="disk diameter at the base [m]", source="assumed, preset"),
+        Assumption("robot.disk_diameter_step", what="disk diameter step per section [m]", source="assumed, preset"),
+        Assumption("robot.wire_diameter", what="steel wire diameter [m]", source="assumed, preset"),
+        Assumption("robot.gravity", what="gravity [m/s^2]", source="as the paper's kinematic experiment"),
+        Assumption("scenario.move_time", what="duration of every wire's move [s]",
+                   source="assumed (the paper gives none)"),
+        Assumption("load.pretension", what="wire pretension [N]", source="assumed"),
+        Assumption("scenario.passive", what="what the upper motors do",
+                   source="swept: the paper's decoupled command is 'held'"),
     ),
     paper_rows=("Cojocaru et al. Sec. 5.2: the three-segment arm of more than one meter",
                 "Sec. 3: 'the three segments are controlled separately, without considering the interaction between "

@@ -5,9 +5,10 @@ so a study file can name a preset and override any of its parameters.  Presets a
 imported lazily by name.
 
 Every preset module declares where each parameter comes from, as data (the report's
-"Assumptions" section reads it, :func:`preset_sources`): ``GIVEN`` (parameters the source paper
-gives: name -> where), ``ASSUMED`` (not given: name -> the value's source or reason) and
-``SETTINGS`` (chosen by each study).  ``tests/robot/test_presets_sources.py`` checks that every
+"Assumptions" section reads it): ``GIVEN`` (parameters the source paper gives: name -> where),
+``ASSUMED`` (not given: a tuple of :class:`workbench.assumptions.Assumption`, key = parameter name,
+with the value's source or reason) and ``SETTINGS`` (chosen by each study); :func:`preset_sources`
+returns the three as name -> text.  ``tests/robot/test_presets_sources.py`` checks that every
 parameter of every preset is in exactly one of them.
 """
 
@@ -17,6 +18,7 @@ import inspect
 from typing import Any, Callable
 
 from ... import registry
+from ...assumptions import declared_assumptions
 from ..description import Robot
 
 __all__ = ["PRESET_NAMES", "get_preset", "preset_parameters", "build_preset", "preset_sources"]
@@ -54,9 +56,14 @@ def build_preset(name: str, **params: Any) -> Robot:
 
 
 def preset_sources(name: str) -> dict[str, dict[str, str]]:
-    """``{"given": ..., "assumed": ..., "settings": ...}`` of preset ``name`` (its module's ``GIVEN``,
-    ``ASSUMED``, ``SETTINGS``; empty dicts where a module declares none)."""
+    """``{"given": ..., "assumed": ..., "settings": ...}`` of preset ``name``: parameter -> where it comes from.
+
+    From its module's ``GIVEN``, ``ASSUMED`` (:func:`workbench.assumptions.declared_assumptions`)
+    and ``SETTINGS``; empty dicts where a module declares none.
+    """
     import sys
 
     mod = sys.modules[get_preset(name).__module__]
-    return {k: dict(getattr(mod, k.upper(), {}) or {}) for k in ("given", "assumed", "settings")}
+    return {"given": dict(getattr(mod, "GIVEN", {}) or {}),
+            "assumed": {a.key: a.source for a in declared_assumptions(mod)},
+            "settings": dict(getattr(mod, "SETTINGS", {}) or {})}

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 
+from ...assumptions import Assumption
 from ..description import CrossSection, Payload, Robot, Section, TendonGroup
 from ..orientation import base_rotation_for
 from .steel_rod import SPRING_STEEL_YIELD
@@ -25,23 +26,23 @@ GIVEN: dict[str, str] = {
     "n_sections": "paper Sec. 2: three segments",
     "first_wire_angle": "paper Eq 10: three wires at 120 deg (wire 1 at 0)",
 }
-ASSUMED: dict[str, str] = {
-    "section_length": "0.35 m: the paper says only 'more than one meter' for three segments",
-    "rod_diameter": "4 mm steel rod (the paper: an elastic steel rod, no size): EI = 2.64 N m^2",
-    "youngs_modulus": "steel, 210 GPa",
-    "density": "steel, 7850 kg/m^3",
-    "poisson_ratio": "steel, 0.3",
-    "yield_strength": "hardened and tempered spring steel 52CrMoV4 (EN 10089): Rp0.2 >= 1200 MPa (Saarstahl "
-                      "data sheet)",
-    "base_disk_diameter": "100 mm (the paper: D1 > D2, no values)",
-    "disk_diameter_step": "20 mm per section (disks 100 -> 80 -> 60 -> 40 mm)",
-    "wire_diameter": "1 mm steel wire (the paper: control wires, no size): EA_t = 1.65e5 N",
-    "wire_youngs_modulus": "steel, 210 GPa",
-    "wire_strength": "music wire ASTM A228, 1.0 mm: minimum tensile strength 2172 MPa (315 ksi); a ratio above "
-                     "1 means the wire breaks (no safety factor)",
-    "disks_per_section": "5 spacer disks per section (not given)",
-    "disk_mass": "0 (disks massless; gravity is off in the paper's kinematic experiment)",
-}
+ASSUMED: tuple[Assumption, ...] = (
+    Assumption("section_length", "0.35 m: the paper says only 'more than one meter' for three segments"),
+    Assumption("rod_diameter", "4 mm steel rod (the paper: an elastic steel rod, no size): EI = 2.64 N m^2"),
+    Assumption("youngs_modulus", "steel, 210 GPa"),
+    Assumption("density", "steel, 7850 kg/m^3"),
+    Assumption("poisson_ratio", "steel, 0.3"),
+    Assumption("yield_strength", "hardened and tempered spring steel 52CrMoV4 (EN 10089): Rp0.2 >= 1200 MPa "
+                                 "(Saarstahl data sheet)"),
+    Assumption("base_disk_diameter", "100 mm (the paper: D1 > D2, no values)"),
+    Assumption("disk_diameter_step", "20 mm per section (disks 100 -> 80 -> 60 -> 40 mm)"),
+    Assumption("wire_diameter", "1 mm steel wire (the paper: control wires, no size): EA_t = 1.65e5 N"),
+    Assumption("wire_youngs_modulus", "steel, 210 GPa"),
+    Assumption("wire_strength", "music wire ASTM A228, 1.0 mm: minimum tensile strength 2172 MPa (315 ksi); a ratio "
+                                "above 1 means the wire breaks (no safety factor)"),
+    Assumption("disks_per_section", "5 spacer disks per section (not given)"),
+    Assumption("disk_mass", "0 (disks massless; gravity is off in the paper's kinematic experiment)"),
+)
 SETTINGS: dict[str, str] = {k: "study choice" for k in ("gravity", "base_orientation", "payload_mass")}
 
 

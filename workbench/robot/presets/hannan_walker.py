@@ -31,6 +31,7 @@ from __future__ import annotations
 import math
 from typing import Sequence
 
+from ...assumptions import Assumption
 from ..description import CrossSection, Payload, Robot, Section, TendonGroup
 from ..orientation import base_rotation_for
 from .cojocaru import WIRE_STRENGTH_1MM
@@ -52,16 +53,17 @@ GIVEN: dict[str, str] = {
     "planar": "paper Sec. 5: the planar experiments use one antagonistic cable pair per section",
 }
 #: Parameters the paper does not give, with where the value comes from.
-ASSUMED: dict[str, str] = {
-    "joint_stiffness": "120 / 80 / 50 / 25 N m/rad per joint (plausible: under self-weight the horizontal trunk's "
-                       "joints turn by 0-3.1 deg); the paper: springs between segments, no values",
-    "section_masses": "0.8 / 0.6 / 0.45 / 0.3 kg (hollow conduit segments, springs, plates; not given)",
-    "tendon_stiffness": "cable E A_t = 1.6e5 N, a 1 mm steel wire (not given): CC's accuracy under gravity depends "
-                        "on it (see the hannan_walker study's sensitivity sweep)",
-    "tendon_area": "1 mm cable, 0.785 mm^2 (not given)",
-    "tendon_strength": "music wire ASTM A228, 1.0 mm: minimum tensile strength 2172 MPa (315 ksi)",
-    "axial_stiffness": "1e7 N: the segments do not compress (not given)",
-}
+ASSUMED: tuple[Assumption, ...] = (
+    Assumption("joint_stiffness", "120 / 80 / 50 / 25 N m/rad per joint (plausible: under self-weight the "
+                                  "horizontal trunk's joints turn by 0-3.1 deg); the paper: springs between "
+                                  "segments, no values"),
+    Assumption("section_masses", "0.8 / 0.6 / 0.45 / 0.3 kg (hollow conduit segments, springs, plates; not given)"),
+    Assumption("tendon_stiffness", "cable E A_t = 1.6e5 N, a 1 mm steel wire (not given): CC's accuracy under "
+                                   "gravity depends on it (see the hannan_walker study's sensitivity sweep)"),
+    Assumption("tendon_area", "1 mm cable, 0.785 mm^2 (not given)"),
+    Assumption("tendon_strength", "music wire ASTM A228, 1.0 mm: minimum tensile strength 2172 MPa (315 ksi)"),
+    Assumption("axial_stiffness", "1e7 N: the segments do not compress (not given)"),
+)
 #: Parameters each study chooses.
 SETTINGS: dict[str, str] = {k: "study choice" for k in ("gravity", "base_orientation", "payload_mass")}
 

@@ -20,6 +20,7 @@ from dataclasses import replace
 from typing import Sequence
 
 from ..description import Robot
+from ...assumptions import Assumption
 from .hannan_walker import ASSUMED as _HW_ASSUMED
 from .hannan_walker import GIVEN as _HW_GIVEN
 from .hannan_walker import HW_DIAMETERS, HW_TOTAL_LENGTH, hannan_walker
@@ -29,8 +30,8 @@ __all__ = ["hannan_walker_3d", "GIVEN", "ASSUMED", "SETTINGS"]
 #: Where every parameter comes from (``tests/robot/test_presets_sources.py``): the planar preset's
 #: sources for the shared parameters, the paper for the 16-cable layout.
 GIVEN: dict[str, str] = {k: _HW_GIVEN[k] for k in ("total_length", "diameters")}
-ASSUMED: dict[str, str] = {k: _HW_ASSUMED[k] for k in ("joint_stiffness", "section_masses", "tendon_stiffness",
-                                                        "axial_stiffness")}
+ASSUMED: tuple[Assumption, ...] = tuple(a for a in _HW_ASSUMED if a.key in ("joint_stiffness", "section_masses",
+                                                                            "tendon_stiffness", "axial_stiffness"))
 SETTINGS: dict[str, str] = {k: "study choice" for k in ("gravity", "gravity_direction", "base_orientation",
                                                        "payload_mass")}
 

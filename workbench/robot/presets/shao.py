@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from ...assumptions import Assumption
 from ..description import CrossSection, Payload, Robot, Section, TendonGroup
 from ..orientation import base_rotation_for
 
@@ -14,15 +15,17 @@ GIVEN: dict[str, str] = {
     "n_plates": "paper Sec. 4: actuator groups between five plates (4 intervals)",
 }
 #: Parameters the paper does not give, with where the value comes from.
-ASSUMED: dict[str, str] = {
-    "bending_stiffness": "EI = 0.3 N m^2 (plausible for a silicone/FPA section: gamma = q L^3 / EI = 1.2, visible "
-                         "sag as in the photos); the fruit_harvester study's sensitivity sweep varies it",
-    "axial_stiffness": "EA = 2 kN (not given)",
-    "torsional_stiffness": "GJ = 0.2 N m^2 (not given)",
-    "outer_diameter": "60 mm (drawing only; not given)",
-    "actuator_offset": "22 mm: the equivalent tendons stand in for the pneumatic actuator groups (not given)",
-    "actuator_stiffness": "2 kN equivalent tendon stiffness (not given)",
-}
+ASSUMED: tuple[Assumption, ...] = (
+    Assumption("bending_stiffness", "EI = 0.3 N m^2 (plausible for a silicone/FPA section: gamma = q L^3 / EI = "
+                                    "1.2, visible sag as in the photos); the fruit_harvester study's sensitivity "
+                                    "sweep varies it"),
+    Assumption("axial_stiffness", "EA = 2 kN (not given)"),
+    Assumption("torsional_stiffness", "GJ = 0.2 N m^2 (not given)"),
+    Assumption("outer_diameter", "60 mm (drawing only; not given)"),
+    Assumption("actuator_offset", "22 mm: the equivalent tendons stand in for the pneumatic actuator groups (not "
+                                  "given)"),
+    Assumption("actuator_stiffness", "2 kN equivalent tendon stiffness (not given)"),
+)
 #: Parameters each study chooses.
 SETTINGS: dict[str, str] = {k: "study choice" for k in ("gravity", "base_orientation", "payload_mass")}
 

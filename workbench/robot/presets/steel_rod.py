@@ -9,6 +9,7 @@ choices in :data:`SETTINGS` (the report's "Assumptions" section reads both,
 from __future__ import annotations
 
 
+from ...assumptions import Assumption
 from ..description import CrossSection, Payload, Robot, Section, TendonGroup
 from ..orientation import base_rotation_for
 
@@ -23,17 +24,17 @@ WIRE_STRENGTH_05MM = 2.41e9
 #: Parameters a source paper gives (none: no paper describes this rod).
 GIVEN: dict[str, str] = {}
 #: Parameters assumed, with where the value comes from.
-ASSUMED: dict[str, str] = {
-    "youngs_modulus": "steel, 210 GPa",
-    "density": "steel, 7850 kg/m^3",
-    "poisson_ratio": "steel, 0.3",
-    "yield_strength": "hardened and tempered spring steel 52CrMoV4 (EN 10089): Rp0.2 >= 1200 MPa "
-                      "(Saarstahl data sheet); a backbone stress ratio above 1 means the rod yields",
-    "tendon_stiffness": "steel wire of 0.5 mm (E A = 210 GPa x 0.196 mm^2 = 4.1e4 N)",
-    "tendon_youngs_modulus": "steel, 210 GPa (tendon area = tendon_stiffness / tendon_youngs_modulus)",
-    "tendon_strength": "music wire ASTM A228, 0.5 mm: minimum tensile strength 2413 MPa (350 ksi); a tendon "
-                       "stress ratio above 1 means the wire breaks (no safety factor)",
-}
+ASSUMED: tuple[Assumption, ...] = (
+    Assumption("youngs_modulus", "steel, 210 GPa"),
+    Assumption("density", "steel, 7850 kg/m^3"),
+    Assumption("poisson_ratio", "steel, 0.3"),
+    Assumption("yield_strength", "hardened and tempered spring steel 52CrMoV4 (EN 10089): Rp0.2 >= 1200 MPa "
+                                 "(Saarstahl data sheet); a backbone stress ratio above 1 means the rod yields"),
+    Assumption("tendon_stiffness", "steel wire of 0.5 mm (E A = 210 GPa x 0.196 mm^2 = 4.1e4 N)"),
+    Assumption("tendon_youngs_modulus", "steel, 210 GPa (tendon area = tendon_stiffness / tendon_youngs_modulus)"),
+    Assumption("tendon_strength", "music wire ASTM A228, 0.5 mm: minimum tensile strength 2413 MPa (350 ksi); a "
+                                  "tendon stress ratio above 1 means the wire breaks (no safety factor)"),
+)
 #: Parameters each study chooses (its configuration, shown with the study).
 SETTINGS: dict[str, str] = {k: "study choice" for k in (
     "length", "diameter", "n_sections", "tendon_count", "tendon_offset", "first_tendon_angle",
