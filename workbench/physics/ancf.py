@@ -23,7 +23,7 @@ and :func:`_dynamic`.
   :func:`~workbench.physics.tendon_loads.tendon_path_compliance`).  Dynamic: tensions from the
   state at the step start and the rest length at its end (explicit, in a ``PreStepUserFunction``);
   divergence or a chattering tension history raises :class:`ModelFailure`.
-* Static solution: loads and tensions ramped by :func:`~workbench.physics.tendon_loads.ramp_load`
+* Static solution: loads and tensions ramped by :func:`~workbench.physics._stepping.ancf_load_ramp`
   (one ``SolveStatic`` per increment, at most ``options.max_load_steps`` attempts per ramp), Newton
   on the step size; non-convergence or an implausible state (non-finite, ``|r'|`` outside
   (0.5, 1.5), a point beyond 2 L) raises :class:`ModelFailure`.
@@ -53,8 +53,8 @@ from ..robot import LoadCase, Robot
 from . import _ancf_geometry as geo
 from ..models.backbone_frames import backbone_series, frame_stride
 from ._ancf_problem import PlanarModelError, _Problem, _problem, _Tendon, _tendon_sign  # noqa: F401 (re-exported)
+from ._stepping import ancf_load_ramp
 from .tendon_loads import (
-    ramp_load,
     solve_length_controlled,
     tendon_path_compliance,
     tendon_rest_lengths,
@@ -288,12 +288,12 @@ class _StaticDriver:
             self.sysm.mbs.systemData.SetODE2Coordinates(q.tolist(), configuration=exu.ConfigurationType.Initial)
 
         try:
-            info = ramp_load(apply, self._solve, save, restore, max_steps=self.options.max_load_steps,
-                             failure=(exu.SolverError, ModelFailure))
+            info = ancf_load_ramp(apply, self._solve, save, restore, max_steps=self.options.max_load_steps,
+                                  failure=(exu.SolverError, ModelFailure))
         except RuntimeError as err:
             raise ModelFailure(f"ANCF static solve failed: {err}") from err
-        self.steps += info.steps
-        self.failed += info.failed_steps
+        self.steps += info.attempts
+        self.failed += info.failed
         self.ext, self.T = ext, T.copy()
 
 

@@ -19,7 +19,7 @@ Model ``"beam3d"``: ``run(robot, load, options) -> PhysicsResult``.
   ``ObjectConnectorReevingSystemSprings`` per tendon (rigid-marker eyelets), rest length
   ``L_path0 / (1 + T_pre/EA_t) + delta_l``, ``regularizationForce`` 1e-3 N, tensions
   ``max(0, EA_t stretch / rest length)``.  ``forODE2Connectors`` numerical differentiation is on.
-* Static analysis (:func:`_ramp_static`): the load ramp (:func:`workbench.physics._stepping.ramp`)
+* Static analysis (:func:`_ramp_static`): the load ramp (:func:`workbench.physics._stepping.load_ramp`)
   on the rod with EA, GA scaled down (:func:`auto_stiffness_stages`), then EA, GA raised at full
   load up to the real rod (``options.newton_tolerance``); the plain ramp if a stage fails.  Every
   ODE2 Jacobian term numerical (Exudyn's GE-beam one is wrong on EP nodes; ``docs/models.md``).
@@ -50,7 +50,7 @@ from ..models.inputs import check_model_inputs
 from ..models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ..robot import LoadCase, Robot
 from ._beam3d_layout import R_BASE_MODEL, element_layout, tendon_routes
-from ._stepping import RampExhausted, RampPolicy, RampStalled, ramp
+from ._stepping import RampExhausted, RampPolicy, RampStalled, load_ramp
 
 __all__ = ["run", "auto_stiffness_stages", "element_layout", "tendon_routes", "R_BASE_MODEL"]
 
@@ -191,7 +191,7 @@ def _ramp_static(system, options: SolverOptions, values_at, lam_pre_at, loads_at
         start = save()
         system.set_axial_shear_scale(stages[0])
         try:
-            info = ramp(attempt_with(loose), save, restore, max_attempts=options.max_load_steps, policy=_RAMP_POLICY)
+            info = load_ramp(attempt_with(loose), save, restore, max_attempts=options.max_load_steps, policy=_RAMP_POLICY)
             accepted, attempts = info.accepted, info.attempts
             ok = True
             for a in stages[1:] + (1.0,):
@@ -208,7 +208,7 @@ def _ramp_static(system, options: SolverOptions, values_at, lam_pre_at, loads_at
         system.set_axial_shear_scale(1.0)  # fall back: the plain load ramp from the start
         restore(start)
     try:
-        info = ramp(attempt_with(settings), save, restore, max_attempts=options.max_load_steps, policy=_RAMP_POLICY)
+        info = load_ramp(attempt_with(settings), save, restore, max_attempts=options.max_load_steps, policy=_RAMP_POLICY)
     except RampExhausted as stop:
         raise ModelFailure(
             f"beam3d: static load ramp needs more than max_load_steps={options.max_load_steps} "
