@@ -15,8 +15,8 @@ import pytest
 from workbench import registry
 
 MOVED = [
-    ("workbench.physics.wire_delay", "wire_lengths_tronconic", "workbench.experiments.wire_delay.analysis", "wire_lengths_from_arc_tronconic"),
-    ("workbench.physics.wire_delay", "arc_from_wire_lengths_tronconic", "workbench.experiments.wire_delay.analysis", "arc_from_wire_lengths_tronconic"),
+    ("workbench.physics.wire_delay", "wire_lengths_tronconic", "workbench.experiments.wire_delay.analysis", "wire_lengths_tronconic_workbench"),
+    ("workbench.physics.wire_delay", "arc_from_wire_lengths_tronconic", "workbench.experiments.wire_delay.analysis", "arc_from_wire_lengths_tronconic_workbench"),
     ("workbench.physics.wire_delay", "simulate_wire_delay", "workbench.experiments.wire_delay.analysis", "simulate_wire_delay"),
     ("workbench.physics.wire_delay", "default_options", "workbench.experiments.wire_delay.analysis", "default_options"),
     ("workbench.physics.wire_delay", "WireDelayResult", "workbench.experiments.wire_delay.analysis", "WireDelayResult"),

@@ -3,8 +3,8 @@
 The wire-delay experiment (Cojocaru) moved to ``workbench/experiments/wire_delay/``; its
 research notes are in ``docs/models.md``.  This shim keeps the old names, resolved lazily
 through registry-style strings (a generic package never imports ``workbench.experiments``):
-``wire_lengths_tronconic`` is ``wire_lengths_from_arc_tronconic`` (the workbench-convention
-adapter; the paper-convention map is :func:`workbench.kinematics.wire_lengths_tronconic`).
+``wire_lengths_tronconic`` is ``wire_lengths_tronconic_workbench`` (the workbench-convention
+adapter; the paper-convention map is :func:`workbench.kinematics.wire_lengths_tronconic_paper`).
 """
 
 from __future__ import annotations
@@ -23,8 +23,8 @@ __all__ = [
 
 _TARGET = "workbench.experiments.wire_delay.analysis"
 _MOVED = {
-    "wire_lengths_tronconic": "wire_lengths_from_arc_tronconic",
-    "arc_from_wire_lengths_tronconic": "arc_from_wire_lengths_tronconic",
+    "wire_lengths_tronconic": "wire_lengths_tronconic_workbench",
+    "arc_from_wire_lengths_tronconic": "arc_from_wire_lengths_tronconic_workbench",
     "WireDelayResult": "WireDelayResult",
     "simulate_wire_delay": "simulate_wire_delay",
     "default_options": "default_options",
