@@ -89,7 +89,7 @@ class _System:
         self.tendon_model = tendon_model
         self.SC = exu.SystemContainer()
         self.mbs = self.SC.AddSystem()
-        ground = self._add_cable(damping)
+        ground = self._add_backbone(damping)
         self._add_loads()
         self._add_tendons(ground)
         self.quad = geo.gauss_points(pb.s_nodes, 6)
@@ -98,8 +98,9 @@ class _System:
         self.mbs.Assemble()
 
     # -- building ---------------------------------------------------------------------------
-    def _add_cable(self, damping: float) -> int:
-        """Nodes, elements and the clamp (node 0's x, y and y-slope); returns the ground object."""
+    def _add_backbone(self, damping: float) -> int:
+        """Build the backbone: ANCF nodes, ``ANCFCable2D`` beam elements (Exudyn's name for the planar
+        ANCF beam; not a tendon) and the clamp (node 0's x, y and y-slope); returns the ground object."""
         from exudyn.itemInterface import NodePoint2DSlope1, ObjectANCFCable2D, ObjectGround
 
         from ._exudyn import clamp_coordinates
