@@ -58,7 +58,7 @@ def _case(study: ResultSet, cid: str, rows: dict[str, dict]) -> dict[str, Any] |
         frames, P = got
         pts.append(P)
         stations = array_cell(r.get("stations"))
-        models[m] = {"label": model_label(m), "color": model_color(m, study.models), "reference": m == study.reference,
+        models[m] = {"label": model_label(m), "color": model_color(m, study.models), "reference": m == study.baseline,
                      "stations": _r(stations) if stations is not None else [], "frames": frames}
     if not models:
         return None
@@ -66,7 +66,7 @@ def _case(study: ResultSet, cid: str, rows: dict[str, dict]) -> dict[str, Any] |
     lo, hi = allp.min(axis=0), allp.max(axis=0)
     base = to_frame(np.zeros(3), scene, study.frame)
     L = float(row0.get("robot_length") or 0.0) or float(np.linalg.norm(hi - lo)) or 1.0
-    physics = [m for m in models if m != study.reference]
+    physics = [m for m in models if m != study.baseline]
     main = physics[0] if physics else next(iter(models))
     extra = _leg_lines(rows, scene, study.frame)
     return {
