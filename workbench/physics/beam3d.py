@@ -96,7 +96,7 @@ MODIFIED_NEWTON_ITERATIONS = 15
 def _static_settings(options: SolverOptions, jacobian: str = "numerical", tolerance: float | None = None):
     """Static settings; ``jacobian="numerical"``: every ODE2 term by numerical differentiation at
     ``_FD_EPSILON``; ``"exudyn_beam"``: Exudyn's beam Jacobian, numerical connectors only (the
-    setting before issue 18: that beam Jacobian is wrong on Euler-parameter nodes, ``docs/models.md``)."""
+    initial equilibrium of dynamics; that beam Jacobian is wrong on Euler-parameter nodes, ``docs/models.md``)."""
     from ._exudyn import static_settings
 
     s = static_settings(options, 1)
@@ -298,16 +298,17 @@ def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bo
 
     act = load.actuation
     cmd0 = act.command_at(0.0, load.ramp_time) if act is not None else np.zeros(n_t)
-    # the method before issue 18 (plain ramp, Exudyn's beam Jacobian): dynamics unchanged by issue 18's statics
+    # initial equilibrium: the plain ramp with Exudyn's beam Jacobian (no stiffness stages); the dynamic
+    # answers are pinned with it (tests/regression golden wire_delay_arm)
     acc, att = _ramp_static(system, options, lambda lam: lam * cmd0, lambda lam: lam, lambda lam: lam,
                             stages=(), jacobian="exudyn_beam")
     sim = dynamic_settings(options, load.duration)
     ti = sim.timeIntegration
     ti.newton.numericalDifferentiation.forODE2Connectors = True
     ti.newton.useModifiedNewton = True
-    # damped: up to 15 (not Exudyn's 8) modified-Newton iterations before a new Jacobian: each Jacobian
-    # costs ~20 iterations (the eyelet ropes' numerical part, ~4 ms of 4.7 ms at 40 el.); the wire delay's
-    # 10 s took 913 -> 534 Jacobians, 10.9 -> 8.6 s, the same answer to 7 digits (benchmarks/README.md).
+    # damped: up to 15 (not Exudyn's 8) modified-Newton iterations before a new Jacobian: a Jacobian
+    # costs about as much as 20 iterations (the eyelet ropes' numerical part), and fewer Jacobians give the
+    # same answer (the Jacobian counts and times: benchmarks/README.md, "wire delay"; docs/models.md)
     # Undamped runs keep Exudyn's 8: their answer depends on the iteration path (the undamped arm's
     # compensated case moves by 3 mm at 12; tests/regression golden wire_delay_arm)
     ti.newton.maxModifiedNewtonIterations = MODIFIED_NEWTON_ITERATIONS if options.damping > 0 else 8
@@ -365,8 +366,8 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions, *, stiffness_stage
         (stiffness-proportional beta [s], dynamics only), ``spectral_radius``.
     stiffness_stages : "auto" or tuple of float
         Static analyses: EA and GA factors of the predictor stages (:func:`_ramp_static`,
-        "auto": :func:`auto_stiffness_stages`); ``()`` runs the plain load ramp at full stiffness (the method before issue 18).
-        The initial equilibrium of a dynamic analysis uses ``()`` and ``"exudyn_beam"`` (as before issue 18).
+        "auto": :func:`auto_stiffness_stages`); ``()`` runs the plain load ramp at full stiffness.
+        The initial equilibrium of a dynamic analysis uses ``()`` and ``"exudyn_beam"``.
     jacobian : {"numerical", "exudyn_beam"}
         Static analyses: Jacobian of the static Newton (:func:`_static_settings`).
 

@@ -29,7 +29,7 @@ ASSUMPTIONS = (
     ("self-contact", "not modelled: wraps that would reach round onto the arm are refused", ""),
 )
 
-#: Seed-paper rows this study answers (issue 17's audit of the papers).
+#: Seed-paper rows this study answers (the papers' figures and sections it reproduces).
 SEED_ROWS = (
     "Hannan & Walker (papers/000_), Fig 6: wrapping round a circular object and moving it",
     "Shao et al. (papers/002_), Sec. 3.1 / Figs 5-6: scooping an object with the whole trunk",
