@@ -24,7 +24,7 @@ recorded parameters before the first submission, store writes, reading many part
 ``tests/cluster`` (``SLURM_CONF`` must point at a running one): the cheap study on 1 and 2 worker
 jobs, the time from submission to the first worker, and the idle client CPU with 1-8 worker jobs
 (the scheduler's per-worker heartbeat cost; ``--slurm-only`` runs just these).  The machine is shared: compare the
-numbers of one run; the load average is printed.  Results: ``docs/architecture.md``.
+numbers of one run; the load average is printed.  Results: ``benchmarks/README.md``, "Scaling".
 """
 
 from __future__ import annotations

@@ -97,7 +97,7 @@ def test_derived_columns_and_expression(table):
 
 
 def test_reference_only_and_missing_reference(table):
-    m = compare_table(table, pairs="reference")
+    m = compare_table(table, pairs="baseline")
     assert set(m.reference) == {"cc"}
     only_physics = compare_table(table[table.model != "cc"])
     assert set(zip(only_physics.reference, only_physics.model)) == {("ancf", "spring_link")}

@@ -39,7 +39,7 @@ def test_coarse_case_is_marked_not_converged(tmp_path):
     path = tmp_path / "coarse.toml"
     path.write_text(STUDY)
     run_study(load_study(path), tmp_path / "out", SerialExecutor(), RunConfig(progress=False))
-    cmp = compare_table(read_table(tmp_path / "out"), reference="cc").set_index("p.solver.n_elements")
+    cmp = compare_table(read_table(tmp_path / "out"), baseline="cc").set_index("p.solver.n_elements")
     # gamma = 0.01: CC's own error (the sag) is ~1 mm; 4 ANCF elements at kappa L = 3 carry a
     # discretisation error of the same order, 16 elements a far smaller one
     assert bool(cmp.loc[4, "not_converged"]) and cmp.loc[4, "disc_fraction"] > 0.1
@@ -100,7 +100,7 @@ def test_an_exempt_side_is_flagged_and_reports_say_exempt_not_plus_minus_zero():
     assert not convergence_metrics(cc, {**links, "disc_status": "ok"}, {"tip_error": 2e-3})["disc_exempt"]
 
     def headline(disc_pct, exempt):
-        return Headline(reference="cc", model="spring_link", error=2e-3, error_pct=0.2, disc=disc_pct / 100,
+        return Headline(baseline="cc", model="spring_link", error=2e-3, error_pct=0.2, disc=disc_pct / 100,
                         disc_pct=disc_pct, final_pct=float("nan"), case_id="c", converged=True, n_cases=1,
                         n_not_converged=0, dynamic=False, cc_pair=True, disc_exempt=exempt)
 

@@ -13,13 +13,13 @@ import numpy as np
 import pandas as pd
 
 from workbench.experiments.wire_delay.analysis import (
-    arc_from_wire_lengths_tronconic,
+    arc_from_wire_lengths_tronconic_workbench,
     cc_reading,
     cc_tip_positions,
     commanded_wire_lengths,
     wire_delay_commands,
     wire_geometry,
-    wire_lengths_from_arc_tronconic,
+    wire_lengths_tronconic_workbench,
 )
 from workbench.experiments.wire_delay.figures import matches
 from workbench.experiments.wire_delay.scenario import wire_delay
@@ -45,8 +45,8 @@ def test_commands_are_the_paper_wire_lengths():
     robot = _robot()
     g = wire_geometry(robot)
     cmd = wire_delay_commands(robot, theta=math.pi / 4, alpha=math.pi / 4, move_time=4.0, delay=3.0, delayed_wire=0)
-    L0 = wire_lengths_from_arc_tronconic(0.0, 0.0, g.length, g.offset_base, g.offset_tip, g.sigma)
-    Lf = wire_lengths_from_arc_tronconic(math.pi / 4, math.pi / 4 + math.pi, g.length, g.offset_base, g.offset_tip, g.sigma)
+    L0 = wire_lengths_tronconic_workbench(0.0, 0.0, g.length, g.offset_base, g.offset_tip, g.sigma)
+    Lf = wire_lengths_tronconic_workbench(math.pi / 4, math.pi / 4 + math.pi, g.length, g.offset_base, g.offset_tip, g.sigma)
     assert cmd.rest_lengths.tobytes() == L0.tobytes() and cmd.final_lengths.tobytes() == Lf.tobytes()
     # the commanded lengths over time follow the constant-speed ramps; at the end they are a CC arc (e = 0)
     act = TendonActuation("length", tuple(cmd.length_changes), start_times=cmd.start_delays,
@@ -60,7 +60,7 @@ def test_commands_are_the_paper_wire_lengths():
     cc = cc_reading(L, g)
     np.testing.assert_allclose(cc.virtual_compression[[0, -1]], 0.0, atol=1e-12)
     assert cc.virtual_compression[2] < -5e-3  # at t = delay the late wire lags most (docs: -6.23 mm)
-    th, ph, e = arc_from_wire_lengths_tronconic(L, g.length, g.offset_base, g.offset_tip, g.sigma)
+    th, ph, e = arc_from_wire_lengths_tronconic_workbench(L, g.length, g.offset_base, g.offset_tip, g.sigma)
     assert cc.tip.tobytes() == cc_tip_positions(th, ph, g.length).tobytes()
 
 

@@ -14,7 +14,7 @@ from workbench.kinematics import (
     tendon_lengths_from_arc,
     virtual_compression,
     wire_length_jacobian,
-    wire_lengths_tronconic,
+    wire_lengths_tronconic_paper,
 )
 
 DEG = np.pi / 180
@@ -91,22 +91,22 @@ def test_wire_lengths_match_paper_equations_and_are_stable_at_zero():
     for _ in range(50):
         th, al = rng.uniform(-2.5, 2.5), rng.uniform(-np.pi, np.pi)
         D1, D2 = rng.uniform(0.05, 0.12, 2)
-        np.testing.assert_allclose(wire_lengths_tronconic(th, al, 0.35, D1, D2), _paper_eq_4_11(th, al, 0.35, D1, D2), rtol=1e-12)
+        np.testing.assert_allclose(wire_lengths_tronconic_paper(th, al, 0.35, D1, D2), _paper_eq_4_11(th, al, 0.35, D1, D2), rtol=1e-12)
     # theta = 0: straight slanted wires, continuous
-    L0 = wire_lengths_tronconic(0.0, 0.3, 0.35, 0.1, 0.08)
+    L0 = wire_lengths_tronconic_paper(0.0, 0.3, 0.35, 0.1, 0.08)
     for e in (1e-9, -1e-9):
-        np.testing.assert_allclose(wire_lengths_tronconic(e, 0.3, 0.35, 0.1, 0.08), L0, atol=1e-10)
+        np.testing.assert_allclose(wire_lengths_tronconic_paper(e, 0.3, 0.35, 0.1, 0.08), L0, atol=1e-10)
     cos_n = np.cos(np.array([0, 120, 240]) * DEG - 0.3)
     np.testing.assert_allclose(L0, np.sqrt(0.35**2 + (0.01 * cos_n) ** 2), rtol=1e-14)
     # alpha_1 = -alpha or +alpha: identical (only cos enters)
-    assert wire_lengths_tronconic(0.5, 0.4, 0.35, 0.1, 0.08)[0] == pytest.approx(_paper_eq_4_11(0.5, -0.4, 0.35, 0.1, 0.08)[0], rel=1e-14)
+    assert wire_lengths_tronconic_paper(0.5, 0.4, 0.35, 0.1, 0.08)[0] == pytest.approx(_paper_eq_4_11(0.5, -0.4, 0.35, 0.1, 0.08)[0], rel=1e-14)
 
 
 def test_cylinder_satisfies_eq12_and_matches_tendon_model():
     rng = np.random.default_rng(51)
     th = rng.uniform(-2.0, 2.0, 200)
     al = rng.uniform(-np.pi, np.pi, 200)
-    L = wire_lengths_tronconic(th, al, 0.35, 0.1, 0.1)
+    L = wire_lengths_tronconic_paper(th, al, 0.35, 0.1, 0.1)
     np.testing.assert_allclose(virtual_compression(L, 0.35), 0.0, atol=1e-15)
     # L_n = H + D/2 theta cos(az_n - alpha) = tendon model with kappa = theta/H, phi = alpha + pi
     Lt = tendon_lengths_from_arc(th / 0.35, al + np.pi, 0.35, np.array([0, 120, 240]) * DEG, 0.05)
@@ -122,7 +122,7 @@ def test_tronconic_deviation_quantified():
     E.g. H = 0.35 m, D1 = 0.10 m, D2 = 0.08 m, theta = alpha = 45 deg: +67.0 um = +0.019 % of H
     (an extension, not a compression)."""
     H, D1, th = 0.35, 0.10, 45 * DEG
-    vc = virtual_compression(wire_lengths_tronconic(th, 45 * DEG, H, D1, 0.08), H)
+    vc = virtual_compression(wire_lengths_tronconic_paper(th, 45 * DEG, H, D1, 0.08), H)
     assert vc == pytest.approx(6.70e-5, rel=2e-3)
     sc = np.sin(th / 2) / (th / 2)
     K = 1 / sc**2 - th**2 / 4
@@ -131,7 +131,7 @@ def test_tronconic_deviation_quantified():
             Dm = D1 - dD / 2
             cn = np.cos(np.array([0, 120, 240]) * DEG - al)
             lead = dD**2 * K / 24 * np.sum(cn**2 / (H + Dm * th * cn / 2))
-            vc = virtual_compression(wire_lengths_tronconic(th, al, H, D1, D1 - dD), H)
+            vc = virtual_compression(wire_lengths_tronconic_paper(th, al, H, D1, D1 - dD), H)
             assert vc > 0
             assert abs(vc / lead - 1) < 1e-3 * (dD / 0.02) ** 2  # next order is O(dD^2)
 
@@ -185,8 +185,8 @@ def test_wire_length_jacobian_vs_finite_differences(seed):
         H, D1, D2 = 0.35, rng.uniform(0.05, 0.12), rng.uniform(0.05, 0.12)
         J = wire_length_jacobian(th, al, H, D1, D2)
         fd = np.stack([
-            (wire_lengths_tronconic(th + h, al, H, D1, D2) - wire_lengths_tronconic(th - h, al, H, D1, D2)) / (2 * h),
-            (wire_lengths_tronconic(th, al + h, H, D1, D2) - wire_lengths_tronconic(th, al - h, H, D1, D2)) / (2 * h),
+            (wire_lengths_tronconic_paper(th + h, al, H, D1, D2) - wire_lengths_tronconic_paper(th - h, al, H, D1, D2)) / (2 * h),
+            (wire_lengths_tronconic_paper(th, al + h, H, D1, D2) - wire_lengths_tronconic_paper(th, al - h, H, D1, D2)) / (2 * h),
         ], axis=-1)
         np.testing.assert_allclose(J, fd, atol=1e-9)
     # cylinder closed form
@@ -198,7 +198,7 @@ def test_wire_length_jacobian_vs_finite_differences(seed):
 
 def test_cojocaru_validation():
     with pytest.raises(ValueError, match="disc radius"):
-        wire_lengths_tronconic(2.0, 0.0, 0.01, 0.1, 0.1)
+        wire_lengths_tronconic_paper(2.0, 0.0, 0.01, 0.1, 0.1)
     with pytest.raises(ValueError, match=r"shape \(\.\.\., 3\)"):
         virtual_compression(np.ones(4), 0.3)
     with pytest.raises(ValueError, match=r"delays must have shape \(3,\)"):

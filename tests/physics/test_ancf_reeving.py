@@ -15,7 +15,8 @@ from workbench.models.result import SolverOptions
 from workbench.physics import _ancf_geometry as geo
 from workbench.physics._exudyn import quiet_exudyn
 from workbench.physics.ancf import build_problem, _StaticDriver, _System, run
-from workbench.physics.tendon_loads import ramp_load, tendon_rest_lengths
+from workbench.physics._stepping import ancf_load_ramp
+from workbench.physics.tendon_loads import tendon_rest_lengths
 from workbench.robot import CrossSection, LoadCase, Robot, Section, TendonActuation, TendonGroup
 from workbench.robot.orientation import base_rotation_for
 
@@ -64,7 +65,7 @@ def _reeving_equilibrium(robot, load, options):
         def restore(q):
             mbs.systemData.SetODE2Coordinates(q.tolist(), configuration=exu.ConfigurationType.Initial)
 
-        ramp_load(apply, drv._solve, save, restore, max_steps=200, failure=exu.SolverError)
+        ancf_load_ramp(apply, drv._solve, save, restore, max_steps=200, failure=exu.SolverError)
         qn = sysm.node_coords(sysm.coords())
         r, _ = geo.centreline(qn, pb.s_nodes, np.array([L]))
         # rope tension from the rope length through the markers (reeving law EA (l - l0) / l0)

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from workbench.physics.tendon_loads import (
-    ramp_load, solve_length_controlled, tendon_path_compliance, tendon_rest_lengths, tension_from_stretch,
+    solve_length_controlled, tendon_path_compliance, tendon_rest_lengths, tension_from_stretch,
 )
 
 
@@ -43,29 +43,6 @@ def test_length_solver_on_a_nonlinear_spring_model():
     assert T[1] == 0.0
     assert T[0] == pytest.approx(EA * (eq(T)[0] - l0[0]) / l0[0], rel=1e-10)
     assert info.iterations < 15
-
-
-def test_ramp_halves_on_failure_and_respects_cap():
-    state = {"lam": 0.0, "x": 0.0}
-    history = []
-
-    def apply(lam):
-        state["lam"] = lam
-
-    def solve():
-        # "Newton" converges only for increments <= 0.3
-        if state["lam"] - state["x"] > 0.3:
-            raise ArithmeticError("diverged")
-        state["x"] = state["lam"]
-        history.append(state["lam"])
-
-    info = ramp_load(apply, solve, lambda: state["x"], lambda x: state.update(x=x), max_steps=100,
-                     failure=ArithmeticError)
-    assert history[-1] == 1.0 and info.failed_steps >= 2
-    assert np.all(np.diff(history) <= 0.3 + 1e-12)
-    with pytest.raises(RuntimeError, match="max_load_steps=3"):
-        ramp_load(apply, solve, lambda: state["x"], lambda x: state.update(x=x), max_steps=3,
-                  failure=ArithmeticError) if state.update(x=0.0) is None else None
 
 
 def test_stiff_co_contracting_cables_of_the_hannan_walker_trunk_converge():

@@ -57,7 +57,7 @@ def _cantilever(delta: float, n: int = 16, stiffness: float = 1e8):
         s = PlanarContactSystem(pb, hw, RigidCircle(radius=R, centre=(-R - 1e-3, a)), ContactLaw(stiffness=stiffness))
         s.hold((0.0, 0.0))
         s.solve()
-        s.ramp(lambda lam: s.hold((lam * (delta + 1e-3), 0.0)), 50, first_increment=0.1)
+        s.load_ramp(lambda lam: s.hold((lam * (delta + 1e-3), 0.0)), 50, first_increment=0.1)
     # linear Euler-Bernoulli: F = 3 EI w_c / x_c^3 at the contact point of the circle (slope theta)
     th = 0.0
     for _ in range(60):
@@ -143,16 +143,16 @@ def _capstan(mu: float, theta: float, n: int):
                                 ContactLaw(stiffness=1e6, friction_stiffness=1e6))
         s.hold((0.0, 0.0))
         s.set_friction(False)
-        s.ramp(lambda lam: s.set_tip_force(lam * T0 * np.array([-1.0, 0.0])), 200, first_increment=0.05)
+        s.load_ramp(lambda lam: s.set_tip_force(lam * T0 * np.array([-1.0, 0.0])), 200, first_increment=0.05)
 
         def turn(lam):
             a = 0.5 * math.pi + lam * (theta - 0.5 * math.pi)
             s.set_tip_force(T0 * np.array([-math.sin(a), math.cos(a)]))
 
         if theta != 0.5 * math.pi:
-            s.ramp(turn, 400, first_increment=0.05)
+            s.load_ramp(turn, 400, first_increment=0.05)
         s.set_friction(True)
-        s.ramp(lambda lam: s.set_tip_force((T0 + lam * (T1 - T0)) * d), 400, first_increment=0.02)
+        s.load_ramp(lambda lam: s.set_tip_force((T0 + lam * (T1 - T0)) * d), 400, first_increment=0.02)
         clamp = -(s.fixture_force() + T1 * d)  # rod equilibrium: clamp + contact + end force = 0
     return float(np.linalg.norm(clamp)) / T1
 
@@ -189,7 +189,7 @@ def test_chamber_strains_give_the_fluidic_cc_arc():
         kap, eps = chamber_strains(phys, pb, [lay], [p])
         with quiet_exudyn():
             s = PlanarContactSystem(pb, hw)
-            s.ramp(lambda lam: s.set_strains(lam * kap, lam * eps), 50)
+            s.load_ramp(lambda lam: s.set_strains(lam * kap, lam * eps), 50)
             tip = s.positions([0.4])[0][0]
             len_err.append(abs(s.arc_length() - s_cc))
         tip_err.append(math.hypot(tip[0] - (1 - math.cos(th)) / k_cc, tip[2] - math.sin(th) / k_cc))

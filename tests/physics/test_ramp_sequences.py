@@ -1,9 +1,9 @@
 """The load ramp of each Exudyn model, seen from the solver: the trial load factors it tries.
 
-Every model ramps its loads through ``workbench.physics._stepping.ramp`` with its own policy.
+Every model ramps its loads through ``workbench.physics._stepping.load_ramp`` with its own policy.
 These tests replace Exudyn's ``SolveStatic`` by a wrapper that solves, records the load factor
 of the attempt and fails chosen attempts, and pin the resulting sequence (the same sequence the
-models' own load loops produced before they moved onto ``ramp``).
+models' own load loops produced before they moved onto ``load_ramp``).
 """
 
 from __future__ import annotations

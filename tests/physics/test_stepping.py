@@ -1,8 +1,9 @@
 """The one load ramp (workbench.physics._stepping): step sequences of each policy, limits, restore."""
 
+import numpy as np
 import pytest
 
-from workbench.physics._stepping import RampExhausted, RampPolicy, RampStalled, ramp
+from workbench.physics._stepping import RampExhausted, RampPolicy, RampStalled, ancf_load_ramp, load_ramp
 
 
 class _Radius:
@@ -28,7 +29,7 @@ class _Radius:
 
 def _run(r, policy, max_attempts=100):
     s = _Radius(r)
-    info = ramp(s.attempt, s.save, s.restore, max_attempts=max_attempts, policy=policy)
+    info = load_ramp(s.attempt, s.save, s.restore, max_attempts=max_attempts, policy=policy)
     return s, info
 
 
@@ -87,14 +88,37 @@ def test_failure_exceptions_restore_state_and_others_propagate():
             raise ArithmeticError("did not converge")
         state["lam"] = lam
 
-    info = ramp(attempt, lambda: state["lam"], lambda v: state.update(lam=v), max_attempts=20,
+    info = load_ramp(attempt, lambda: state["lam"], lambda v: state.update(lam=v), max_attempts=20,
                 failure=ArithmeticError)
     assert -1.0 not in seen and state["lam"] == 1.0 and info.failed == 4
     with pytest.raises(KeyError):  # not a declared failure: propagates
-        ramp(lambda lam: {}["x"], lambda: None, lambda s: None, max_attempts=5, failure=ArithmeticError)
+        load_ramp(lambda lam: {}["x"], lambda: None, lambda s: None, max_attempts=5, failure=ArithmeticError)
 
 
 @pytest.mark.parametrize("bad", [dict(first_increment=0.0), dict(growth=0.5), dict(grow_after=0), dict(cap="x")])
 def test_policy_rejects_bad_values(bad):
     with pytest.raises(ValueError):
         RampPolicy(**bad)
+
+
+def test_ancf_load_ramp_halves_on_failure_and_respects_cap():
+    state = {"lam": 0.0, "x": 0.0}
+    history = []
+
+    def apply(lam):
+        state["lam"] = lam
+
+    def solve():
+        # "Newton" converges only for increments <= 0.3
+        if state["lam"] - state["x"] > 0.3:
+            raise ArithmeticError("diverged")
+        state["x"] = state["lam"]
+        history.append(state["lam"])
+
+    info = ancf_load_ramp(apply, solve, lambda: state["x"], lambda x: state.update(x=x), max_steps=100,
+                          failure=ArithmeticError)
+    assert history[-1] == 1.0 and info.failed >= 2
+    assert np.all(np.diff(history) <= 0.3 + 1e-12)
+    with pytest.raises(RuntimeError, match="max_load_steps=3"):
+        ancf_load_ramp(apply, solve, lambda: state["x"], lambda x: state.update(x=x), max_steps=3,
+                       failure=ArithmeticError) if state.update(x=0.0) is None else None

@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 
 from workbench.experiments.wire_delay.analysis import (
-    arc_from_wire_lengths_tronconic,
+    arc_from_wire_lengths_tronconic_workbench,
     simulate_wire_delay,
-    wire_lengths_from_arc_tronconic,
+    wire_lengths_tronconic_workbench,
 )
 from workbench.robot.presets.cojocaru import cojocaru_tronconic
 
@@ -36,15 +36,15 @@ def paper_wire_lengths(theta, alpha, H, D1, D2):
 @pytest.mark.parametrize("theta,alpha", [(math.pi / 4, math.pi / 4), (0.3, 2.0), (1.2, -0.4)])
 def test_wire_lengths_match_paper_equations(theta, alpha):
     H, D1, D2 = 0.35, 0.10, 0.08
-    ours = wire_lengths_from_arc_tronconic(theta, alpha + math.pi, H, D1 / 2, D2 / 2, SIGMA)
+    ours = wire_lengths_tronconic_workbench(theta, alpha + math.pi, H, D1 / 2, D2 / 2, SIGMA)
     np.testing.assert_allclose(ours, paper_wire_lengths(theta, alpha, H, D1, D2), rtol=1e-12)
 
 
 def test_wire_lengths_regular_at_zero_and_cylindrical_limit():
     H, d = 0.35, 0.04
-    L0 = wire_lengths_from_arc_tronconic(0.0, 0.3, H, 0.05, 0.04, SIGMA)
+    L0 = wire_lengths_tronconic_workbench(0.0, 0.3, H, 0.05, 0.04, SIGMA)
     np.testing.assert_allclose(L0, np.sqrt(H**2 + (0.01 * np.cos(SIGMA - 0.3)) ** 2), rtol=1e-15)
-    Lc = wire_lengths_from_arc_tronconic(0.7, 1.1, H, d, d, SIGMA)
+    Lc = wire_lengths_tronconic_workbench(0.7, 1.1, H, d, d, SIGMA)
     np.testing.assert_allclose(Lc, H - d * 0.7 * np.cos(SIGMA - 1.1), rtol=1e-14)
     # cylindrical: Eq 12 holds exactly (mean wire length = H)
     assert Lc.mean() == pytest.approx(H, rel=1e-14)
@@ -53,8 +53,8 @@ def test_wire_lengths_regular_at_zero_and_cylindrical_limit():
 def test_inverse_map_recovers_arc_and_offset():
     H, d1, d2 = 0.35, 0.05, 0.04
     th, ph, e = 0.8, 2.2, -3e-3
-    L = wire_lengths_from_arc_tronconic(th, ph, H, d1, d2, SIGMA) + e
-    th2, ph2, e2 = arc_from_wire_lengths_tronconic(L, H, d1, d2, SIGMA)
+    L = wire_lengths_tronconic_workbench(th, ph, H, d1, d2, SIGMA) + e
+    th2, ph2, e2 = arc_from_wire_lengths_tronconic_workbench(L, H, d1, d2, SIGMA)
     assert th2 == pytest.approx(th, abs=1e-10)
     assert ph2 == pytest.approx(ph, abs=1e-10)
     assert e2 == pytest.approx(e, abs=1e-12)
@@ -95,8 +95,8 @@ def test_delay_compresses_backbone_by_kinematic_share():
     # kinematic prediction at t = 1 s: wires 2, 3 have done 1/4 of their move, wire 1 none
     assert e < 0
     assert e == pytest.approx(r.virtual_compression_eq12[-1] - r.virtual_compression_eq12[0], rel=0.01)
-    Lf = wire_lengths_from_arc_tronconic(math.pi / 4, math.pi / 4 + math.pi, H, 0.05, 0.04, SIGMA)
-    L0 = wire_lengths_from_arc_tronconic(0.0, 0.0, H, 0.05, 0.04, SIGMA)
+    Lf = wire_lengths_tronconic_workbench(math.pi / 4, math.pi / 4 + math.pi, H, 0.05, 0.04, SIGMA)
+    L0 = wire_lengths_tronconic_workbench(0.0, 0.0, H, 0.05, 0.04, SIGMA)
     assert e == pytest.approx(-(Lf[0] - L0[0]) / 4 / 3, rel=0.05)
     dl = r.length_change[-1]
     assert dl < 0

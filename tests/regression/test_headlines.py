@@ -40,7 +40,7 @@ def test_wire_delay_findings_give_peak_and_final_with_the_damping_assumption(sma
     value, converged, and the assumptions name the assumed move time and damping."""
     path = next(p for p in small_study_paths() if p.stem == "wire_delay")
     study = load_results(small_study_run(path))
-    cmp = compare_table(study.results, reference=study.reference, derived=study.derived)
+    cmp = compare_table(study.results, baseline=study.baseline, derived=study.derived)
     with matplotlib.rc_context(STYLE):
         parts = opening_sections(study, cmp, lambda f: "")
     assert "peak tip error over time" in parts["findings"] and "NOT CONVERGED" not in parts["findings"]
@@ -51,10 +51,10 @@ def test_wire_delay_findings_give_peak_and_final_with_the_damping_assumption(sma
 @pytest.mark.parametrize("path", list(_params()))
 def test_headlines_converged_and_four_sections(path, small_study_run):
     study = load_results(small_study_run(path))
-    cmp = compare_table(study.results, reference=study.reference, derived=study.derived)
+    cmp = compare_table(study.results, baseline=study.baseline, derived=study.derived)
     heads = headlines(study, cmp)
     assert heads, f"{path.stem}: no headline"
-    bad = [f"{h.reference} vs {h.model}: {h.error_pct:.3g} % L ± {h.disc_pct:.3g} % L" for h in heads
+    bad = [f"{h.baseline} vs {h.model}: {h.error_pct:.3g} % L ± {h.disc_pct:.3g} % L" for h in heads
            if h.cc_pair and not h.converged]
     assert not bad, f"{path.stem}: headline(s) not converged: {bad}"
     assert all(h.n_not_converged == 0 for h in heads if h.cc_pair), [

@@ -147,20 +147,20 @@ def test_wire_delay_cylindrical_section_mean_wire_change_is_zero():
 
 
 def test_wire_delay_virtual_compression_at_three_seconds():
-    from workbench.experiments.wire_delay.analysis import arc_from_wire_lengths_tronconic, wire_lengths_from_arc_tronconic
+    from workbench.experiments.wire_delay.analysis import arc_from_wire_lengths_tronconic_workbench, wire_lengths_tronconic_workbench
 
     robot = build_robot({"preset": "cojocaru_tronconic", "n_sections": 1})
     load = build_load(robot, load_with_scenario(robot, {"mode": "length"}, {"name": "wire_delay", **scenario_parameters("wire_delay"), "delay": 3.0}))
     sec = robot.sections[0]
     g = sec.tendons
     sigma = np.asarray(g.angles)
-    L0 = wire_lengths_from_arc_tronconic(0.0, 0.0, sec.length, g.offset, g.offset_tip, sigma)
+    L0 = wire_lengths_tronconic_workbench(0.0, 0.0, sec.length, g.offset, g.offset_tip, sigma)
     Lcmd = L0 + load.actuation.command_at(3.0, load.ramp_time)
-    _, _, e = arc_from_wire_lengths_tronconic(Lcmd, sec.length, g.offset, g.offset_tip, sigma)
+    _, _, e = arc_from_wire_lengths_tronconic_workbench(Lcmd, sec.length, g.offset, g.offset_tip, sigma)
     assert -0.02 < float(e) / sec.length < -0.015  # the paper's "approximately 2 %" (-1.78 %)
     # without delay the commands stay a CC configuration
     load0 = build_load(robot, load_with_scenario(robot, {"mode": "length"}, {"name": "wire_delay", **scenario_parameters("wire_delay")}))
-    _, _, e0 = arc_from_wire_lengths_tronconic(L0 + load0.actuation.command_at(3.0, 4.0), sec.length, g.offset, g.offset_tip, sigma)
+    _, _, e0 = arc_from_wire_lengths_tronconic_workbench(L0 + load0.actuation.command_at(3.0, 4.0), sec.length, g.offset, g.offset_tip, sigma)
     assert abs(float(e0)) < 1e-5
 
 

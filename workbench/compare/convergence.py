@@ -43,9 +43,9 @@ AGREEMENT_FLOOR = 1e-5
 CONVERGED_FRACTION = 0.1
 
 
-def is_cc_pair(reference: str, model: str) -> bool:
+def is_cc_pair(baseline: str, model: str) -> bool:
     """True when one side of the pair is a CC model."""
-    return str(reference) in CC_MODELS or str(model) in CC_MODELS
+    return str(baseline) in CC_MODELS or str(model) in CC_MODELS
 
 
 def _disc(row: Mapping[str, Any], cc_pair: bool) -> float:

@@ -209,7 +209,7 @@ def section_ends_from_row(row: Mapping[str, Any]) -> np.ndarray | None:
         return None
 
 
-def _pair_metrics(ref: Mapping[str, Any], row: Mapping[str, Any], section_ends, cc_reference: bool) -> dict[str, float]:
+def _pair_metrics(ref: Mapping[str, Any], row: Mapping[str, Any], section_ends, cc_baseline: bool) -> dict[str, float]:
     L = float(ref.get("robot_length", np.nan))
     if not np.isfinite(L) or L <= 0:
         L = float(row.get("robot_length", np.nan))
@@ -248,7 +248,7 @@ def _pair_metrics(ref: Mapping[str, Any], row: Mapping[str, Any], section_ends, 
     m["compression_tendon_stretch"] = np.nan
     m["compression_shape"] = np.nan
     length_mode = str(ref.get("p.load.mode", "length")) == "length"
-    if cc_reference and length_mode and np.isfinite(dl_ref) and np.isfinite(dl):
+    if cc_baseline and length_mode and np.isfinite(dl_ref) and np.isfinite(dl):
         stretch = _mean_tendon_stretch(row)
         if np.isfinite(stretch):
             sp = compression_split(dl_ref, dl, stretch)
@@ -305,7 +305,7 @@ def _max_tip_error_over_time(ref: Mapping[str, Any], row: Mapping[str, Any]) -> 
 
 def compare_table(
     df: pd.DataFrame,
-    reference: str = "cc",
+    baseline: str = "cc",
     *,
     pairs: str = "all",
     section_ends: Sequence[float] | None = None,
@@ -318,14 +318,15 @@ def compare_table(
     df : DataFrame
         Study result table (``case_id``, ``model``, ``status`` required; failed rows are
         ignored).
-    reference : str
-        Reference model name (default ``"cc"``): every other model is compared with it.
-    pairs : {"all", "reference"}
-        ``"all"`` also compares each pair of non-reference (physics) models, first in order
-        of appearance as the reference of the pair.
+    baseline : str
+        Baseline model name (default ``"cc"``): every other model is compared with it.  The
+        table's ``reference`` column names the compared-against side of each pair.
+    pairs : {"all", "baseline"}
+        ``"all"`` also compares each pair of non-baseline (physics) models, first in order
+        of appearance as the compared-against side of the pair.
     section_ends : sequence of float, optional
         Reference arc lengths of the section ends [m] for the per-section curvature fit;
-        default: :func:`section_ends_from_row` of the reference row, else one section
+        default: :func:`section_ends_from_row` of the baseline row, else one section
         spanning the robot.
     derived : mapping, optional
         Extra derived columns (see :func:`add_derived_columns`).
@@ -340,20 +341,20 @@ def compare_table(
         ``kappa_error_j`` [1/m] per section ``j``, ``out_of_plane`` [m] / ``_pct``,
         ``length_change_ref``/``length_change`` [m], ``length_change_pct`` [% L],
         ``tip_twist_deg``, ``compression_virtual``/``_backbone``/``_tendon_stretch``/``_shape``
-        [m] (see :func:`~workbench.compare.metrics.compression_split`; only for CC-reference
-        pairs with a known tendon stretch and, if ``p.load.mode`` exists, length-mode
+        [m] (see :func:`~workbench.compare.metrics.compression_split`; only for pairs against
+        a CC baseline with a known tendon stretch and, if ``p.load.mode`` exists, length-mode
         actuation; else NaN), ``wall_time_ref``/``wall_time`` [s],
         ``tip_error_max_over_time`` [m] (dynamic cases with ``series.tip_position``),
         ``judged_error``, ``disc_error`` [m], ``disc_error_pct``, ``disc_fraction``,
         ``not_converged`` (:mod:`workbench.compare.convergence`).
         Empty (with the identifying columns) when nothing can be compared.
     """
-    if pairs not in ("all", "reference"):
-        raise ValueError(f"pairs must be 'all' or 'reference', got {pairs!r}")
+    if pairs not in ("all", "baseline"):
+        raise ValueError(f"pairs must be 'all' or 'baseline', got {pairs!r}")
     ok = ok_rows(df)
     models = list(dict.fromkeys(ok["model"].astype(str)))
-    others = [m for m in models if m != reference]
-    pair_list = [(reference, m) for m in others] if reference in models else []
+    others = [m for m in models if m != baseline]
+    pair_list = [(baseline, m) for m in others] if baseline in models else []
     if pairs == "all":
         pair_list += list(itertools.combinations(others, 2))
     pcols = [c for c in df.columns if str(c).startswith("p.")]
@@ -368,7 +369,7 @@ def compare_table(
             for c in pcols:
                 rec[c] = ra.get(c)
             rec["robot_length"] = ra.get("robot_length", np.nan)
-            rec.update(_pair_metrics(ra, rb, section_ends, cc_reference=(a == reference == "cc")))
+            rec.update(_pair_metrics(ra, rb, section_ends, cc_baseline=(a == baseline == "cc")))
             rec.update(convergence_metrics(ra, rb, rec))  # error bars and the not-converged mark
             rows.append(rec)
     if not rows:

@@ -74,7 +74,7 @@ from .tronconic import (
     plan_constant_speed_move,
     virtual_compression,
     wire_length_jacobian,
-    wire_lengths_tronconic,
+    wire_lengths_tronconic_paper,
 )
 
 __all__ = [
@@ -102,7 +102,7 @@ __all__ = [
     "curvature_from_joint_angle",
     "joint_angle_from_curvature",
     "curvature_from_cable_change",
-    "wire_lengths_tronconic",
+    "wire_lengths_tronconic_paper",
     "wire_length_jacobian",
     "virtual_compression",
     "WireMove",

@@ -49,7 +49,7 @@ from ._checks import as_float, broadcast_named, require_positive
 from .tendons import arc_from_tendon_lengths
 
 __all__ = [
-    "wire_lengths_tronconic",
+    "wire_lengths_tronconic_paper",
     "wire_length_jacobian",
     "virtual_compression",
     "WireMove",
@@ -69,8 +69,13 @@ def _check_geometry(H, D1, D2):
     return H, D1, D2
 
 
-def wire_lengths_tronconic(theta, alpha, H, D1, D2) -> np.ndarray:
-    """Lengths of the three control wires of a tronconic segment (Cojocaru Eq. 4-11).
+def wire_lengths_tronconic_paper(theta, alpha, H, D1, D2) -> np.ndarray:
+    """Lengths of the three control wires of a tronconic segment (Cojocaru Eq. 4-11), paper convention.
+
+    Paper convention: direction ``alpha`` = azimuth of the convex side, disc *diameters*
+    ``D1, D2``, wires at ``0, 120, 240 deg``.  The workbench convention (direction ``phi``
+    towards the bend, offsets, wire angles ``sigma``) is the wire-delay experiment's
+    ``wire_lengths_tronconic_workbench``.  Checked by ``tests/kinematics/test_kinematics_cables.py``.
 
     Parameters
     ----------
@@ -117,7 +122,7 @@ def wire_length_jacobian(theta, alpha, H, D1, D2) -> np.ndarray:
     Parameters
     ----------
     theta, alpha, H, D1, D2
-        As in :func:`wire_lengths_tronconic`.
+        As in :func:`wire_lengths_tronconic_paper`.
 
     Returns
     -------
@@ -135,7 +140,7 @@ def wire_length_jacobian(theta, alpha, H, D1, D2) -> np.ndarray:
     ``dL_wn/dtheta = D/2 cos alpha_n``, ``dL_wn/dalpha = D/2 theta sin alpha_n``; Eq. 29
     (``qdot = J_F^-1 C``) is then solved in closed form by :func:`plan_constant_speed_move`.
     """
-    L = wire_lengths_tronconic(theta, alpha, H, D1, D2)  # validates
+    L = wire_lengths_tronconic_paper(theta, alpha, H, D1, D2)  # validates
     th, al, H, D1, D2 = broadcast_named(
         theta=as_float("theta", theta), alpha=as_float("alpha", alpha), H=as_float("H", H),
         D1=as_float("D1", D1), D2=as_float("D2", D2),
@@ -235,7 +240,7 @@ def plan_constant_speed_move(
     duration : float
         Time each wire takes for its move [s], ``> 0``.
     H, D1, D2 : float
-        Segment geometry [m] (see :func:`wire_lengths_tronconic`).
+        Segment geometry [m] (see :func:`wire_lengths_tronconic_paper`).
     delays : array_like, shape (3,)
         Start delay of each wire [s], ``>= 0``.
     t : array_like, shape (k,), optional
@@ -277,8 +282,8 @@ def plan_constant_speed_move(
     t = as_float("t", t)
     if t.ndim != 1:
         raise ValueError(f"t must have shape (k,); got {t.shape}")
-    L0 = wire_lengths_tronconic(st[0], st[1], H, D1, D2)
-    Lf = wire_lengths_tronconic(en[0], en[1], H, D1, D2)
+    L0 = wire_lengths_tronconic_paper(st[0], st[1], H, D1, D2)
+    Lf = wire_lengths_tronconic_paper(en[0], en[1], H, D1, D2)
     C = (Lf - L0) / T
     L = L0 + C * np.clip(t[:, None] - dl, 0.0, T)
     vc = L.mean(axis=-1) - H

@@ -122,7 +122,7 @@ def dynamic_settings(options: SolverOptions, end_time: float) -> "exu.Simulation
 
 
 def ode2_saver(mbs, with_ae: bool = False) -> tuple[Callable[[], object], Callable[[object], None]]:
-    """``(save, restore)`` of the solver's start state, for :func:`workbench.physics._stepping.ramp`.
+    """``(save, restore)`` of the solver's start state, for :func:`workbench.physics._stepping.load_ramp`.
 
     ``save()`` copies the *initial* ODE2 coordinates (and, with ``with_ae``, the algebraic ones:
     the constraint multipliers) -- the state a ``SolveStatic(updateInitialValues=True)`` starts

@@ -6,7 +6,9 @@ the models ramp a load factor ``lam`` from 0 to 1 themselves: each attempt appli
 solves from the last converged state; a failed attempt restores that state and halves the
 increment; successes grow it again.  :class:`RampPolicy` holds the rules in which the models
 differ (when the increment grows, what caps it, when to give up), so each model keeps exactly
-its step sequence.  Pure Python (no Exudyn import).
+its step sequence.  :func:`load_ramp` is the ramp; :func:`ancf_load_ramp` is :func:`load_ramp`
+with the ANCF models' policy for an ``apply`` / ``solve`` pair (used by the planar ANCF model
+and the contact system).  Pure Python (no Exudyn import).
 
 Checked by ``tests/physics/test_stepping.py`` (step sequences of each policy, limits, state
 restore) and, through the models, by their validation tests.
@@ -17,7 +19,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, Literal
 
-__all__ = ["ContinuationInfo", "RampExhausted", "RampInfo", "RampPolicy", "RampStalled", "continuation", "ramp"]
+__all__ = [
+    "ContinuationInfo", "LoadRampInfo", "RampExhausted", "RampPolicy", "RampStalled",
+    "ancf_load_ramp", "continuation", "load_ramp",
+]
 
 
 @dataclass(frozen=True)
@@ -59,8 +64,8 @@ class RampPolicy:
 
 
 @dataclass(frozen=True)
-class RampInfo:
-    """Outcome of :func:`ramp`: attempts made, attempts accepted, failures, smallest increment tried."""
+class LoadRampInfo:
+    """Outcome of :func:`load_ramp`: attempts made, attempts accepted, failures, smallest increment tried."""
 
     attempts: int
     accepted: int
@@ -87,7 +92,7 @@ class RampStalled(RuntimeError):
         self.cause = cause
 
 
-def ramp(
+def load_ramp(
     attempt: Callable[[float], bool | None],
     save: Callable[[], object],
     restore: Callable[[object], None],
@@ -95,7 +100,7 @@ def ramp(
     max_attempts: int,
     policy: RampPolicy = RampPolicy(),
     failure: type[BaseException] | tuple[type[BaseException], ...] = (),
-) -> RampInfo:
+) -> LoadRampInfo:
     """Ramp a load factor from 0 to 1 with adaptive increments.
 
     Parameters
@@ -115,7 +120,7 @@ def ramp(
 
     Returns
     -------
-    RampInfo
+    LoadRampInfo
 
     Raises
     ------
@@ -157,7 +162,80 @@ def ramp(
                 inc = min(1.0, p.growth * inc)
             elif lam < 1.0:
                 inc = min(1.0 - lam, p.growth * inc)
-    return RampInfo(attempts=attempts, accepted=accepted, failed=failed, smallest_increment=smallest)
+    return LoadRampInfo(attempts=attempts, accepted=accepted, failed=failed, smallest_increment=smallest)
+
+
+def ancf_load_ramp(
+    apply: Callable[[float], None],
+    solve: Callable[[], None],
+    save: Callable[[], object],
+    restore: Callable[[object], None],
+    *,
+    max_steps: int,
+    first_increment: float = 1.0,
+    min_increment: float = 1e-6,
+    failure: type[BaseException] | tuple[type[BaseException], ...] = Exception,
+) -> LoadRampInfo:
+    """:func:`load_ramp` with the ANCF models' policy, for an ``apply`` / ``solve`` pair.
+
+    Used by the planar ANCF model (:mod:`workbench.physics.ancf`) and the contact system
+    (:meth:`workbench.physics.contact.system.ContactSystem.load_ramp`).  Each attempt sets the
+    factor (``apply(lam)``, outside the failure handling: its exceptions propagate) and solves
+    from the last converged state; a failed solve (``failure`` raised) restores the state and
+    halves the increment; after two successes the increment doubles again (capped at 1):
+    ``RampPolicy(grow_after=2, cap="one")``.  The stopping exceptions of :func:`load_ramp` become
+    one ``RuntimeError`` naming the cause and the load factor reached.  Checked by
+    ``tests/physics/test_stepping.py`` and, through the ANCF model, ``tests/physics/test_ramp_sequences.py``.
+
+    Parameters
+    ----------
+    apply : callable
+        ``lam -> None``: set every ramped load to ``lam`` times its final value.
+    solve : callable
+        Solve from the saved state; raise ``failure`` on non-convergence.
+    save, restore : callable
+        Save / restore the solver state around a trial step.
+    max_steps : int
+        Cap on solve attempts (successful plus failed).
+    first_increment : float
+        First trial increment of the factor (0 < . <= 1).
+    min_increment : float
+        Give up below this increment.
+    failure : exception type(s)
+        What a failed solve raises.
+
+    Returns
+    -------
+    LoadRampInfo
+
+    Raises
+    ------
+    RuntimeError
+        The cap on steps or the minimum increment was reached (the message says which and
+        at what load factor).
+    """
+    last: list[BaseException] = []
+
+    def attempt(lam: float) -> bool:
+        apply(lam)
+        try:
+            solve()
+        except failure as err:
+            last[:] = [err]
+            return False
+        return True
+
+    policy = RampPolicy(first_increment=first_increment, growth=2.0, grow_after=2, cap="one",
+                        min_increment=min_increment)
+    try:
+        return load_ramp(attempt, save, restore, max_attempts=max_steps, policy=policy)
+    except RampExhausted as stop:
+        raise RuntimeError(f"load stepping hit max_load_steps={max_steps} at load factor {stop.lam:.6g}") from None
+    except RampStalled as stop:
+        err = last[0]
+        raise RuntimeError(
+            f"load stepping failed at load factor {stop.lam:.6g} (increment < {min_increment}): {err}"
+        ) from err
 
 
 # --------------------------------------------------------------------------- parameter continuation

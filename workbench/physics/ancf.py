@@ -23,7 +23,7 @@ and :func:`_dynamic`.
   :func:`~workbench.physics.tendon_loads.tendon_path_compliance`).  Dynamic: tensions from the
   state at the step start and the rest length at its end (explicit, in a ``PreStepUserFunction``);
   divergence or a chattering tension history raises :class:`ModelFailure`.
-* Static solution: loads and tensions ramped by :func:`~workbench.physics.tendon_loads.ramp_load`
+* Static solution: loads and tensions ramped by :func:`~workbench.physics._stepping.ancf_load_ramp`
   (one ``SolveStatic`` per increment, at most ``options.max_load_steps`` attempts per ramp), Newton
   on the step size; non-convergence or an implausible state (non-finite, ``|r'|`` outside
   (0.5, 1.5), a point beyond 2 L) raises :class:`ModelFailure`.
@@ -54,13 +54,8 @@ from ._ancf_geometry import (arc_length, centreline, element_lengths, gauss_poin
                              offset_curve_length, offset_points)
 from ..models.backbone_frames import backbone_series, frame_stride
 from ._ancf_problem import AncfProblem, PlanarModelError, build_problem
-from .tendon_loads import (
-    ramp_load,
-    solve_length_controlled,
-    tendon_path_compliance,
-    tendon_rest_lengths,
-    tension_from_stretch,
-)
+from ._stepping import ancf_load_ramp
+from .tendon_loads import solve_length_controlled, tendon_path_compliance, tendon_rest_lengths, tension_from_stretch
 
 __all__ = ["run", "PlanarModelError"]
 
@@ -90,7 +85,7 @@ class _System:
         self.tendon_model = tendon_model
         self.SC = exu.SystemContainer()
         self.mbs = self.SC.AddSystem()
-        ground = self._add_cable(damping)
+        ground = self._add_backbone(damping)
         self._add_loads()
         self._add_tendons(ground)
         self.quad = gauss_points(pb.s_nodes, 6)
@@ -99,8 +94,9 @@ class _System:
         self.mbs.Assemble()
 
     # -- building ---------------------------------------------------------------------------
-    def _add_cable(self, damping: float) -> int:
-        """Nodes, elements and the clamp (node 0's x, y and y-slope); returns the ground object."""
+    def _add_backbone(self, damping: float) -> int:
+        """Build the backbone: ANCF nodes, ``ANCFCable2D`` beam elements (Exudyn's name for the planar
+        ANCF beam; not a tendon) and the clamp (node 0's x, y and y-slope); returns the ground object."""
         from exudyn.itemInterface import NodePoint2DSlope1, ObjectANCFCable2D, ObjectGround
 
         from ._exudyn import clamp_coordinates
@@ -289,12 +285,12 @@ class _StaticDriver:
             self.sysm.mbs.systemData.SetODE2Coordinates(q.tolist(), configuration=exu.ConfigurationType.Initial)
 
         try:
-            info = ramp_load(apply, self._solve, save, restore, max_steps=self.options.max_load_steps,
-                             failure=(exu.SolverError, ModelFailure))
+            info = ancf_load_ramp(apply, self._solve, save, restore, max_steps=self.options.max_load_steps,
+                                  failure=(exu.SolverError, ModelFailure))
         except RuntimeError as err:
             raise ModelFailure(f"ANCF static solve failed: {err}") from err
-        self.steps += info.steps
-        self.failed += info.failed_steps
+        self.steps += info.attempts
+        self.failed += info.failed
         self.ext, self.T = ext, T.copy()
 
 

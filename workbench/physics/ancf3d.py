@@ -23,7 +23,7 @@ transverse slope components are fixed; the axial slope component is left free (f
 forbids axial strain at the clamp).  The cable runs along the base z axis directly (no
 internal frame).
 
-Static analysis: all loads scale with lambda 0 -> 1 through :func:`workbench.physics._stepping.ramp`
+Static analysis: all loads scale with lambda 0 -> 1 through :func:`workbench.physics._stepping.load_ramp`
 (one ``SolveStatic`` per increment, doubling capped at the remaining load, halving on failure, at
 most ``options.max_load_steps`` attempts).  Dynamic analysis: generalised-alpha from the static
 equilibrium; loads are constant, so a dynamic run stays at rest (nothing in this model drives it);
@@ -48,7 +48,7 @@ import numpy as np
 from ..models.inputs import check_model_inputs
 from ..models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ..robot import LoadCase, Robot
-from ._stepping import RampExhausted, RampPolicy, RampStalled, ramp
+from ._stepping import RampExhausted, RampPolicy, RampStalled, load_ramp
 from ._beam3d_layout import element_layout
 
 __all__ = ["run"]
@@ -222,7 +222,7 @@ def _ramp_static(system: _System, options: SolverOptions) -> tuple[int, int]:
 
     save, restore = ode2_saver(mbs, with_ae=False)
     try:
-        info = ramp(attempt, save, restore, max_attempts=options.max_load_steps, policy=_RAMP_POLICY)
+        info = load_ramp(attempt, save, restore, max_attempts=options.max_load_steps, policy=_RAMP_POLICY)
     except RampExhausted as stop:
         raise ModelFailure(
             f"ancf3d: static load ramp needs more than max_load_steps={options.max_load_steps} "

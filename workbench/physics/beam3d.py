@@ -19,7 +19,7 @@ Model ``"beam3d"``: ``run(robot, load, options) -> PhysicsResult``.
   ``ObjectConnectorReevingSystemSprings`` per tendon (rigid-marker eyelets), rest length
   ``L_path0 / (1 + T_pre/EA_t) + delta_l``, ``regularizationForce`` 1e-3 N, tensions
   ``max(0, EA_t stretch / rest length)``.  ``forODE2Connectors`` numerical differentiation is on.
-* Static analysis (:func:`_ramp_static`): the load ramp (:func:`workbench.physics._stepping.ramp`)
+* Static analysis (:func:`_ramp_static`): the load ramp (:func:`workbench.physics._stepping.load_ramp`)
   on the rod with EA, GA scaled down (:func:`auto_stiffness_stages`), then EA, GA raised at full
   load up to the real rod (``options.newton_tolerance``); the plain ramp if a stage fails.  Every
   ODE2 Jacobian term numerical (Exudyn's GE-beam one is wrong on EP nodes; ``docs/models.md``).
@@ -49,7 +49,7 @@ import numpy as np
 from ..models.inputs import check_model_inputs
 from ..models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ..robot import LoadCase, Robot
-from ._stepping import RampExhausted, RampPolicy, RampStalled, ramp
+from ._stepping import RampExhausted, RampPolicy, RampStalled, load_ramp
 
 __all__ = ["run", "auto_stiffness_stages"]
 
@@ -95,7 +95,7 @@ MODIFIED_NEWTON_ITERATIONS = 15
 def _static_settings(options: SolverOptions, jacobian: str = "numerical", tolerance: float | None = None):
     """Static settings; ``jacobian="numerical"``: every ODE2 term by numerical differentiation at
     ``_FD_EPSILON``; ``"exudyn_beam"``: Exudyn's beam Jacobian, numerical connectors only (the
-    setting before issue 18: that beam Jacobian is wrong on Euler-parameter nodes, ``docs/models.md``)."""
+    initial equilibrium of dynamics; that beam Jacobian is wrong on Euler-parameter nodes, ``docs/models.md``)."""
     from ._exudyn import static_settings
 
     s = static_settings(options, 1)
@@ -190,7 +190,7 @@ def _ramp_static(system, options: SolverOptions, values_at, lam_pre_at, loads_at
         start = save()
         system.set_axial_shear_scale(stages[0])
         try:
-            info = ramp(attempt_with(loose), save, restore, max_attempts=options.max_load_steps, policy=_RAMP_POLICY)
+            info = load_ramp(attempt_with(loose), save, restore, max_attempts=options.max_load_steps, policy=_RAMP_POLICY)
             accepted, attempts = info.accepted, info.attempts
             ok = True
             for a in stages[1:] + (1.0,):
@@ -207,7 +207,7 @@ def _ramp_static(system, options: SolverOptions, values_at, lam_pre_at, loads_at
         system.set_axial_shear_scale(1.0)  # fall back: the plain load ramp from the start
         restore(start)
     try:
-        info = ramp(attempt_with(settings), save, restore, max_attempts=options.max_load_steps, policy=_RAMP_POLICY)
+        info = load_ramp(attempt_with(settings), save, restore, max_attempts=options.max_load_steps, policy=_RAMP_POLICY)
     except RampExhausted as stop:
         raise ModelFailure(
             f"beam3d: static load ramp needs more than max_load_steps={options.max_load_steps} "
@@ -297,16 +297,17 @@ def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bo
 
     act = load.actuation
     cmd0 = act.command_at(0.0, load.ramp_time) if act is not None else np.zeros(n_t)
-    # the method before issue 18 (plain ramp, Exudyn's beam Jacobian): dynamics unchanged by issue 18's statics
+    # initial equilibrium: the plain ramp with Exudyn's beam Jacobian (no stiffness stages); the dynamic
+    # answers are pinned with it (tests/regression golden wire_delay_arm)
     acc, att = _ramp_static(system, options, lambda lam: lam * cmd0, lambda lam: lam, lambda lam: lam,
                             stages=(), jacobian="exudyn_beam")
     sim = dynamic_settings(options, load.duration)
     ti = sim.timeIntegration
     ti.newton.numericalDifferentiation.forODE2Connectors = True
     ti.newton.useModifiedNewton = True
-    # damped: up to 15 (not Exudyn's 8) modified-Newton iterations before a new Jacobian: each Jacobian
-    # costs ~20 iterations (the eyelet ropes' numerical part, ~4 ms of 4.7 ms at 40 el.); the wire delay's
-    # 10 s took 913 -> 534 Jacobians, 10.9 -> 8.6 s, the same answer to 7 digits (benchmarks/README.md).
+    # damped: up to 15 (not Exudyn's 8) modified-Newton iterations before a new Jacobian: a Jacobian
+    # costs about as much as 20 iterations (the eyelet ropes' numerical part), and fewer Jacobians give the
+    # same answer (the Jacobian counts and times: benchmarks/README.md, "wire delay"; docs/models.md)
     # Undamped runs keep Exudyn's 8: their answer depends on the iteration path (the undamped arm's
     # compensated case moves by 3 mm at 12; tests/regression golden wire_delay_arm)
     ti.newton.maxModifiedNewtonIterations = MODIFIED_NEWTON_ITERATIONS if options.damping > 0 else 8
@@ -364,8 +365,8 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions, *, stiffness_stage
         (stiffness-proportional beta [s], dynamics only), ``spectral_radius``.
     stiffness_stages : "auto" or tuple of float
         Static analyses: EA and GA factors of the predictor stages (:func:`_ramp_static`,
-        "auto": :func:`auto_stiffness_stages`); ``()`` runs the plain load ramp at full stiffness (the method before issue 18).
-        The initial equilibrium of a dynamic analysis uses ``()`` and ``"exudyn_beam"`` (as before issue 18).
+        "auto": :func:`auto_stiffness_stages`); ``()`` runs the plain load ramp at full stiffness.
+        The initial equilibrium of a dynamic analysis uses ``()`` and ``"exudyn_beam"``.
     jacobian : {"numerical", "exudyn_beam"}
         Static analyses: Jacobian of the static Newton (:func:`_static_settings`).
 

@@ -8,9 +8,6 @@
 * :func:`solve_length_controlled` -- solve ``T = EA_t max(0, (l(T) - l0) / l0)`` for the
   tensions around any tension-controlled equilibrium solver (semismooth quasi-Newton with
   Broyden updates).
-* :func:`ramp_load` -- adaptive load stepping (halve on failure, cap on steps) for loads
-  that a static solver applies at once (connector forces, reference curvature, ...): the
-  ANCF models' policy of :func:`workbench.physics._stepping.ramp`.
 
 Length convention (``docs/architecture.md``): ``TendonActuation.values[i]`` is the change of
 the free length of tendon ``i`` relative to its straight reference configuration
@@ -25,16 +22,12 @@ from typing import Callable
 
 import numpy as np
 
-from ._stepping import RampExhausted, RampPolicy, RampStalled, ramp
-
 __all__ = [
     "tendon_rest_lengths",
     "tension_from_stretch",
     "tendon_path_compliance",
     "LengthSolveInfo",
     "solve_length_controlled",
-    "RampInfo",
-    "ramp_load",
 ]
 
 
@@ -285,83 +278,3 @@ def _fd_compliance(equilibrium: Callable[[np.ndarray], np.ndarray], T: np.ndarra
         Th[i] += h
         C[:, i] = (equilibrium(Th) - l) / h
     return C
-
-
-@dataclass(frozen=True)
-class RampInfo:
-    """Outcome of :func:`ramp_load`."""
-
-    steps: int
-    failed_steps: int
-    smallest_increment: float
-
-
-def ramp_load(
-    apply: Callable[[float], None],
-    solve: Callable[[], None],
-    save: Callable[[], object],
-    restore: Callable[[object], None],
-    *,
-    max_steps: int,
-    first_increment: float = 1.0,
-    min_increment: float = 1e-6,
-    failure: type[BaseException] | tuple[type[BaseException], ...] = Exception,
-) -> RampInfo:
-    """Adaptive load stepping from load factor 0 to 1 (the ANCF models' policy of :func:`ramp`).
-
-    Each step sets the factor (``apply(lam)``) and solves from the last converged state;
-    a failed solve (``failure`` raised) restores the state and halves the increment; after
-    two successes the increment doubles again (capped at 1).  A thin wrapper over
-    :func:`workbench.physics._stepping.ramp` with ``RampPolicy(grow_after=2, cap="one")``;
-    ``apply`` runs outside the failure handling (its exceptions propagate).
-
-    Parameters
-    ----------
-    apply : callable
-        ``lam -> None``: set every ramped load to ``lam`` times its final value.
-    solve : callable
-        Solve from the saved state; raise ``failure`` on non-convergence.
-    save, restore : callable
-        Save / restore the solver state around a trial step.
-    max_steps : int
-        Cap on solve attempts (successful plus failed).
-    first_increment : float
-        First trial increment of the factor (0 < . <= 1).
-    min_increment : float
-        Give up below this increment.
-    failure : exception type(s)
-        What a failed solve raises.
-
-    Returns
-    -------
-    RampInfo
-
-    Raises
-    ------
-    RuntimeError
-        The cap on steps or the minimum increment was reached (the message says which and
-        at what load factor).
-    """
-    last: list[BaseException] = []
-
-    def attempt(lam: float) -> bool:
-        apply(lam)
-        try:
-            solve()
-        except failure as err:
-            last[:] = [err]
-            return False
-        return True
-
-    policy = RampPolicy(first_increment=first_increment, growth=2.0, grow_after=2, cap="one",
-                        min_increment=min_increment)
-    try:
-        info = ramp(attempt, save, restore, max_attempts=max_steps, policy=policy)
-    except RampExhausted as stop:
-        raise RuntimeError(f"load stepping hit max_load_steps={max_steps} at load factor {stop.lam:.6g}") from None
-    except RampStalled as stop:
-        err = last[0]
-        raise RuntimeError(
-            f"load stepping failed at load factor {stop.lam:.6g} (increment < {min_increment}): {err}"
-        ) from err
-    return RampInfo(steps=info.attempts, failed_steps=info.failed, smallest_increment=info.smallest_increment)

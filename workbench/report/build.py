@@ -261,7 +261,7 @@ def build_report(data_dir: str | Path, out_dir: str | Path | None = None, *, for
     shutil.rmtree(tmp, ignore_errors=True)
     (tmp / "figures").mkdir(parents=True)
     try:
-        cmp = compare_table(study.results, reference=study.reference, derived=study.derived)
+        cmp = compare_table(study.results, baseline=study.baseline, derived=study.derived)
         summary, failed, fcols, downloads = _tables(study, cmp, tmp)
         with matplotlib.rc_context(STYLE):
             # Question / Findings / Assumptions / Sensitivity (findings.py), then the figures

@@ -2,7 +2,7 @@
 
 :func:`case_table` builds the JSON that ``assets/table.js`` renders (sortable, filterable):
 the case id, model, status, the swept parameters and the other parameters that vary (with
-units from :mod:`.units`), the errors against the reference model (tip position [% L] and
+units from :mod:`.units`), the errors against the baseline model (tip position [% L] and
 [mm], orientation [deg], RMS shape [% L]), every ``x.disc_*`` column (the discretisation error
 bars of a model, when the study records them), wall time and the failure reason; each row links
 to the figures that draw its case and, when the 3-D view has the case, to the view.  Rows follow
@@ -71,11 +71,11 @@ def _param_columns(study: ResultSet) -> list[str]:
 
 
 def _errors_by_row(study: ResultSet, cmp: pd.DataFrame) -> dict[tuple[str, str], dict[str, Any]]:
-    """``(case_id, model) -> {error column: value}`` against the study's reference model."""
+    """``(case_id, model) -> {error column: value}`` against the study's baseline model."""
     out: dict[tuple[str, str], dict[str, Any]] = {}
     if cmp.empty:
         return out
-    sub = cmp[cmp["reference"].astype(str) == study.reference]
+    sub = cmp[cmp["reference"].astype(str) == study.baseline]
     for r in sub.to_dict("records"):
         out[(str(r["case_id"]), str(r["model"]))] = {k: _scalar(r.get(k) * f if r.get(k) is not None else None)
                                                      for k, _, f in _ERRORS if k in r}

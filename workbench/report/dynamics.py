@@ -2,9 +2,9 @@
 
 :func:`time_series_figures`: for the first and last dynamic case, the time histories of every
 ``series.*`` column per model (tendon commands and tensions, backbone length change) and the tip
-error against the reference.  :func:`compression_split_figures`: the CC virtual compression of
+error against the baseline model.  :func:`compression_split_figures`: the CC virtual compression of
 each case split into backbone compression, tendon stretch and shape distortion (the columns
-:func:`workbench.compare.compare_table` adds when the reference is ``cc``).  Checked by
+:func:`workbench.compare.compare_table` adds when the baseline is ``cc``).  Checked by
 ``tests/report/test_report_build.py`` and the report tier of ``tests/regression``.
 """
 
@@ -63,9 +63,9 @@ def _series_names(dyn: pd.DataFrame) -> tuple[list[str], bool]:
 
 
 def _tip_error_panel(ax, rows: Mapping[str, Mapping[str, Any]], study: ResultSet, texts: list) -> None:
-    ref = _row_series(rows[study.reference], "tip_position")
+    ref = _row_series(rows[study.baseline], "tip_position")
     for m, r in rows.items():
-        if m == study.reference:
+        if m == study.baseline:
             continue
         sm = _row_series(r, "tip_position")
         if ref is None or sm is None:
@@ -73,9 +73,9 @@ def _tip_error_panel(ax, rows: Mapping[str, Mapping[str, Any]], study: ResultSet
         pm = np.stack([np.interp(ref[0], sm[0], sm[1][:, k]) for k in range(3)], -1)
         L = float(r.get("robot_length", np.nan))
         e = 100 * np.linalg.norm(pm - ref[1], axis=1) / L
-        ax.plot(ref[0], e, color=model_color(m, study.models), label=pair_label(study.reference, m))
+        ax.plot(ref[0], e, color=model_color(m, study.models), label=pair_label(study.baseline, m))
         i = int(np.argmax(e))
-        texts.append(f"{pair_label(study.reference, m)} tip error peaks at {fmt(e[i])} % of L at t = {fmt(ref[0][i])} s and ends at {fmt(e[-1])} %.")
+        texts.append(f"{pair_label(study.baseline, m)} tip error peaks at {fmt(e[i])} % of L at t = {fmt(ref[0][i])} s and ends at {fmt(e[-1])} %.")
     ax.set_ylabel("tip error [% L]")
     ax.set_title("tip position error")
 
@@ -92,7 +92,7 @@ def _series_panel(ax, rows: Mapping[str, Mapping[str, Any]], name: str, study: R
         comp = ("x", "y", "z") if name == "tip_position" and v.shape[1] == 3 else None
         for k in range(v.shape[1]):
             ax.plot(t, v[:, k], color=model_color(m, study.models), ls=styles[k % 4],
-                    lw=2.0 if m == study.reference else 1.5,
+                    lw=2.0 if m == study.baseline else 1.5,
                     label=model_label(m) + (f" {comp[k]}" if comp else f" #{k}" if v.shape[1] > 1 else ""))
         if name == "length_change":
             L = float(r.get("robot_length", np.nan))
@@ -102,7 +102,7 @@ def _series_panel(ax, rows: Mapping[str, Mapping[str, Any]], name: str, study: R
 
 
 def _case_figure(study: ResultSet, cid, rows, names: list[str], has_tip: bool) -> ReportFigure | None:
-    tip_err = has_tip and study.reference in rows and len(rows) > 1
+    tip_err = has_tip and study.baseline in rows and len(rows) > 1
     panels = [n for n in names if n != "tip_position"] + (["tip_error"] if tip_err else ["tip_position"] if has_tip else [])
     if not panels:
         return None
@@ -149,7 +149,7 @@ def time_series_figures(study: ResultSet, cmp: pd.DataFrame, max_cases: int = 2)
 
 
 # --------------------------------------------------------------------------------------
-# compression split (CC reference, length-controlled tendons)
+# compression split (CC baseline, length-controlled tendons)
 # --------------------------------------------------------------------------------------
 def compression_split_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFigure]:
     cols = ["compression_backbone", "compression_tendon_stretch", "compression_shape"]

@@ -62,11 +62,11 @@ def _case_text(study: ResultSet, case_id: str, model: str | None = None) -> str:
 
 def _headline_sentence(study: ResultSet, h: Headline) -> str:
     what = "peak tip error over time" if h.dynamic else "largest tip error"
-    physics = h.reference if h.model in CC_MODELS else h.model  # its row records its own resolution
-    s = f"{pair_label(h.reference, h.model)}: {what} {_pm(h)} ({_case_text(study, h.case_id, physics)})"
+    physics = h.baseline if h.model in CC_MODELS else h.model  # its row records its own resolution
+    s = f"{pair_label(h.baseline, h.model)}: {what} {_pm(h)} ({_case_text(study, h.case_id, physics)})"
     if h.dynamic and np.isfinite(h.final_pct):
         s += f"; at the end of that case {fmt(h.final_pct)} % L"
-    if not h.cc_pair and "target" in (h.reference, h.model):
+    if not h.cc_pair and "target" in (h.baseline, h.model):
         return s + " (against the commanded target: the error bar is the model's own estimate, the target has none)."
     if not h.cc_pair:
         return s + " (neither side is the CC model: the error bar is the sum of both sides' estimates)."

@@ -29,7 +29,8 @@ class Headline:
 
     Attributes
     ----------
-    reference, model : str
+    baseline, model : str
+        The pair: the compared-against model (the table's ``reference`` column) and the model.
     error, error_pct : float
         Largest judged error [m] and [% L] over the baseline cases.
     disc, disc_pct : float
@@ -48,7 +49,7 @@ class Headline:
     cc_pair : bool
     """
 
-    reference: str
+    baseline: str
     model: str
     error: float
     error_pct: float
@@ -149,7 +150,7 @@ def headlines(study: ResultSet, cmp: pd.DataFrame, pairs: Sequence[tuple[str, st
         dynamic = np.isfinite(float(row.get("tip_error_max_over_time", np.nan)))
         nc = g["not_converged"].astype(bool).to_numpy()
         out.append(Headline(
-            reference=ref, model=m, error=float(e[i]), error_pct=100.0 * float(e[i]) / L,
+            baseline=ref, model=m, error=float(e[i]), error_pct=100.0 * float(e[i]) / L,
             disc=float(row["disc_error"]), disc_pct=float(row["disc_error_pct"]),
             final_pct=_final_pct(study, ref, m, row["case_id"]) if dynamic else float("nan"),
             case_id=str(row["case_id"]), converged=not bool(row["not_converged"]), n_cases=int(np.isfinite(e).sum()),

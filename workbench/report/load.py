@@ -16,7 +16,7 @@ study runner writes) and adds what the report needs.  Conventions (every key is 
   derived columns such as ``gamma``, ``kappaL``, ``d_over_L``);
   ``derived``: ``{name: pandas eval expression}`` extra derived columns;
   ``labels``: ``{column: axis label}``;
-  ``reference``: reference model (default ``"cc"``);
+  ``reference``: the baseline model, compared against every other model (default ``"cc"``);
   ``frame``: ``"world"`` (default) or ``"base"``, the frame of the shape figures and 3-D view.
 - provenance (:mod:`.sections`): ``config_hash``, ``versions`` (mapping), ``git``
   (``{"commit", "dirty"}``), ``runs`` (list of ``{"host", "start", "end", "wall_time"}``).
@@ -62,8 +62,9 @@ class ResultSet:
     manifest : dict
     axes : tuple of str
         Result columns that were swept (plot axes), in sweep order.
-    reference : str
-        Reference model name.
+    baseline : str
+        Baseline model: the one every other model is compared against (study key
+        ``[report] reference``; the comparison table's ``reference`` column).
     models : tuple of str
         Models present in the table, in order of appearance.
     """
@@ -73,7 +74,7 @@ class ResultSet:
     results: pd.DataFrame
     manifest: Mapping[str, Any]
     axes: tuple[str, ...]
-    reference: str
+    baseline: str
     models: tuple[str, ...]
     derived: Mapping[str, str] = field(default_factory=dict)
     labels: Mapping[str, str] = field(default_factory=dict)
@@ -207,7 +208,7 @@ def load_results(data_dir: str | Path) -> ResultSet:
         results=df,
         manifest=manifest,
         axes=tuple(dict.fromkeys(axes)),
-        reference=str(rep.get("reference") or "cc"),
+        baseline=str(rep.get("reference") or "cc"),
         models=models,
         derived=derived,
         labels={current_name(str(k)): str(v) for k, v in (rep.get("labels") or {}).items()},

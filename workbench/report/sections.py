@@ -100,7 +100,7 @@ def _provenance_html(study: ResultSet, failed: pd.DataFrame) -> str:
     prov = [
         ("study", study.name + (f" — {desc}" if desc else "")),
         ("swept", _swept_text(study, n_cases)),
-        ("models compared", models + (f" (reference: {model_label(study.reference)})" if study.reference in study.models else "")),
+        ("models compared", models + (f" (reference: {model_label(study.baseline)})" if study.baseline in study.models else "")),
         ("cases", f"{n_cases} cases, {len(study.results)} model runs, {len(failed)} failed"),
         ("config hash", man.get("config_hash", "n/a")),
         ("git commit", pv["commit"]),
@@ -164,7 +164,7 @@ def cases_section(ctx: PageContext) -> Section:
         "<p class='note'>One row per case and model (failed runs included, shaded). Click a column title to sort, "
         "type in the box under it to filter (text: part of the value; numbers: <code>&gt; 1</code>, "
         "<code>&lt;= 0.5</code>, <code>0..5</code>). Errors are against the reference model "
-        f"{esc(model_label(ctx.study.reference))}; each row links to the figures that draw its case and to the 3-D view. "
+        f"{esc(model_label(ctx.study.baseline))}; each row links to the figures that draw its case and to the 3-D view. "
         "<span id='wb-case-count'></span></p>"
         f"<p class='downloads'>Downloads (embedded in this page): {links}</p>"
         "<div class='scroll'><table id='wb-case-table' data-rows='0'><thead></thead><tbody></tbody></table></div>"

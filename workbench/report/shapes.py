@@ -22,7 +22,7 @@ from matplotlib.figure import Figure
 from ..compare.table import array_cell, row_positions
 from .load import ResultSet, numeric
 from .scene import case_scene, gravity_in, to_frame
-from .style import ReportFigure, case_title, ref_pairs, fmt, model_color, model_label, pair_label, point_links
+from .style import ReportFigure, case_title, baseline_pairs, fmt, model_color, model_label, pair_label, point_links
 
 __all__ = ["shape_overlay_figures", "backbone_frames", "peak_error_time"]
 
@@ -32,7 +32,7 @@ _PHYS_STYLES = [(5.0, 0.4, "-"), (1.8, 1.0, "-"), (1.5, 1.0, (0, (5, 2))), (1.3,
 
 def _representative_cases(study: ResultSet, cmp: pd.DataFrame) -> tuple[list[str], str]:
     ok = study.ok
-    pairs = ref_pairs(cmp, study.reference)
+    pairs = baseline_pairs(cmp, study.baseline)
     order = {c: i for i, c in enumerate(dict.fromkeys(ok["case_id"]))}  # canonical (parameter) order
     if pairs:
         ref, m = pairs[0]
@@ -62,9 +62,9 @@ def backbone_frames(row) -> tuple[np.ndarray, np.ndarray] | None:
     return t, p.reshape(t.size, -1, 3)
 
 
-def peak_error_time(rows: dict, reference: str) -> float | None:
-    """Time of the largest tip distance between any model and the reference (``series.tip_position``)."""
-    ref = rows.get(reference)
+def peak_error_time(rows: dict, baseline: str) -> float | None:
+    """Time of the largest tip distance between any model and the baseline model (``series.tip_position``)."""
+    ref = rows.get(baseline)
     if ref is None:
         return None
     tr, pr = array_cell(ref.get("time")), array_cell(ref.get("series.tip_position"))
@@ -74,7 +74,7 @@ def peak_error_time(rows: dict, reference: str) -> float | None:
     best, t_best = -1.0, None
     for m, r in rows.items():
         tm, pm = array_cell(r.get("time")), array_cell(r.get("series.tip_position"))
-        if m == reference or tm is None or pm is None or pm.size != 3 * tm.size:
+        if m == baseline or tm is None or pm is None or pm.size != 3 * tm.size:
             continue
         pm = pm.reshape(-1, 3)
         e = np.linalg.norm(np.stack([np.interp(tm, tr, pr[:, k]) for k in range(3)], -1) - pm, axis=1)
@@ -105,7 +105,7 @@ def _panels(study: ResultSet, ids) -> list:
         scene = case_scene(row0)
         times = [(None, "")]
         if study.is_dynamic:
-            t_pk = peak_error_time(rows, study.reference)
+            t_pk = peak_error_time(rows, study.baseline)
             t_end = max((float(array_cell(r.get("time"))[-1]) for r in rows.values() if array_cell(r.get("time")) is not None),
                         default=None)
             if t_pk is not None and any(backbone_frames(r) is not None for r in rows.values()):
@@ -139,13 +139,13 @@ def _layout(study: ResultSet, allpts: np.ndarray):
     return spatial, views, lo, hi, pad, panel_w, panel_h
 
 
-def _draw_backbones(ax, per, models, reference: str, a: int, b: int) -> None:
-    phys = [x for x in models if x != reference]
+def _draw_backbones(ax, per, models, baseline: str, a: int, b: int) -> None:
+    phys = [x for x in models if x != baseline]
     for m in models:
         if m not in per:
             continue
         p = per[m]
-        ref = m == reference
+        ref = m == baseline
         # physics models drawn thick-and-light to thin so coinciding backbones stay visible
         lw, alpha, ls = (2.0, 1.0, "--") if ref else _PHYS_STYLES[phys.index(m) % len(_PHYS_STYLES)]
         ax.plot(p[:, a], p[:, b], color=model_color(m, models), ls=ls, lw=lw, alpha=alpha,
@@ -205,7 +205,7 @@ def _summary(study: ResultSet, cmp: pd.DataFrame, how: str, spatial: bool, known
                f"{frame_txt}{proj}")
     if study.is_dynamic:
         summary += " Dynamic cases: the shape at the stored frame nearest the peak tip error, and at the end."
-    pairs = ref_pairs(cmp, study.reference)
+    pairs = baseline_pairs(cmp, study.baseline)
     if pairs:
         ref, m = pairs[0]
         sub = cmp[(cmp["reference"] == ref) & (cmp["model"] == m)]
@@ -233,7 +233,7 @@ def shape_overlay_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFig
     for j, (cid, row0, per, sub, g, _) in enumerate(data):
         for i, (a, b, la, lb) in enumerate(views):
             ax = axs[i, j]
-            _draw_backbones(ax, per, models, study.reference, a, b)
+            _draw_backbones(ax, per, models, study.baseline, a, b)
             points += point_links(ax, [p[-1, a] for p in per.values()], [p[-1, b] for p in per.values()],
                                   [cid] * len(per), list(per), [f"{model_label(m)} tip, case {str(cid)[:8]}" for m in per])
             base = next(iter(per.values()))[0]

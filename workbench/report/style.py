@@ -171,12 +171,13 @@ def is_geometric(values: np.ndarray) -> bool:
     return bool(np.allclose(r, r[0], rtol=0.05) and r[0] > 1.5 and v[-1] / v[0] >= 10)
 
 
-def ref_pairs(cmp: pd.DataFrame, reference: str) -> list[tuple[str, str]]:
+def baseline_pairs(cmp: pd.DataFrame, baseline: str) -> list[tuple[str, str]]:
+    """The ``(reference column, model)`` pairs of a comparison table, those against ``baseline`` first."""
     if cmp.empty:
         return []
     pairs = list(dict.fromkeys(zip(cmp["reference"], cmp["model"])))
-    first = [p for p in pairs if p[0] == reference]
-    return first + [p for p in pairs if p[0] != reference]
+    first = [p for p in pairs if p[0] == baseline]
+    return first + [p for p in pairs if p[0] != baseline]
 
 
 def value_text(col: str, v: Any, labels: Mapping[str, str] | None = None, row: Mapping[str, Any] | None = None) -> str:

@@ -4,7 +4,7 @@
 pair against it; with two or more, the tip error against each of the first two axes, one line
 per value of the other.  :func:`validity_map_figures`: a heat map of the CC tip error over the
 first two axes with contour lines at :data:`~.style.THRESHOLDS` (% of L), one panel per
-reference pair (and per value of a small categorical third axis).  Each figure's summary states
+baseline pair (and per value of a small categorical third axis).  Each figure's summary states
 where the error stays below the thresholds.  Checked by ``tests/report/test_report_build.py``
 and the report tier of ``tests/regression``.
 """
@@ -28,7 +28,7 @@ from .style import (
     category_ticks,
     is_geometric,
     log_worthy,
-    ref_pairs,
+    baseline_pairs,
     slug,
     axis_value,
     axis_label,
@@ -97,7 +97,7 @@ def _pair_rows(cmp: pd.DataFrame, ref: str, m: str) -> pd.DataFrame:
 
 def _metric_panel(ax, study: ResultSet, cmp: pd.DataFrame, a: str, pairs, col: str, texts: list,
                   points: list | None = None) -> None:
-    """One metric against axis ``a``, a line per model pair (the reference pairs solid)."""
+    """One metric against axis ``a``, a line per model pair (the baseline pairs solid)."""
     allv = []
     cat = a in study.categories
     for k, (ref, m) in enumerate(pairs):
@@ -105,7 +105,7 @@ def _metric_panel(ax, study: ResultSet, cmp: pd.DataFrame, a: str, pairs, col: s
         x, y = numeric(sub[a]), numeric(sub[col])
         o = np.argsort(x, kind="mergesort")
         x, y = x[o], y[o]
-        is_ref = ref == study.reference
+        is_ref = ref == study.baseline
         if cat:  # categories: grouped markers side by side, never a line between two categories
             x = x + 0.12 * (k - (len(pairs) - 1) / 2)
         ax.plot(x, y, marker="o" if is_ref else "s", ms=4.5 if cat else 3.5 if is_ref else 3,
@@ -153,7 +153,7 @@ def _line_keys(g: pd.DataFrame, a: str, dep_col: str) -> pd.Series:
 def _errors_by_unit(study: ResultSet, cmp: pd.DataFrame, a: str, pairs, metrics, dep_col: str) -> ReportFigure:
     """One row of panels per unit of ``a`` (never two units on one axis), a colour per ``dep_col`` value."""
     groups = {u: idx for u, idx in unit_groups(cmp, a).items() if len(idx)}
-    main = [p for p in pairs if p[0] == study.reference] or pairs[:1]
+    main = [p for p in pairs if p[0] == study.baseline] or pairs[:1]
     fig = Figure(figsize=(3.6 * len(metrics) + 1.6, 3.0 * len(groups) + 0.6), layout="constrained")
     axs = fig.subplots(len(groups), len(metrics), squeeze=False)
     styles = ["-", "--", ":", "-."]
@@ -288,14 +288,14 @@ def _errors_two_axes(study: ResultSet, cmp: pd.DataFrame, x_ax: str, c_ax: str, 
 def error_vs_parameter_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFigure]:
     """One ``error_vs_<axis>`` figure for one swept axis, two (one per axis) for more."""
     axes = list(study.axes)
-    pairs = ref_pairs(cmp, study.reference)
+    pairs = baseline_pairs(cmp, study.baseline)
     if not axes or not pairs or cmp.empty:
         return []
     if len(axes) == 1:
         return [_errors_one_axis(study, cmp, axes[0], pairs)]
     # two or more axes: one figure per plotted axis, lines for the other axis' values
     a0, a1 = axes[0], axes[1]
-    main = [p for p in pairs if p[0] == study.reference] or pairs
+    main = [p for p in pairs if p[0] == study.baseline] or pairs
     return [_errors_two_axes(study, cmp, x_ax, c_ax, main, axes) for x_ax, c_ax in ((a0, a1), (a1, a0))]
 
 
@@ -384,7 +384,7 @@ def validity_map_figures(study: ResultSet, cmp: pd.DataFrame) -> list[ReportFigu
     if len(axes) < 2 or cmp.empty:
         return []
     a0, a1 = axes[0], axes[1]
-    pairs = [p for p in ref_pairs(cmp, study.reference) if p[0] == study.reference] or ref_pairs(cmp, study.reference)
+    pairs = [p for p in baseline_pairs(cmp, study.baseline) if p[0] == study.baseline] or baseline_pairs(cmp, study.baseline)
     if not pairs:
         return []
     facet = _facet_axis(study, axes)

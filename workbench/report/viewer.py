@@ -59,7 +59,7 @@ def _case(study: ResultSet, cid: str, rows: dict[str, dict], lines=None) -> dict
         frames, P = got
         pts.append(P)
         stations = array_cell(r.get("stations"))
-        models[m] = {"label": model_label(m), "color": model_color(m, study.models), "reference": m == study.reference,
+        models[m] = {"label": model_label(m), "color": model_color(m, study.models), "reference": m == study.baseline,
                      "stations": _r(stations) if stations is not None else [], "frames": frames}
     if not models:
         return None
@@ -67,7 +67,7 @@ def _case(study: ResultSet, cid: str, rows: dict[str, dict], lines=None) -> dict
     lo, hi = allp.min(axis=0), allp.max(axis=0)
     base = to_frame(np.zeros(3), scene, study.frame)
     L = float(row0.get("robot_length") or 0.0) or float(np.linalg.norm(hi - lo)) or 1.0
-    physics = [m for m in models if m != study.reference]
+    physics = [m for m in models if m != study.baseline]
     main = physics[0] if physics else next(iter(models))
     extra = _extra_lines(lines(rows) if lines is not None else [], scene, study.frame)
     return {

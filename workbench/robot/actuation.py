@@ -106,7 +106,7 @@ class TendonActuation:
         """:meth:`command_at` for one scalar ``t`` at a time, in plain floats: ``f(t) -> (n_tendons,)``.
 
         The same arithmetic, so the same bits, without numpy's per-call overhead (most of the Python
-        cost of a dynamic step's pre-step user function; issue 18).  Checked bit for bit against
+        cost of a dynamic step's pre-step user function).  Checked bit for bit against
         :meth:`command_at` by ``tests/physics/test_beam3d.py``.
         """
         n = len(self.values)

@@ -8,7 +8,7 @@ discretisation is the robot's structure, e.g. one spring-link link per physical 
 ``x.disc_tip_error = 0`` and a ``disc_status`` saying so: nothing to refine, and its CC comparison
 is judged as exact in that respect.  A
 dynamic estimate needs the CC tip history of the same commands: the ``cc`` model of
-``model_lookup``, run once per case (:class:`CCReference`).  Imports no Exudyn.  Checked by
+``model_lookup``, run once per case (:class:`LazyCCResult`).  Imports no Exudyn.  Checked by
 ``tests/study/test_estimate.py``.
 """
 
@@ -16,11 +16,11 @@ from __future__ import annotations
 
 from typing import Any, Callable
 
-__all__ = ["CCReference", "EXEMPT_STATUS", "estimates_model", "discretization_columns"]
+__all__ = ["LazyCCResult", "EXEMPT_STATUS", "estimates_model", "discretization_columns"]
 
 
-class CCReference:
-    """The CC result of one case, computed on first use (dynamic estimates only)."""
+class LazyCCResult:
+    """The CC result of one case, computed on first use: what a dynamic estimate compares the refined run with."""
 
     def __init__(self, model_lookup: Callable[[str], Callable], robot, load, options):
         self._args = (model_lookup, robot, load, options)
@@ -64,7 +64,7 @@ EXEMPT_STATUS = "exempt: the discretisation is the robot's structure ([solver] e
 
 
 def discretization_columns(name: str, run: Callable, robot, load, options, result,
-                           reference: CCReference | None, pipeline) -> dict[str, Any]:
+                           cc_result: LazyCCResult | None, pipeline) -> dict[str, Any]:
     """The ``x.disc_*`` and ``disc_status`` cells of one ok row (``{}`` when the model gets none);
     ``pipeline``: the case's :class:`~workbench.study.build.PipelineOptions`."""
     from ..models.discretization import estimate_columns, estimate_discretization
@@ -77,7 +77,7 @@ def discretization_columns(name: str, run: Callable, robot, load, options, resul
     ref = None
     if load.analysis == "dynamic":
         try:
-            ref = reference.get() if reference is not None else None
+            ref = cc_result.get() if cc_result is not None else None
         except ValueError as e:
             return {**estimate_columns(estimate_discretization(run, robot, load, options, result, float("nan"))),
                     "disc_status": str(e)}

@@ -23,7 +23,7 @@ import traceback
 from typing import Any, Callable, Iterator, Mapping, Sequence
 
 from .build import build_load, build_options, build_pipeline_options, resolve_case
-from .estimate import CCReference, discretization_columns
+from .estimate import LazyCCResult, discretization_columns
 from .params import flatten_params
 from .rows import failed_rows, row_from_result
 
@@ -109,7 +109,7 @@ def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str
         yield from failed_rows(case_id, params, models, f"building the case failed: {_reason(e)}")
         return
     flat = flatten_params(ran, _FLAT_ROBOTS)  # a memoised robot's cells are converted once
-    cc_reference = CCReference(model_lookup, robot, load, options)
+    cc_result = LazyCCResult(model_lookup, robot, load, options)
     for name in models:
         t0 = time.perf_counter()
         opts, ran_m, flat_m = _model_resolution(name, options, pipeline, ran, flat)
@@ -120,10 +120,10 @@ def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str
             wall = time.perf_counter() - t0
             row = row_from_result(res, case_id, name, ran_m, robot, wall, flat_m)
             if name == "cc":
-                cc_reference.set(res)
+                cc_result.set(res)
             if row["status"] == "ok":  # the discretisation-error estimate (study/estimate.py)
                 with quiet_if_loaded():
-                    row.update(discretization_columns(name, fn, robot, load, opts, res, cc_reference, pipeline))
+                    row.update(discretization_columns(name, fn, robot, load, opts, res, cc_result, pipeline))
         except Exception as e:  # noqa: BLE001 - ModelFailure, exudyn.SolverError, bugs: all recorded
             kind = "memory" if isinstance(e, MemoryError) else "model"
             row = failed_rows(case_id, ran_m, [name], _reason(e), time.perf_counter() - t0, flat_m, failure=kind)[0]

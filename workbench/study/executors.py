@@ -200,9 +200,8 @@ def check_scheduler_address(address: str, timeout: float = 5.0) -> str | None:
 #: No queueing beyond the slots and no work stealing (the executor sizes and balances the chunks);
 #: the diagnostics a dashboard would show are off or slowed (there is no dashboard): the workers'
 #: stack profiler (a sample every 10 ms), the event-loop health tick (20 ms -> 0.5 s) and the system
-#: monitor (0.5 -> 5 s).  Measured on 2 cores, 600 cases of 20 ms on 2 workers: the CPU of all
-#: processes per case 22.45 -> 21.75 ms, speed-up over the bare loop 1.74 -> 1.79x for the whole
-#: run (``benchmarks/README.md``).
+#: monitor (0.5 -> 5 s).  The CPU this saves per case: ``benchmarks/README.md`` ("Dask settings"
+#: row; ``benchmarks/bench_runner.py`` uses the same settings).
 DASK_SETTINGS = {
     "distributed.scheduler.worker-saturation": 1.0,
     "distributed.scheduler.allowed-failures": 1,

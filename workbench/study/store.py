@@ -373,7 +373,7 @@ class ResultStore:
             path = self.folder / name
             with deferred_interrupts():  # the part on disk and the buffer emptied: both or neither
                 # no dictionary pages: the cells are mostly distinct floats, and a 256-row part of 68 columns
-                # then writes in 2/3 of the CPU time and 5/6 of the bytes (benchmarks/README.md, issue 18)
+                # then writes in 2/3 of the CPU time and 5/6 of the bytes (benchmarks/README.md, runner rows)
                 atomic_write_bytes(path, lambda f: pq.write_table(table, f, use_dictionary=False))
                 del self._buffer[:len(rows)]
                 if self._journal is not None and not self._buffer:

@@ -18,7 +18,7 @@ Every row's standard cells are the plant's (or the plan's) state at the last sam
 ``x.final_tracking_error`` [m], ``x.max_tension`` [N], ``x.plant_solves`` (``wall_time``: the time in the plant).  A
 plant failure fails its row with the sample and step it happened at; the other rows go on.
 
-Discretisation error (issue 13; cells ``x.disc_tip_error`` [m], ``x.disc_order_observed``,
+Discretisation error (cells ``x.disc_tip_error`` [m], ``x.disc_order_observed``,
 ``x.disc_order``, ``disc_status``, :func:`disc_columns`): the co-simulation is a sequence of static
 equilibria, so there is no time step to refine; what remains is the plant's mesh.  The ``plan`` row
 and the ``cc`` plant's rows are closed-form arcs (error 0).  A plant listed in ``[solver]
@@ -27,8 +27,9 @@ own structure, as in the hannan_walker study) gets 0 and the exemption as its st
 plant gets no estimate (NaN, and the status says so), so the report does not certify it.
 
 Plants: ``spring_link`` runs in a warm-started :class:`workbench.physics.spring_link.session.StaticSession`
-(20x faster than fresh solves, same equilibria); every other model is called fresh per control step
-through its registered ``run``.  Checked by ``tests/experiments/test_closed_loop.py``.
+(the same equilibria as fresh solves, in a fraction of the time: ``docs/models.md``, "Closed loop");
+every other model is called fresh per control step through its registered ``run``.  Checked by
+``tests/experiments/test_closed_loop.py``.
 """
 
 from __future__ import annotations

@@ -73,7 +73,7 @@ def centre_controller(iterations: int, tolerance: float, replan: Callable[[float
             def apply(lam, k0=strains[0], e0=strains[1]):
                 run.sysm.set_strains(k0 + lam * (k1 - k0), e0 + lam * (e1 - e0))
 
-            run.steps += run.sysm.ramp(apply, run.options.max_load_steps)
+            run.steps += run.sysm.load_ramp(apply, run.options.max_load_steps)
             strains, s, kappa = (k1, e1), float(new.ell[0]), float(new.kappa[0])
             errors.append(target - grasp_centre(run))
         E = np.array(errors)

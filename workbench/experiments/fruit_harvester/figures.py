@@ -30,7 +30,7 @@ _STYLES = ["-", "--", ":"]
 def matches(results) -> bool:
     """True for a study of the ``shao_harvester`` preset that runs no scenario.
 
-    (The report used to try the scenario studies first; a scenario study is theirs.)
+    A scenario study has its own figure set.
     """
     ok = results.ok
     if ok.empty or "p.robot.preset" not in ok or ok["p.robot.preset"].iloc[0] != "shao_harvester":

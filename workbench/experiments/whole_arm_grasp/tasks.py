@@ -196,7 +196,7 @@ class GraspRun:
                 sysm.set_strains(lam * self.kap, lam * self.eps)
                 sysm.set_gravity(lam)
 
-            self.steps += sysm.ramp(apply, self.options.max_load_steps)
+            self.steps += sysm.load_ramp(apply, self.options.max_load_steps)
             return
         self.steps += close_on_held_object(
             sysm, lambda lam: sysm.set_strains(lam * self.kap, lam * self.eps), self.options.max_load_steps)
@@ -233,7 +233,7 @@ class GraspRun:
             def apply(lam, k0=prev[0], e0=prev[1], k1=k1, e1=e1):
                 sysm.set_strains(k0 + lam * (k1 - k0), e0 + lam * (e1 - e0))
 
-            self.steps += sysm.ramp(apply, self.options.max_load_steps)
+            self.steps += sysm.load_ramp(apply, self.options.max_load_steps)
             prev = (k1, e1)
             planned.append(np.asarray(nxt.circle.centre))
             actual.append(sysm.object_centre())

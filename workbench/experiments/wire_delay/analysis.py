@@ -7,9 +7,9 @@ of the central bone), Sec. 5.1 (constant wire speeds from (theta, alpha) = (0, 0
 
 What is here, and who uses it:
 
-- the wire map in the workbench convention (:func:`wire_lengths_from_arc_tronconic`, direction
+- the wire map in the workbench convention (:func:`wire_lengths_tronconic_workbench`, direction
   ``phi = alpha + pi``, offsets, wire angles ``sigma``) and its inverse with a common length
-  offset ``e`` (:func:`arc_from_wire_lengths_tronconic`), the *kinematic virtual compression*;
+  offset ``e`` (:func:`arc_from_wire_lengths_tronconic_workbench`), the *kinematic virtual compression*;
 - the one computation of the wire-delay commands (:func:`wire_delay_commands`) used by the
   scenario (:mod:`.scenario`) and by the driver, and the commanded lengths over time
   (:func:`commanded_wire_lengths`) used by the driver and the report figures (:mod:`.figures`);
@@ -34,8 +34,8 @@ from ...models.result import SolverOptions
 from ...robot import LoadCase, Robot, TendonActuation
 
 __all__ = [
-    "wire_lengths_from_arc_tronconic",
-    "arc_from_wire_lengths_tronconic",
+    "wire_lengths_tronconic_workbench",
+    "arc_from_wire_lengths_tronconic_workbench",
     "cc_tip_positions",
     "eq12_compression",
     "WireGeometry",
@@ -55,11 +55,11 @@ def _sinc(x: np.ndarray) -> np.ndarray:
     return np.sinc(np.asarray(x) / np.pi)
 
 
-def wire_lengths_from_arc_tronconic(theta, phi, length: float, offset_base: float, offset_tip: float,
-                                    sigma) -> np.ndarray:
-    """Wire lengths of a tronconic section bent into a CC arc (Cojocaru Eq 4-11).
+def wire_lengths_tronconic_workbench(theta, phi, length: float, offset_base: float, offset_tip: float,
+                                     sigma) -> np.ndarray:
+    """Wire lengths of a tronconic section bent into a CC arc (Cojocaru Eq 4-11), workbench convention.
 
-    Thin adapter to :func:`workbench.kinematics.wire_lengths_tronconic` (paper convention:
+    Thin adapter to :func:`workbench.kinematics.wire_lengths_tronconic_paper` (paper convention:
     direction ``alpha``, disk diameters ``D1, D2``, wires at 0/120/240 deg) in the workbench
     convention (direction ``phi = alpha + pi``, offsets, wire angles ``sigma``).
 
@@ -81,7 +81,7 @@ def wire_lengths_from_arc_tronconic(theta, phi, length: float, offset_base: floa
     ndarray, shape (..., 3)
         Wire lengths [m] in the order of ``sigma``.
     """
-    from ...kinematics import wire_lengths_tronconic as _paper
+    from ...kinematics import wire_lengths_tronconic_paper as _paper
 
     sigma = np.asarray(sigma, dtype=float).reshape(-1)
     rel = np.mod(sigma - sigma[0], 2 * np.pi)
@@ -95,10 +95,10 @@ def wire_lengths_from_arc_tronconic(theta, phi, length: float, offset_base: floa
     return _paper(theta, alpha, length, 2.0 * offset_base, 2.0 * offset_tip)
 
 
-def arc_from_wire_lengths_tronconic(
+def arc_from_wire_lengths_tronconic_workbench(
     wire_lengths, length: float, offset_base: float, offset_tip: float, sigma, iterations: int = 8
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Inverse of :func:`wire_lengths_from_arc_tronconic` with a common length offset.
+    """Inverse of :func:`wire_lengths_tronconic_workbench` with a common length offset.
 
     Solves ``L_cmd,i = L_w,i(theta, phi) + e`` for (theta, phi, e) by Newton's method on
     (theta cos phi, theta sin phi, e), started from the cylindrical closed form.
@@ -108,7 +108,7 @@ def arc_from_wire_lengths_tronconic(
     wire_lengths : array_like, shape (..., n), n >= 3
         Commanded wire lengths [m].
     length, offset_base, offset_tip, sigma
-        As in :func:`wire_lengths_from_arc_tronconic`.
+        As in :func:`wire_lengths_tronconic_workbench`.
 
     Returns
     -------
@@ -121,7 +121,7 @@ def arc_from_wire_lengths_tronconic(
     if Lc.shape[-1] != sigma.size or sigma.size < 3:
         raise ValueError(f"wire_lengths must have shape (..., {sigma.size}) with >= 3 wires, got {Lc.shape}")
     d = 0.5 * (offset_base + offset_tip)
-    L0 = wire_lengths_from_arc_tronconic(0.0, 0.0, length, offset_base, offset_tip, sigma)
+    L0 = wire_lengths_tronconic_workbench(0.0, 0.0, length, offset_base, offset_tip, sigma)
     dl = Lc - L0
     n = sigma.size
     x = np.stack(
@@ -136,7 +136,7 @@ def arc_from_wire_lengths_tronconic(
     def F(x):
         th = np.hypot(x[..., 0], x[..., 1])
         ph = np.arctan2(x[..., 1], x[..., 0])
-        return wire_lengths_from_arc_tronconic(th, ph, length, offset_base, offset_tip, sigma) + x[..., 2:3] - Lc
+        return wire_lengths_tronconic_workbench(th, ph, length, offset_base, offset_tip, sigma) + x[..., 2:3] - Lc
 
     h = 1e-7
     for _ in range(iterations):
@@ -186,8 +186,8 @@ class WireGeometry:
     sigma: np.ndarray
 
     def lengths(self, theta, phi) -> np.ndarray:
-        """:func:`wire_lengths_from_arc_tronconic` of this section, shape ``(..., 3)`` [m]."""
-        return wire_lengths_from_arc_tronconic(theta, phi, self.length, self.offset_base, self.offset_tip,
+        """:func:`wire_lengths_tronconic_workbench` of this section, shape ``(..., 3)`` [m]."""
+        return wire_lengths_tronconic_workbench(theta, phi, self.length, self.offset_base, self.offset_tip,
                                                self.sigma)
 
 
@@ -272,7 +272,7 @@ class CCReading:
     theta, phi : ndarray
         Bending angle and direction [rad].
     virtual_compression : ndarray
-        The common offset ``e`` [m] (:func:`arc_from_wire_lengths_tronconic`).
+        The common offset ``e`` [m] (:func:`arc_from_wire_lengths_tronconic_workbench`).
     tip : ndarray, shape (..., 3)
         Tip of that CC arc [m] (:func:`cc_tip_positions`).
     """
@@ -286,7 +286,7 @@ class CCReading:
 def cc_reading(wire_lengths, geometry: WireGeometry) -> CCReading:
     """Read commanded wire lengths ``(..., 3)`` [m] as a CC arc plus a common offset (see :class:`CCReading`)."""
     g = geometry
-    th, ph, e = arc_from_wire_lengths_tronconic(wire_lengths, g.length, g.offset_base, g.offset_tip, g.sigma)
+    th, ph, e = arc_from_wire_lengths_tronconic_workbench(wire_lengths, g.length, g.offset_base, g.offset_tip, g.sigma)
     return CCReading(th, ph, e, cc_tip_positions(th, ph, g.length))
 
 
@@ -302,7 +302,7 @@ class WireDelayResult:
         Paper wire lengths commanded by the motors [m].
     virtual_compression : ndarray, shape (k,)
         Kinematic virtual compression ``e`` [m] (negative = bone would be compressed;
-        :func:`arc_from_wire_lengths_tronconic`).
+        :func:`arc_from_wire_lengths_tronconic_workbench`).
     virtual_compression_eq12 : ndarray, shape (k,)
         Literal Eq 12: ``mean(L_cmd) - H`` [m] (:func:`eq12_compression`; non-zero, ~+7e-5 m,
         already for the straight tronconic section).

@@ -30,7 +30,7 @@ import math
 import numpy as np
 
 from ...robot import Robot
-from .analysis import wire_delay_commands, wire_lengths_from_arc_tronconic
+from .analysis import wire_delay_commands, wire_lengths_tronconic_workbench
 
 __all__ = ["PASSIVE_MODES", "passive_wire_changes", "ArmCommands", "arm_commands"]
 
@@ -42,7 +42,7 @@ def passive_wire_changes(robot: Robot, theta: float, alpha: float) -> np.ndarray
 
     Each upper wire runs through section 1 from offset ``offset_at(0)`` to ``offset_at(H_1 / l_w)``
     (``l_w`` its routed length: its group's taper); its path there is Cojocaru's Eq 4-11 wire of that
-    tronconic piece (:func:`.analysis.wire_lengths_from_arc_tronconic`, direction ``phi = alpha + pi``).
+    tronconic piece (:func:`.analysis.wire_lengths_tronconic_workbench`, direction ``phi = alpha + pi``).
 
     Returns
     -------
@@ -59,8 +59,8 @@ def passive_wire_changes(robot: Robot, theta: float, alpha: float) -> np.ndarray
         d0, d1 = grp.offset_at(0.0), grp.offset_at(f)
         sig = np.asarray(grp.angles, dtype=float)
         i = int(np.argmin(np.abs(np.angle(np.exp(1j * (sig - sigma))))))
-        bent = wire_lengths_from_arc_tronconic(theta, alpha + math.pi, H, d0, d1, sig)[i]
-        straight = wire_lengths_from_arc_tronconic(0.0, 0.0, H, d0, d1, sig)[i]
+        bent = wire_lengths_tronconic_workbench(theta, alpha + math.pi, H, d0, d1, sig)[i]
+        straight = wire_lengths_tronconic_workbench(0.0, 0.0, H, d0, d1, sig)[i]
         out.append(float(bent - straight))
     return np.asarray(out)
 

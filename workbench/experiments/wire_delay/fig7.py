@@ -1,7 +1,7 @@
 """Counterpart of Cojocaru et al. Fig 7: the three wire lengths as the bending direction goes round.
 
 :func:`wire_lengths_figure` evaluates the paper's tronconic wire-length model (Eq 4-11,
-:func:`workbench.kinematics.wire_lengths_tronconic`, paper convention: direction ``alpha``, wires
+:func:`workbench.kinematics.wire_lengths_tronconic_paper`, paper convention: direction ``alpha``, wires
 at 0/120/240 deg, disk diameters ``D1, D2``) at ``theta = 45 deg`` for ``alpha`` from 0 to 360 deg,
 for the section geometry of the study's robot (the preset's documented dimensions, an assumption
 where the paper gives none: stated in the caption).  Pure kinematics, no physics model.  Checked
@@ -15,7 +15,7 @@ from typing import Any, Mapping
 import numpy as np
 from matplotlib.figure import Figure
 
-from ...kinematics import wire_lengths_tronconic
+from ...kinematics import wire_lengths_tronconic_paper
 from ...report.style import ReportFigure, fmt
 from ...study.build import build_robot
 from ...study.params import section_params
@@ -27,7 +27,7 @@ __all__ = ["fig7_curves", "wire_lengths_figure"]
 def fig7_curves(H: float, d_base: float, d_tip: float, theta: float = np.pi / 4, n: int = 361):
     """``(alpha [rad] (n,), wire lengths [m] (n, 3))`` at bending angle ``theta`` (paper convention)."""
     alpha = np.linspace(0.0, 2 * np.pi, n)
-    return alpha, wire_lengths_tronconic(np.full(n, theta), alpha, H, 2.0 * d_base, 2.0 * d_tip)
+    return alpha, wire_lengths_tronconic_paper(np.full(n, theta), alpha, H, 2.0 * d_base, 2.0 * d_tip)
 
 
 def wire_lengths_figure(row: Mapping[str, Any]) -> ReportFigure:

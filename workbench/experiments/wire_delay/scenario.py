@@ -47,7 +47,7 @@ def wire_delay(
 
     Every wire of the (one-section, three-wire, tronconic) robot moves at constant speed from
     its straight length to its kinematic length at ``(theta, alpha)`` (paper Eq 5-11, via
-    :func:`.analysis.wire_lengths_from_arc_tronconic`; the workbench bending plane is
+    :func:`.analysis.wire_lengths_tronconic_workbench`; the workbench bending plane is
     ``phi = alpha + pi``) in ``move_time``; wire ``delayed_wire`` starts ``delay`` seconds
     late.  The simulated time is ``delay + move_time + settle_time``.
 

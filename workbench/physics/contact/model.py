@@ -168,7 +168,7 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
             sysm.set_strains(lam * kap, lam * eps)
             sysm.set_gravity(lam)
 
-        steps = sysm.ramp(apply, options.max_load_steps)
+        steps = sysm.load_ramp(apply, options.max_load_steps)
         pos, tan = sysm.positions(stations)
         length_change = sysm.arc_length() - pb.L
     th = math.atan2(tan[-1, 0], tan[-1, 2])

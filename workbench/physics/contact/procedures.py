@@ -58,7 +58,7 @@ def close_on_held_object(sysm, apply_actuation: Callable[[float], None], max_ste
         apply_actuation(lam)
         sysm.set_gravity(lam)
 
-    steps = sysm.ramp(apply, max_steps)
+    steps = sysm.load_ramp(apply, max_steps)
     sysm.set_friction(True)
     return steps
 
@@ -274,7 +274,7 @@ def move_through(sysm, states: Sequence[Callable[[float], None]], max_steps: int
     """
     out = []
     for apply in states:
-        sysm.ramp(apply, max_steps)
+        sysm.load_ramp(apply, max_steps)
         out.append(record() if record is not None else {})
     return out
 

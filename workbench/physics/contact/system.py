@@ -27,7 +27,7 @@ and action equals reaction.
 Object modes: :meth:`hold` (fixture), :meth:`spring` (release springs), :meth:`free`,
 :meth:`guide` (one coordinate prescribed, the other free).  A frictionless object's rotation is
 always locked (frictionless contact exerts no torque; the lock only removes a zero-stiffness mode).
-Static solves: :meth:`solve`, :meth:`ramp` (adaptive halving with the contact states saved and
+Static solves: :meth:`solve`, :meth:`load_ramp` (adaptive halving with the contact states saved and
 restored).  Checked by ``tests/physics/test_contact.py``.
 """
 
@@ -369,20 +369,20 @@ class PlanarContactSystem:
             sd.SetAECoordinates(state[1], configuration=cfg)
             sd.SetDataCoordinates(state[2], configuration=cfg)
 
-    def ramp(self, apply: Callable[[float], None], max_steps: int, first_increment: float = 1.0) -> int:
-        """Drive ``apply(lam)`` from 0 to 1 with adaptive halving (:func:`~workbench.physics.tendon_loads.ramp_load`).
+    def load_ramp(self, apply: Callable[[float], None], max_steps: int, first_increment: float = 1.0) -> int:
+        """Drive ``apply(lam)`` from 0 to 1: :func:`~workbench.physics._stepping.ancf_load_ramp` on this system.
 
         Returns the number of solve attempts; :class:`ModelFailure` (with the load factor reached)
         when the cap or the minimum increment is hit.
         """
-        from ..tendon_loads import ramp_load
+        from .._stepping import ancf_load_ramp
 
         try:
-            info = ramp_load(apply, self.solve, self.save, self.restore, max_steps=max_steps,
-                             first_increment=first_increment, failure=ModelFailure)
+            info = ancf_load_ramp(apply, self.solve, self.save, self.restore, max_steps=max_steps,
+                                  first_increment=first_increment, failure=ModelFailure)
         except RuntimeError as err:
             raise ModelFailure(f"contact load ramp failed: {err}") from err
-        return info.steps
+        return info.attempts
 
     # -- state -----------------------------------------------------------------------------------------
     def node_coords(self) -> np.ndarray:

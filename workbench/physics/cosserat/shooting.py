@@ -6,7 +6,7 @@ of the payload ``W_p`` at offset ``o`` in the tip frame and of a disk at the tip
 force scale ``F_s`` and by ``F_s L``.  One Newton iteration integrates seven shots as one batch
 (the iterate and six forward-difference perturbations share every integration step, so the
 difference quotients see one discretisation); the step is backtracked until the residual norm
-falls.  Large loads are reached with the common load ramp (:func:`workbench.physics._stepping.ramp`:
+falls.  Large loads are reached with the common load ramp (:func:`workbench.physics._stepping.load_ramp`:
 external loads and tendon tensions move together along a straight path from the last converged
 point; the first attempt is the whole way, a failure halves the increment), each Newton started
 from a secant predictor.  Checked by ``tests/physics/test_cosserat_model.py``.
@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._stepping import RampExhausted, RampPolicy, RampStalled, ramp
+from .._stepping import RampExhausted, RampPolicy, RampStalled, load_ramp
 from .problem import RodProblem
 from .rod import integrate_segments
 
@@ -170,7 +170,7 @@ class Shooter:
             self.point = point
 
         try:
-            info = ramp(attempt, lambda: (len(path), self.point), restore, max_attempts=max_attempts, policy=_POLICY)
+            info = load_ramp(attempt, lambda: (len(path), self.point), restore, max_attempts=max_attempts, policy=_POLICY)
         except RampExhausted as err:
             raise ShootingFailure(f"load ramp exceeded max_load_steps={max_attempts} "
                                   f"(reached {err.lam:.4g} of the way)") from None

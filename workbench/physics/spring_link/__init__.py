@@ -17,7 +17,7 @@ A segmented backbone (Hannan & Walker's trunk: a robot with joint springs ``k`` 
   switching in length mode); ``"continuum"``, the exact internal moment ``T d cos(alpha)`` at every
   joint the tendon passes (and its compression ``T`` with ``axial=True``).
 * :mod:`.driver` -- :func:`solve` and the registered :func:`run`: a static load ramp (gravity, tip
-  loads and tendon commands together, on :func:`workbench.physics._stepping.ramp`); dynamics:
+  loads and tendon commands together, on :func:`workbench.physics._stepping.load_ramp`); dynamics:
   equilibrium at ``t = 0``, then implicit generalised-alpha with the commands updated every step,
   joint damping ``options.damping * k``.
 * :mod:`.shape` -- the result: positions at ``options.n_stations`` stations along the links, tip

@@ -2,7 +2,7 @@
 
 :func:`solve` picks the chain (:func:`build_chain`: dimension from :func:`.params.is_planar` and
 ``SpringLinkParams.dimension``; the kinematic tree for eyelet ropes where it applies, rigid bodies
-otherwise), ramps the loads (:func:`static_ramp` on :func:`workbench.physics._stepping.ramp`) and
+otherwise), ramps the loads (:func:`static_ramp` on :func:`workbench.physics._stepping.load_ramp`) and
 for dynamics integrates with implicit generalised-alpha, updating the tendon commands of
 :meth:`TendonActuation.command_at` every step.  :func:`run` is the registered model
 ``"spring_link"`` (default :class:`SpringLinkParams`).  Checked by ``tests/physics/test_spring_link*.py``.
@@ -21,7 +21,7 @@ from ...models.inputs import check_model_inputs
 from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ...robot import LoadCase, Robot
 from ...models.backbone_frames import backbone_series, frame_stride
-from .._stepping import RampExhausted, RampPolicy, RampStalled, ramp
+from .._stepping import RampExhausted, RampPolicy, RampStalled, load_ramp
 from .chain import Chain
 from .geometry import ChainGeometry, chain_geometry_from_robot
 from .params import SpringLinkParams, is_planar
@@ -104,7 +104,7 @@ def static_ramp(model: Chain, options: SolverOptions, params: SpringLinkParams,
             return False
 
     try:
-        info = ramp(attempt, model.save_state, model.restore_state, max_attempts=options.max_load_steps,
+        info = load_ramp(attempt, model.save_state, model.restore_state, max_attempts=options.max_load_steps,
                     policy=_STATIC_RAMP)
     except RampExhausted as err:
         hint = _BODIES_HINT if model.rigid_bodies and not model.axial else ""

@@ -6,8 +6,8 @@ system each call and ramps every load from the straight reference; :class:`Stati
 the chain once (the same variant :func:`.driver.solve` would choose), solves the first load case as
 :func:`.driver.solve` does, and then ramps only the tendon commands from their current values to
 the new ones (the same ramp, :func:`.driver.static_ramp`), starting Newton at the current state.
-Measured on the Hannan & Walker closed loop (19 static solves, planar tree, horizontal trunk,
-loaded 2-core machine): 1.6 s against 36 s for fresh solves, tips equal to 2e-15 m.
+The time it saves on the Hannan & Walker closed loop is a result in ``docs/models.md`` ("Closed
+loop").
 
 Static length or tension commands only (no dynamics).  Checked by
 ``tests/experiments/test_closed_loop.py`` (a session equals fresh solves).

@@ -26,7 +26,7 @@ from ...robot import LoadCase, Payload, Robot
 from .chain import Chain
 from .geometry import ChainGeometry, chain_geometry_from_robot
 from .routing import end_link_torque, TendonRoute
-from .._stepping import RampExhausted, RampPolicy, ramp
+from .._stepping import RampExhausted, RampPolicy, load_ramp
 
 __all__ = ["tree_tip_position"]
 
@@ -317,7 +317,7 @@ def tree_tip_position(robot: Robot, load: LoadCase, options: SolverOptions, dime
             return True
 
         try:
-            ramp(attempt, lambda: mbs.systemData.GetODE2Coordinates(configuration=initial),
+            load_ramp(attempt, lambda: mbs.systemData.GetODE2Coordinates(configuration=initial),
                  lambda q: mbs.systemData.SetODE2Coordinates(q, configuration=initial),
                  max_attempts=options.max_load_steps, policy=_TIP_RAMP, failure=exu.SolverError)
         except RampExhausted:
