@@ -168,3 +168,22 @@ def test_sizes():
                 if code > 80:
                     long_funcs.append(f"{m}.{node.name}: {code} code lines")
     assert not (big or long_funcs or long_docs), "\n".join(big + long_funcs + long_docs)
+
+
+def test_no_module_imports_another_modules_underscore_names():
+    """What modules share has a public name: no ``from X import _name`` where X is another module (any folder).
+
+    Importing a public name from a module whose file name starts with an underscore (``from ._exudyn import
+    quiet_exudyn``) is allowed inside its package; that case is the cross-package rule above.
+    """
+    bad = [f"{m}:{line} imports {t} {[n for n in names if n.startswith('_') and not n.startswith('__')]}"
+           for m, (p, tree) in MODULES.items() for t, names, line in _imports(m, p, tree)
+           if t != m and any(n.startswith("_") and not n.startswith("__") for n in names)]
+    assert not bad, "\n".join(bad)
+
+
+def test_the_underscore_rule_sees_a_violation():
+    """The scan above flags ``from .x import _y`` in a made-up module (so it can fail)."""
+    tree = ast.parse("from .store import _private\nfrom .store import public\n")
+    found = [(t, names) for t, names, _ in _imports("workbench.study.fake", PKG / "study" / "fake.py", tree)]
+    assert found == [("workbench.study.store", ["_private"]), ("workbench.study.store", ["public"])]

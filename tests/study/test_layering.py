@@ -45,11 +45,3 @@ def test_no_study_module_imports_an_experiment():
 def test_every_validation_and_execution_module_exists():
     assert all((STUDY / f"{m}.py").exists() for m in VALIDATION + EXECUTION)
 
-
-def test_no_module_of_the_study_package_or_the_cli_imports_an_underscore_name():
-    """A name shared between modules is public; the underscore marks what stays in its module."""
-    files = [*sorted(STUDY.glob("*.py")), *sorted(STUDY.parent.glob("cli*.py"))]
-    found = [f"{f.name}:{n.lineno} {n.module}.{a.name}" for f in files for n in ast.walk(ast.parse(f.read_text()))
-             if isinstance(n, ast.ImportFrom) for a in n.names
-             if a.name.startswith("_") and not a.name.startswith("__")]
-    assert found == []
