@@ -10,6 +10,7 @@ tests' way to test the command itself (signals, exit codes, messages) without ph
 
 from __future__ import annotations
 
+import dataclasses
 import sys
 
 from study_fakes import sweep_kind
@@ -22,7 +23,7 @@ KIND = None
 def run(argv: list[str]) -> int:
     global KIND
     KIND = sweep_kind(registry.resolve(argv[0]))
-    registry.KINDS["sweep"] = f"{__name__}:KIND"
+    registry.KINDS["sweep"] = dataclasses.replace(registry.KINDS["sweep"], target=f"{__name__}:KIND")
     args = argv[1:]
     if args and args[0] == "run":
         args = [*args, "--no-cache"]
