@@ -11,6 +11,9 @@ and :func:`_dynamic`.
 * Backbone: ``options.n_elements`` ``ObjectANCFCable2D`` elements (extensible Euler-Bernoulli,
   ``useReducedOrderIntegration=2``), every section end a node; clamp = node 0's x, y and y-slope
   (the x-slope stays free); payload = tip point mass.
+* Disks: each disk's weight a force at its station (consistent Hermite load of a position marker),
+  its mass a point mass lumped linearly onto the two nodes of its element (exact inertia when the
+  disk sits at a node, e.g. one element per disk pitch); ``tests/physics/test_ancf_disks.py``.
 * Tendons, ``"continuum"``: the exact load of a frictionless tendon at offset ``y(s)`` (moment
   ``T y cos(alpha)``, compression ``T cos(alpha)``, ``tan alpha = y'``) as per-element reference
   curvature ``sum T y cos(alpha) / EI`` and reference axial strain ``-sum T cos(alpha) / EA``;
@@ -109,7 +112,7 @@ class _System:
             self.elements.append(mbs.AddObject(ObjectANCFCable2D(
                 nodeNumbers=[self.nodes[e], self.nodes[e + 1]], length=float(le[e]),
                 bendingStiffness=float(pb.EI[e]), axialStiffness=float(pb.EA[e]),
-                massPerLength=float(pb.mu[e]), bendingDamping=float(damping * pb.EI[e]),
+                massPerLength=float(pb.mu_rod[e]), bendingDamping=float(damping * pb.EI[e]),
                 axialDamping=float(damping * pb.EA[e]), useReducedOrderIntegration=2,
             )))
         ground = mbs.AddObject(ObjectGround())
@@ -128,6 +131,7 @@ class _System:
         has_g = bool(np.any(pb.gravity != 0))
         self.grav_loads = add_gravity_loads(mbs, self.elements) if has_g else []
         tipm = mbs.AddMarker(MarkerNodePosition(nodeNumber=self.nodes[-1]))
+        self.disk_loads = self._add_disks(has_g)
         self.payload_load = None
         if pb.payload > 0:
             mbs.AddObject(ObjectMassPoint2D(nodeNumber=self.nodes[-1], mass=pb.payload))
@@ -141,6 +145,29 @@ class _System:
             tip_x = float(pb.s_nodes[-1] - pb.s_nodes[-2])
             mr = mbs.AddMarker(MarkerBodyRigid(bodyNumber=self.elements[-1], localPosition=[tip_x, 0, 0]))
             self.torque_load = mbs.AddLoad(LoadTorqueVector(markerNumber=mr, loadVector=[0, 0, 0]))
+
+    def _add_disks(self, has_g: bool) -> list[int]:
+        """Disks: each weight a force at its station (a position marker on the element that holds it,
+        Exudyn's consistent Hermite load), each mass a point mass lumped linearly onto that element's two
+        nodes (the formulation has no mass at an arbitrary station; node 0's share sits on the clamp).
+        Returns the weight loads (values set by :meth:`set_external`)."""
+        from exudyn.itemInterface import LoadForceVector, MarkerBodyPosition, ObjectMassPoint2D
+
+        pb, mbs, sn = self.pb, self.mbs, self.pb.s_nodes
+        if pb.disk_m.size == 0:
+            return []
+        elem, x = locate(sn, pb.disk_s)
+        w1 = x / np.diff(sn)[elem]
+        lumped = np.zeros(sn.size)
+        np.add.at(lumped, elem, pb.disk_m * (1.0 - w1))
+        np.add.at(lumped, elem + 1, pb.disk_m * w1)
+        for i in np.flatnonzero(lumped[1:] > 0) + 1:
+            mbs.AddObject(ObjectMassPoint2D(nodeNumber=self.nodes[int(i)], mass=float(lumped[i])))
+        if not has_g:
+            return []
+        return [mbs.AddLoad(LoadForceVector(markerNumber=mbs.AddMarker(MarkerBodyPosition(
+                    bodyNumber=self.elements[int(e)], localPosition=[float(xi), 0.0, 0.0])), loadVector=[0, 0, 0]))
+                for e, xi in zip(elem, x)]
 
     def _add_tendons(self, ground: int) -> None:
         """Per-unit-tension reference curvature / axial strain (continuum) or the eyelet rope segments."""
@@ -177,6 +204,8 @@ class _System:
         g = lam * pb.gravity
         for ld in self.grav_loads:
             mbs.SetLoadParameter(ld, "loadVector", [float(g[0]), float(g[1]), 0.0])
+        for ld, m in zip(self.disk_loads, pb.disk_m):
+            mbs.SetLoadParameter(ld, "loadVector", [float(m * g[0]), float(m * g[1]), 0.0])
         if self.payload_load is not None:
             f = pb.payload * g
             mbs.SetLoadParameter(self.payload_load, "loadVector", [float(f[0]), float(f[1]), 0.0])
