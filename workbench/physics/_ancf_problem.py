@@ -6,7 +6,7 @@ along Exudyn +X and a rotation about Exudyn +Z is a rotation about base +y.  Onl
 ``sigma = 0`` (offset ``+d`` along base x, Exudyn +Y) or ``sigma = pi`` (``-d``), within 1e-9 rad,
 fit; tip forces must lie in the x-z plane and tip torques along base y; payload offsets are not
 supported -- anything else raises :class:`PlanarModelError`.  Gravity: the in-plane components
-``(g_z, g_x)``; the out-of-plane one is kept as ``g_out``.  Mesh: elements per section in
+``(g_z, g_x)``; a component along base y raises :class:`ModelFailure` (``g_out`` stays 0).  Mesh: elements per section in
 proportion to its length (at least one each), so every section end is a node; per element EI,
 EA and mass per length at the element midpoint: ``mu_rod`` the backbone's own, ``mu`` with the disk masses
 smeared over their section (the contact model's load); the disks themselves as stations and masses
@@ -26,12 +26,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..models.inputs import check_model_inputs
-from ..models.result import SolverOptions
+from ..models.result import ModelFailure, SolverOptions
 from ..robot import LoadCase, Robot
 
 __all__ = ["PlanarModelError"]
 
 _SIGMA_TOL = 1e-9
+#: relative size of a base-y gravity component that is refused (rounding of a rotation matrix is far below)
+_GRAVITY_TOL = 1e-9
 
 
 class PlanarModelError(ValueError):
@@ -128,6 +130,11 @@ def build_problem(robot: Robot, load: LoadCase, options: SolverOptions) -> AncfP
     s_nodes = np.array(s_nodes)
     s_nodes[-1] = L
     g = robot.gravity_in_base()
+    if abs(g[1]) > _GRAVITY_TOL * float(np.linalg.norm(g)):
+        raise ModelFailure(
+            f"gravity {np.round(g, 12).tolist()} m/s^2 (base frame) has a component {g[1]:.4g} m/s^2 along base y, "
+            "out of the plane of the planar ANCF models (robot.base_orientation / robot.gravity_direction): "
+            "refused instead of dropped; use a spatial model (beam3d, cosserat)")
     ends = robot.section_ends
     disks = robot.disk_stations()
     disk_m = np.concatenate([np.full(sec.n_disks, sec.disk_mass) for sec in robot.sections])

@@ -7,7 +7,8 @@ and :func:`_dynamic`.
 
 * Plane: the robot bends in its base x-z plane; results are reported as ``(x, 0, z)``.  Tendons
   only at sigma = 0 or pi, tip forces in the x-z plane, tip torques along base y, no payload
-  offset (else :class:`PlanarModelError`); out-of-plane gravity is reported, not applied.
+  offset (else :class:`PlanarModelError`); gravity out of that plane raises :class:`ModelFailure`
+  (declared: ``Capabilities.gravity = "in_plane"``).
 * Backbone: ``options.n_elements`` ``ObjectANCFCable2D`` elements (extensible Euler-Bernoulli,
   ``useReducedOrderIntegration=2``), every section end a node; clamp = node 0's x, y and y-slope
   (the x-slope stays free); payload = tip point mass.
@@ -37,7 +38,7 @@ and :func:`_dynamic`.
 * Outputs: positions at ``options.n_stations`` stations (Hermite centreline), tip frame (rotation
   about base y), ``length_change = int |r'| ds - L``, tensions, ``tip_twist = 0``; series
   ``tip_position`` (k, 3), ``tendon_tensions`` (k, n), ``length_change`` (k,); extras
-  ``static_steps``, ``failed_steps``, ``tendon_iterations``, ``gravity_out_of_plane``, stresses
+  ``static_steps``, ``failed_steps``, ``tendon_iterations``, ``gravity_out_of_plane`` (always 0), stresses
   (:func:`_backbone_stress`, :mod:`workbench.models.stress`; dynamics: the largest over time).
 Checked by ``tests/physics/test_ancf.py``, ``test_ancf_reeving.py`` (eyelet chain = reeving rope),
 ``test_ancf_geometry.py``, ``tests/models/test_stress.py``; accuracy: ``docs/models.md``.
@@ -451,7 +452,7 @@ def run(
     PlanarModelError
         Tendons off the x-z plane, out-of-plane tip loads, payload offsets.
     ModelFailure
-        No convergence or an implausible state.
+        Gravity out of the base x-z plane, no convergence or an implausible state.
     """
     from ._exudyn import quiet_exudyn
 
