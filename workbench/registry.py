@@ -209,7 +209,7 @@ MODELS: Mapping[str, ModelInfo] = {
         note="geometrically exact beam; tendons only as eyelet ropes; damping (stiffness-proportional, beta "
              "[s]) added by inter-node connectors")),
     "ancf3d": ModelInfo("workbench.physics.ancf3d:run", "ANCF 3-D", "#9467bd", order=4.0, capabilities=Capabilities(
-        actuation=(), loads=("tip_force",), torsion=False, disk_weights="on the nodes next to the disk",
+        actuation=(), loads=("tip_force",), torsion=False,
         extensibility=("axial",), tendon_path="no tendons",
         note="3-D ANCF cable without a cross-section frame: no tendons, tip torque or payload offset")),
     "spring_link": ModelInfo("workbench.physics.spring_link:run", "spring-link", "#2ca02c", order=2.0, capabilities=Capabilities(

@@ -1,4 +1,4 @@
-"""Disk weights at the disks in the planar ANCF model (issue 28, finding 3).
+"""Disk weights at the disks in the ANCF models, ``ancf`` and ``ancf3d`` (issue 28, finding 3).
 
 The case of the issue: Rao et al.'s NiTi robot, planar (2 sections of 0.2 m, d = 1.4 mm, E = 54 GPa,
 density 6450, tendons at sigma = 0, pi with offset 10 mm and EA_t = 1e7 N), horizontal base, 10 disks of
@@ -6,7 +6,9 @@ density 6450, tendons at sigma = 0, pi with offset 10 mm and EA_t = 1e7 N), hori
 tip deflection is the point-load beam theory (superposition of the cantilever under its own distributed
 weight and the disks' point weights); at full g the answer agrees with the Cosserat rod, which puts the
 disk weights at the disks as well.  Before the fix ``ancf`` smeared each section's disk mass along the
-section (1.076786e-3 m against 1.1288e-3 m at g / 100; 1.09e-2 L from ``cosserat`` at g).
+section (1.076786e-3 m against 1.1288e-3 m at g / 100; 1.09e-2 L from ``cosserat`` at g); ``ancf3d``
+lumped each disk's weight onto its element's two nodes (3.4e-3 relative off the theory at 8 elements,
+1.4e-2 at 4, order 2 in place of the element's 4).
 """
 
 import math
@@ -54,8 +56,9 @@ def lateral_tip(res) -> float:
     return float(-res.tip_position[0])  # horizontal mount: gravity along base -x
 
 
+@pytest.mark.parametrize("model", ["ancf", "ancf3d"])
 @pytest.mark.parametrize("n_elements", [20, 8])
-def test_disk_weights_are_point_loads_at_their_stations(n_elements):
+def test_disk_weights_are_point_loads_at_their_stations(model, n_elements):
     """g / 100: tip = point-load theory to 5e-5 (geometric nonlinearity ~ (delta / L)^2 = 8e-6); the smeared
     theory is 4.6 % away.  8 elements put disks between nodes (their weight still acts at the station)."""
     g = 9.81 / 100
@@ -63,17 +66,18 @@ def test_disk_weights_are_point_loads_at_their_stations(n_elements):
     theory = point_load_theory(robot, g)
     assert abs(theory - 1.1288e-3) < 1e-7  # the number quoted in the issue
     assert abs(smeared_theory(robot, g) - theory) > 4e-2 * theory  # the two loads are distinguishable
-    tip = lateral_tip(run(robot, LoadCase(), SolverOptions(n_elements=n_elements)))
+    tip = lateral_tip(get_model(model)(robot, LoadCase(), SolverOptions(n_elements=n_elements)))
     assert abs(tip - theory) < 5e-5 * theory, (tip, theory, smeared_theory(robot, g))
 
 
-def test_full_gravity_agrees_with_cosserat():
-    """Full g (tip sag 0.28 L, nonlinear): ancf against the Cosserat rod, 1.09e-2 L apart before the fix."""
+@pytest.mark.parametrize("model", ["ancf", "ancf3d"])
+def test_full_gravity_agrees_with_cosserat(model):
+    """Full g (tip sag 0.28 L, nonlinear): against the Cosserat rod (ancf 1.1e-2 L apart before the fix)."""
     robot = rao_planar(9.81)
-    a = run(robot, LoadCase(), SolverOptions(n_elements=32))
+    a = get_model(model)(robot, LoadCase(), SolverOptions(n_elements=32))
     c = get_model("cosserat")(robot, LoadCase(), SolverOptions(newton_tolerance=1e-10))
     diff = float(np.linalg.norm(a.tip_position - c.tip_position)) / robot.length
-    assert diff < 2e-5, diff  # measured 2.3e-6 L at 32 elements
+    assert diff < 2e-5, diff  # measured 2.3e-6 L (ancf), 2.3e-6 L (ancf3d) at 32 elements
 
 
 def test_disk_mass_moves_with_the_backbone_in_dynamics():
