@@ -171,6 +171,8 @@ def describe(caps: Any) -> str:
                             f"{'/'.join(caps.actuation)} via {'/'.join(caps.tendon_models)}"),
              "loads: " + ("/".join(caps.loads) or "none"), "analysis: " + "/".join(caps.analyses),
              "torsion" if caps.torsion else "no torsion"]
+    if caps.gravity == "in_plane":
+        parts.append("gravity in the base x-z plane only")
     if not caps.dynamic_damping:
         parts.append("no damping in dynamics")
     return "; ".join(parts)
