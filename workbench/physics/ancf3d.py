@@ -14,9 +14,7 @@ of :mod:`workbench.physics.beam3d` for those cases.  It raises :class:`ModelFail
 * a non-zero tip torque (no rotational degrees of freedom);
 * a payload with a non-zero offset (no tip frame to carry it).
 
-Disks: each weight a force at its station (consistent Hermite load; exact nodal values of the linear
-beam for any mesh), each mass lumped linearly onto its element's two nodes (exact inertia when disks
-sit on nodes); ``tests/physics/test_ancf_disks.py``.
+Disks: weights at their stations, masses lumped onto the element's nodes (:meth:`_System._disk_weights`).
 
 Discretisation: ``options.n_elements`` cable elements distributed over the sections like
 :func:`workbench.physics._beam3d_layout.element_layout`, each with the cross-section at its
@@ -147,7 +145,9 @@ class _System:
 
     def _disk_weights(self, robot: Robot, g: np.ndarray) -> list:
         """Each disk's weight as a force at its station (position marker on the element that holds it,
-        Exudyn's consistent Hermite load); ``(load index, full vector)`` per disk of mass > 0."""
+        Exudyn's consistent Hermite load: exact nodal values of the linear beam on any mesh); ``(load index,
+        full vector)`` per disk of mass > 0.  The disk masses (inertia) are lumped linearly onto the element's
+        two nodes (exact when disks sit on nodes).  Checked by ``tests/physics/test_ancf_disks.py``."""
         from exudyn.itemInterface import LoadForceVector, MarkerBodyPosition
 
         mbs, node_s = self.mbs, self.node_s
