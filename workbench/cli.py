@@ -158,7 +158,7 @@ def _parser() -> argparse.ArgumentParser:
     add_report_arguments(rp)
 
     ls = sub.add_parser("list", help="what the registry offers: models (with capabilities), presets, scenarios, kinds")
-    ls.add_argument("topic", choices=("models", "presets", "scenarios", "kinds"))
+    ls.add_argument("topic", choices=("models", "presets", "scenarios", "kinds", "represents"))
 
     v = sub.add_parser("validate", help="check a study file without running it")
     v.add_argument("study", help="study file or bare name (studies/<name>.toml)")

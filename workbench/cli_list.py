@@ -1,4 +1,5 @@
-"""``workbench list models|presets|scenarios|kinds``: what the registry offers, with each model's capabilities.
+"""``workbench list models|presets|scenarios|kinds|represents``: what the registry offers, with each model's
+capabilities (``represents``: the markdown table "What each model represents" of ``docs/models.md``).
 
 Reads ``workbench.registry`` (data only) and, for presets and scenarios, their keyword
 parameters with defaults; imports no model code (no Exudyn).  Checked by
@@ -11,7 +12,7 @@ from typing import Any
 
 __all__ = ["TOPICS", "list_command"]
 
-TOPICS = ("models", "presets", "scenarios", "kinds")
+TOPICS = ("models", "presets", "scenarios", "kinds", "represents")
 
 
 def _params(params: dict[str, Any]) -> str:
@@ -33,6 +34,10 @@ def list_lines(topic: str) -> list[str]:
                 out.append(f"{'':<{w}}  ({info.capabilities.note})")
         out += [f"{name:<{w}}  {row.label}: {describe(None)}" for name, row in registry.LABELS.items()]
         return out
+    if topic == "represents":
+        from .study.capabilities import represents_table
+
+        return represents_table().splitlines()
     if topic == "presets":
         from .robot.presets import preset_parameters
 

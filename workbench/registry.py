@@ -36,6 +36,8 @@ class Capabilities:
         Tendon command modes it can carry when the commands are non-zero (``()``: no tendon loads).
     tendon_models : tuple of str
         ``[solver] tendon_model`` values it supports for loaded tendons.
+    length_tendon_models : tuple of str
+        Tendon models it supports for length-controlled tendons in any case (planar included).
     spatial_length_tendon_models : tuple of str
         Tendon models it supports for length-controlled tendons in a non-planar case.
     loads : tuple of str
@@ -46,6 +48,25 @@ class Capabilities:
         Whether ``[solver] damping > 0`` / a payload offset are supported in dynamic analysis.
     torsion : bool
         Whether it predicts the tip twist (informational: ``workbench list models``).
+    gravity : str
+        ``"any"`` (any direction), ``"in_plane"`` (only in the base x-z plane: a component along
+        base y is refused) or ``"ignored"`` (no load bends the model, CC).
+    tapered_continuum_tendons, spatial_tapered_continuum_tendons : tuple of str
+        Command modes in which it carries loaded ``"continuum"`` tendons with a tapered offset
+        (``TendonGroup.offset_tip`` set) in a planar / non-planar case.
+    disk_weights : str
+        What it represents (informational, the "What each model represents" table of
+        ``docs/models.md``): where a disk's weight acts -- ``"at the disk"``, ``"on the nodes next to
+        the disk"`` (lumped linearly, exact when disks sit on nodes), ``"spread over the section's links"``,
+        ``"smeared over the section"`` or ``"ignored"``.
+    extensibility : tuple of str
+        Backbone deformations beyond bending it represents: ``"axial"``, ``"shear"`` (``()``:
+        inextensible).
+    tendon_path : str
+        How a tendon runs (``""``: from ``tendon_models``, ``"continuum"`` = continuous routing, ``"eyelets"``
+        = straight segments between disks).
+    tendon_friction : bool
+        Whether tendon-disk friction is represented.
     note : str
         What else a user should know (one sentence).
     """
@@ -53,12 +74,20 @@ class Capabilities:
     dimensions: tuple[str, ...] = ("planar", "spatial")
     actuation: tuple[str, ...] = ("tension", "length")
     tendon_models: tuple[str, ...] = ("continuum", "eyelets")
+    length_tendon_models: tuple[str, ...] = ("continuum", "eyelets")
     spatial_length_tendon_models: tuple[str, ...] = ("continuum", "eyelets")
     loads: tuple[str, ...] = ("tip_force", "tip_torque", "payload_offset")
     analyses: tuple[str, ...] = ("static", "dynamic")
     dynamic_damping: bool = True
     dynamic_payload_offset: bool = True
     torsion: bool = True
+    gravity: str = "any"
+    tapered_continuum_tendons: tuple[str, ...] = ("tension", "length")
+    spatial_tapered_continuum_tendons: tuple[str, ...] = ("tension", "length")
+    disk_weights: str = "at the disk"
+    extensibility: tuple[str, ...] = ("axial", "shear")
+    tendon_path: str = ""
+    tendon_friction: bool = False
     note: str = ""
 
 
@@ -165,23 +194,29 @@ MODELS: Mapping[str, ModelInfo] = {
     # orders: measured on the tip-load elastica and the pure-moment arc (tests/models/test_discretization.py):
     # ancf and ancf3d (cubic Hermite cables) ~4, beam3d 2, spring_link 2
     "cc": ModelInfo("workbench.models.cc:run", "CC", "#222222", Capabilities(
-        torsion=False, note="constant curvature from the tendon commands: external loads, gravity and dynamics "
+        torsion=False, gravity="ignored", disk_weights="ignored", extensibility=(),
+        tendon_path="none (arc from the commands)",
+        note="constant curvature from the tendon commands: external loads, gravity and dynamics "
                             "do not bend the arc (the assumption under test)")),
     "ancf": ModelInfo("workbench.physics.ancf:run", "ANCF", "#1f77b4", order=4.0, capabilities=Capabilities(
-        dimensions=("planar",), loads=("tip_force", "tip_torque"), torsion=False,
-        note="planar ANCF cable in the base x-z plane; gravity out of that plane is dropped and recorded "
-             "(x.gravity_out_of_plane)")),
+        dimensions=("planar",), loads=("tip_force", "tip_torque"), torsion=False, gravity="in_plane",
+        extensibility=("axial",),
+        note="planar ANCF cable (extensible Euler-Bernoulli) in the base x-z plane; gravity out of that plane "
+             "is refused")),
     "beam3d": ModelInfo("workbench.physics.beam3d:run", "GE beam", "#d62728", order=2.0, capabilities=Capabilities(
         tendon_models=("eyelets",), spatial_length_tendon_models=("eyelets",),
-        dynamic_payload_offset=False,
+        dynamic_payload_offset=False, disk_weights="on the nodes next to the disk",
         note="geometrically exact beam; tendons only as eyelet ropes; damping (stiffness-proportional, beta "
              "[s]) added by inter-node connectors")),
     "ancf3d": ModelInfo("workbench.physics.ancf3d:run", "ANCF 3-D", "#9467bd", order=4.0, capabilities=Capabilities(
         actuation=(), loads=("tip_force",), torsion=False,
+        extensibility=("axial",), tendon_path="no tendons",
         note="3-D ANCF cable without a cross-section frame: no tendons, tip torque or payload offset")),
     "spring_link": ModelInfo("workbench.physics.spring_link:run", "spring-link", "#2ca02c", order=2.0, capabilities=Capabilities(
-        spatial_length_tendon_models=("eyelets",),
-        note="rigid links and joint springs; continuum tendons in length mode only in planar cases")),
+        spatial_length_tendon_models=("eyelets",), tapered_continuum_tendons=("tension",),
+        spatial_tapered_continuum_tendons=(), disk_weights="spread over the section's links", extensibility=(),
+        note="rigid links and joint springs; continuum tendons in length mode only in planar cases, with a "
+             "tapered offset only in planar tension mode")),
     # no mesh (shooting to newton_tolerance): no declared order, so its rows carry no estimate
     "cosserat": ModelInfo("workbench.physics.cosserat:run", "Cosserat rod", "#8c564b", capabilities=Capabilities(
         tendon_models=("continuum",), spatial_length_tendon_models=("continuum",), analyses=("static",),
@@ -189,15 +224,19 @@ MODELS: Mapping[str, ModelInfo] = {
              "static only; accuracy from newton_tolerance, n_elements unused")),
     "spring_link_cardan": ModelInfo("workbench.physics.spring_link.cardan:run", "spring-link, 2-DOF joints",
                                     "#17becf", order=2.0, capabilities=Capabilities(
-        spatial_length_tendon_models=("eyelets",),
-        note="3-D chain of Cardan (two-DOF, torsion-locked) joints, Hannan & Walker's robot; refuses states "
-             "with cable strain > 2 % (folded branches)")),
+        length_tendon_models=("eyelets",), spatial_length_tendon_models=("eyelets",), tapered_continuum_tendons=(),
+        spatial_tapered_continuum_tendons=(), disk_weights="spread over the section's links", extensibility=(),
+        note="3-D chain of Cardan (two-DOF, torsion-locked) joints, Hannan & Walker's robot, also for planar cases "
+             "(continuum tendons only in tension mode with constant offsets); refuses states with cable strain "
+             "> 2 % (folded branches)")),
     # planar ANCF with a rigid circle (without an object: equal to ancf with continuum tendons, order 4);
     # order 1.5: the held tip of whole-arm wraps at 8-64 elements (observed 1.2-1.7, friction cases ~1,
     # where the per-case observed order is used; benchmarks/measure_contact_convergence.py)
     "contact": ModelInfo("workbench.physics.contact:run", "ANCF + contact", "#ff7f0e", order=1.5, capabilities=Capabilities(
         dimensions=("planar",), actuation=("tension",), tendon_models=("continuum",),
-        spatial_length_tendon_models=(), loads=(), analyses=("static",), torsion=False,
+        spatial_length_tendon_models=(), loads=(), analyses=("static",), torsion=False, gravity="in_plane",
+        disk_weights="smeared over the section",
+        extensibility=("axial",),
         note="planar ANCF cable in contact with a rigid circle; continuum tendons of constant offset in "
              "tension mode, static only, no tip force or torque")),
 }

@@ -20,8 +20,8 @@ from workbench.study import StudyError, load_study
 
 
 def study(models='"cc"', robot="", load='mode = "tension"\ntensions = [1.0, 0.0]', solver="", report="",
-          sweep="", name='"caps"') -> str:
-    parts = [f"[study]\nname = {name}\nmodels = [{models}]\n", f'[robot]\npreset = "steel_rod"\n{robot}\n',
+          sweep="", name='"caps"', preset="steel_rod") -> str:
+    parts = [f"[study]\nname = {name}\nmodels = [{models}]\n", f'[robot]\npreset = "{preset}"\n{robot}\n',
              f"[load]\n{load}\n", f"[solver]\nn_elements = 8\nn_stations = 9\n{solver}\n"]
     if report:
         parts.append(f"[report]\n{report}\n")
@@ -32,6 +32,7 @@ def study(models='"cc"', robot="", load='mode = "tension"\ntensions = [1.0, 0.0]
 
 LENGTH = 'mode = "length"\nlength_changes = [-0.001, 0.0]'
 ARC = 'mode = "tension"\nbend_angle = 1.0'
+TAPERED = 'mode = "tension"\ntensions = [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]'  # cojocaru: 3 x 3 wires
 E, W = "error", "warning"
 
 #: (id, file text, error or warning, expected key, expected words of the line)
@@ -67,6 +68,13 @@ CORPUS = [
                                                 '1.0] }'), E, "robot.first_tendon_angle", "(case 2: "),
     ("spring_link_spatial_length_continuum", study('"spring_link"', robot="first_tendon_angle = 0.3", load=LENGTH),
      E, "solver.tendon_model", "model 'spring_link' supports length-controlled tendons in a non-planar case"),
+    ("spring_link_spatial_tapered", study('"spring_link"', preset="cojocaru_tronconic", robot="disk_diameter_step = 0.02",
+                                          load=TAPERED), E, "robot.disk_diameter_step",
+     "model 'spring_link' carries continuum tendons with a tapered offset in a non-planar case in no mode"),
+    ("cardan_spatial_tapered", study('"spring_link_cardan"', preset="cojocaru_tronconic", load=TAPERED), E,
+     "robot.disk_diameter_step", "tapered offset in a non-planar case in no mode (got tension); or set solver.tendon_model"),
+    ("cardan_planar_length_continuum", study('"spring_link_cardan"', load=LENGTH), E, "solver.tendon_model",
+     "model 'spring_link_cardan' supports length-controlled tendons only with tendon_model = 'eyelets'"),
     ("report_axis_typo", study(report='axes = ["kapaL"]'), E, "report.axes[0]", "did you mean 'kappaL'?"),
     ("report_axis_parameter_typo", study(report='axes = ["p.robot.lenght"]'), E, "report.axes[0]",
      "did you mean 'p.robot.length'?"),
@@ -157,6 +165,8 @@ PROBES = [  # (model, corpus id): validate refuses it, so must the model
     ("ancf", "ancf_tendon_angle"), ("ancf", "ancf_tip_force_y"), ("ancf", "ancf_tip_torque_z"),
     ("spring_link", "spring_link_spatial_length_continuum"),
     ("cosserat", "cosserat_eyelets"), ("cosserat", "cosserat_dynamic"),
+    ("spring_link", "spring_link_spatial_tapered"), ("spring_link_cardan", "cardan_spatial_tapered"),
+    ("spring_link_cardan", "cardan_planar_length_continuum"),
 ]
 
 
@@ -177,6 +187,86 @@ def test_declared_limit_is_enforced_by_the_model(tmp_path, model, cid):
     options = build_options(base["solver"])
     with pytest.raises((ModelFailure, ValueError)):
         get_model(model)(robot, load, options)
+
+
+# ---------------------------------------------------------------------------------------------
+# limits no preset reaches from a study file (user robots, issue 28): features -> one line naming the
+# key, and the model itself refuses the same case
+# ---------------------------------------------------------------------------------------------
+def _rao_planar(*, rotated=False, offset_tip=None, angles=(0.0, 3.141592653589793)):
+    """Rao et al.'s NiTi robot (planar variant, issue 28); ``rotated``: base turned 90 deg about x, so gravity
+    lies along base y, out of the planar models' plane."""
+    from workbench.robot import CrossSection, Robot, Section, TendonGroup
+
+    cs = CrossSection.circular(diameter=1.4e-3, youngs_modulus=54e9, density=6450.0, poisson_ratio=0.3)
+    tg = TendonGroup(angles=angles, offset=10e-3, axial_stiffness=1e7, offset_tip=offset_tip)
+    sec = Section(length=0.2, cross_section=cs, tendons=tg, n_disks=10, disk_mass=0.5e-3)
+    rot = ((1.0, 0.0, 0.0), (0.0, 0.0, -1.0), (0.0, 1.0, 0.0)) if rotated else \
+        ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+    return Robot(sections=(sec, sec), gravity=(0.0, 0.0, -9.81), base_rotation=rot)
+
+
+def _act(mode, n=4):
+    from workbench.robot import TendonActuation
+
+    return TendonActuation(mode, (-1e-3 if mode == "length" else 1.0,) + (0.0,) * (n - 1))
+
+
+#: (id, model, robot kwargs, (mode or None, n tendons), tendon_model, expected key, words)
+API_PROBES = [
+    ("ancf_gravity_out_of_plane", "ancf", dict(rotated=True), (None, 4), "continuum", "robot.gravity",
+     "model 'ancf' is planar and refuses gravity out of the base x-z plane (base y component -9.81 m/s^2)"),
+    ("contact_gravity_out_of_plane", "contact", dict(rotated=True), (None, 4), "continuum", "robot.gravity",
+     "model 'contact' is planar and refuses gravity out of the base x-z plane"),
+    ("spring_link_planar_tapered_length", "spring_link", dict(offset_tip=5e-3), ("length", 4), "continuum",
+     "robot.preset", "tapered offset in a planar case only in tension mode (got length)"),
+    ("cardan_planar_tapered_tension", "spring_link_cardan", dict(offset_tip=5e-3), ("tension", 4), "continuum",
+     "robot.preset", "tapered offset in a planar case in no mode (got tension)"),
+]
+#: supported: no line, and the model runs
+API_CONTROLS = [
+    ("ancf", dict(offset_tip=5e-3), ("length", 4), "continuum"),
+    ("spring_link", dict(offset_tip=5e-3), ("tension", 4), "continuum"),
+    ("contact", dict(offset_tip=5e-3), ("tension", 4), "continuum"),
+    ("spring_link_cardan", dict(offset_tip=5e-3), ("tension", 4), "eyelets"),
+]
+
+
+def _api_case(kw, act, tendon_model):
+    from workbench.models.result import SolverOptions
+    from workbench.robot import LoadCase
+    from workbench.study.capabilities import case_features
+
+    robot = _rao_planar(**kw)
+    load = LoadCase(actuation=None if act[0] is None else _act(*act))
+    params = {"robot": {"preset": "rao", "gravity": 9.81}, "load": {}}
+    f = case_features(robot, load, params, {"tendon_model": tendon_model})
+    return robot, load, SolverOptions(n_elements=8, tendon_model=tendon_model), f
+
+
+@pytest.mark.parametrize("cid,model,kw,act,tm,key,words", API_PROBES, ids=[p[0] for p in API_PROBES])
+def test_api_limit_is_declared_and_enforced(cid, model, kw, act, tm, key, words):
+    from workbench.models import get_model
+    from workbench.models.result import ModelFailure
+    from workbench.registry import MODELS
+    from workbench.study.capabilities import unsupported
+
+    robot, load, options, f = _api_case(kw, act, tm)
+    lines = unsupported(model, MODELS[model].capabilities, f)
+    assert len(lines) == 1 and lines[0].startswith(f"{key}: ") and words in lines[0], lines
+    with pytest.raises((ModelFailure, ValueError)):
+        get_model(model)(robot, load, options)
+
+
+@pytest.mark.parametrize("model,kw,act,tm", API_CONTROLS, ids=[c[0] for c in API_CONTROLS])
+def test_api_supported_case_passes_and_runs(model, kw, act, tm):
+    from workbench.models import get_model
+    from workbench.registry import MODELS
+    from workbench.study.capabilities import unsupported
+
+    robot, load, options, f = _api_case(kw, act, tm)
+    assert unsupported(model, MODELS[model].capabilities, f) == []
+    assert get_model(model)(robot, load, options).solver.converged
 
 
 # ---------------------------------------------------------------------------------------------
@@ -204,3 +294,28 @@ def test_stress_warnings_only_where_a_strength_is_declared(yield_strength, stren
     # the surface-strain fallback speaks for a solid rod whose yield strength is unknown (1.5 % here)
     assert any("surface strain kappa d / 2 = 1.5 %" in x for x in lines) == (yield_strength is None), lines
     assert all(x.startswith("load.tensions: ") for x in lines), lines
+
+
+# ---------------------------------------------------------------------------------------------
+# docs/models.md's "What each model represents" is the table generated from the capabilities
+# ---------------------------------------------------------------------------------------------
+def test_models_md_table_is_the_generated_one():
+    """Regenerate with ``workbench list represents`` and paste it between the markers."""
+    from pathlib import Path
+
+    from workbench.study.capabilities import represents_table
+
+    text = (Path(__file__).resolve().parents[2] / "docs" / "models.md").read_text()
+    begin, end = "<!-- represents-table:begin -->\n", "<!-- represents-table:end -->"
+    assert begin in text and end in text
+    assert text.split(begin, 1)[1].split(end, 1)[0] == represents_table()
+
+
+def test_represents_table_has_a_row_per_declared_model_and_the_cli_prints_it(capsys):
+    from workbench.registry import MODELS
+    from workbench.study.capabilities import represents_table
+
+    rows = represents_table().splitlines()[2:]
+    assert [r.split("|")[1].strip() for r in rows] == [f"`{n}`" for n, i in MODELS.items() if i.capabilities]
+    assert main(["list", "represents"]) == 0
+    assert capsys.readouterr().out == represents_table()

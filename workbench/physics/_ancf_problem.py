@@ -6,9 +6,11 @@ along Exudyn +X and a rotation about Exudyn +Z is a rotation about base +y.  Onl
 ``sigma = 0`` (offset ``+d`` along base x, Exudyn +Y) or ``sigma = pi`` (``-d``), within 1e-9 rad,
 fit; tip forces must lie in the x-z plane and tip torques along base y; payload offsets are not
 supported -- anything else raises :class:`PlanarModelError`.  Gravity: the in-plane components
-``(g_z, g_x)``; the out-of-plane one is kept as ``g_out``.  Mesh: elements per section in
+``(g_z, g_x)``; a component along base y raises :class:`ModelFailure` (``g_out`` stays 0).  Mesh: elements per section in
 proportion to its length (at least one each), so every section end is a node; per element EI,
-EA and mass per length (disk masses smeared over their section) at the element midpoint.  A
+EA and mass per length at the element midpoint: ``mu_rod`` the backbone's own, ``mu`` with the disk masses
+smeared over their section (the contact model's load); the disks themselves as stations and masses
+(``disk_s``, ``disk_m``: ``ancf`` puts each disk's weight at its station).  A
 tendon's offset varies linearly along its routed length ``[0, end]`` from ``TendonGroup.offset``
 (base plate) to ``TendonGroup.offset_tip`` (terminating disk): for a single section this is
 ``TendonGroup.offset_at``; for tendons of later sections it is this model's reading of the
@@ -19,17 +21,19 @@ description (which defines the offset over the group's own section only).  Check
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..models.inputs import check_model_inputs
-from ..models.result import SolverOptions
+from ..models.result import ModelFailure, SolverOptions
 from ..robot import LoadCase, Robot
 
 __all__ = ["PlanarModelError"]
 
 _SIGMA_TOL = 1e-9
+#: relative size of a base-y gravity component that is refused (rounding of a rotation matrix is far below)
+_GRAVITY_TOL = 1e-9
 
 
 class PlanarModelError(ValueError):
@@ -59,7 +63,7 @@ class AncfProblem:
     s_nodes: np.ndarray  # (n+1,)
     EI: np.ndarray  # (n,)
     EA: np.ndarray
-    mu: np.ndarray
+    mu: np.ndarray  # backbone + disk masses smeared over their section (contact model)
     gravity: np.ndarray  # (2,) Exudyn plane
     tip_force: np.ndarray  # (2,)
     tip_torque: float
@@ -67,6 +71,9 @@ class AncfProblem:
     tendons: tuple[_Tendon, ...]
     g_out: float
     cross_sections: tuple = ()  # (n,) CrossSection of every element (its midpoint), for stresses
+    mu_rod: np.ndarray = field(default_factory=lambda: np.zeros(0))  # (n,) backbone alone [kg/m]
+    disk_s: np.ndarray = field(default_factory=lambda: np.zeros(0))  # (m,) disk stations [m] (mass > 0)
+    disk_m: np.ndarray = field(default_factory=lambda: np.zeros(0))  # (m,) disk masses [kg]
 
 
 def _tendon_sign(sigma: float, index: int) -> float:
@@ -107,7 +114,7 @@ def build_problem(robot: Robot, load: LoadCase, options: SolverOptions) -> AncfP
         k = np.argmax(np.where(counts > 1, counts - raw, -np.inf))
         counts[k] -= 1
     s_nodes = [0.0]
-    EI, EA, mu, sections = [], [], [], []
+    EI, EA, mu, mu_rod, sections = [], [], [], [], []
     s0 = 0.0
     for sec, n in zip(robot.sections, counts):
         for k in range(n):
@@ -117,13 +124,20 @@ def build_problem(robot: Robot, load: LoadCase, options: SolverOptions) -> AncfP
             EI.append(cs.EI)
             EA.append(cs.EA)
             mu.append(cs.mass_per_length + sec.n_disks * sec.disk_mass / sec.length)
+            mu_rod.append(cs.mass_per_length)
             s_nodes.append(s0 + sec.length * (k + 1) / n)
         s0 += sec.length
     s_nodes = np.array(s_nodes)
     s_nodes[-1] = L
     g = robot.gravity_in_base()
+    if abs(g[1]) > _GRAVITY_TOL * float(np.linalg.norm(g)):
+        raise ModelFailure(
+            f"gravity {np.round(g, 12).tolist()} m/s^2 (base frame) has a component {g[1]:.4g} m/s^2 along base y, "
+            "out of the plane of the planar ANCF models (robot.base_orientation / robot.gravity_direction): "
+            "refused instead of dropped; use a spatial model (beam3d, cosserat)")
     ends = robot.section_ends
     disks = robot.disk_stations()
+    disk_m = np.concatenate([np.full(sec.n_disks, sec.disk_mass) for sec in robot.sections])
     tendons = []
     for i, (j, sigma, grp) in enumerate(robot.tendon_table()):
         sign = _tendon_sign(sigma, i)
@@ -135,4 +149,5 @@ def build_problem(robot: Robot, load: LoadCase, options: SolverOptions) -> AncfP
         L=L, s_nodes=s_nodes, EI=np.array(EI), EA=np.array(EA), mu=np.array(mu),
         gravity=np.array([g[2], g[0]]), tip_force=np.array([F[2], F[0]]), tip_torque=float(M[1]),
         payload=robot.payload.mass, tendons=tuple(tendons), g_out=float(g[1]), cross_sections=tuple(sections),
+        mu_rod=np.array(mu_rod), disk_s=disks[disk_m > 0], disk_m=disk_m[disk_m > 0],
     )

@@ -7,10 +7,10 @@ and :func:`_dynamic`.
 
 * Plane: the robot bends in its base x-z plane; results are reported as ``(x, 0, z)``.  Tendons
   only at sigma = 0 or pi, tip forces in the x-z plane, tip torques along base y, no payload
-  offset (else :class:`PlanarModelError`); out-of-plane gravity is reported, not applied.
+  offset (else :class:`PlanarModelError`); gravity out of that plane raises :class:`ModelFailure`.
 * Backbone: ``options.n_elements`` ``ObjectANCFCable2D`` elements (extensible Euler-Bernoulli,
   ``useReducedOrderIntegration=2``), every section end a node; clamp = node 0's x, y and y-slope
-  (the x-slope stays free); payload = tip point mass.
+  (the x-slope stays free); payload = tip point mass; disks: :meth:`_System._add_disks`.
 * Tendons, ``"continuum"``: the exact load of a frictionless tendon at offset ``y(s)`` (moment
   ``T y cos(alpha)``, compression ``T cos(alpha)``, ``tan alpha = y'``) as per-element reference
   curvature ``sum T y cos(alpha) / EI`` and reference axial strain ``-sum T cos(alpha) / EA``;
@@ -24,8 +24,7 @@ and :func:`_dynamic`.
   state at the step start and the rest length at its end (explicit, in a ``PreStepUserFunction``);
   divergence or a chattering tension history raises :class:`ModelFailure`.
 * Static solution: loads and tensions ramped by :func:`~workbench.physics._stepping.ancf_load_ramp`
-  (one ``SolveStatic`` per increment, at most ``options.max_load_steps`` attempts per ramp), Newton
-  on the step size; non-convergence or an implausible state (non-finite, ``|r'|`` outside
+  (at most ``options.max_load_steps`` ``SolveStatic`` attempts per ramp); non-convergence or an implausible state (non-finite, ``|r'|`` outside
   (0.5, 1.5), a point beyond 2 L) raises :class:`ModelFailure`.
 * Dynamics: generalised-alpha from the static equilibrium at t = 0 (``initial_state="static"``)
   or from the straight rod with all loads applied at once (``"reference"``); commands
@@ -34,8 +33,8 @@ and :func:`_dynamic`.
 * Outputs: positions at ``options.n_stations`` stations (Hermite centreline), tip frame (rotation
   about base y), ``length_change = int |r'| ds - L``, tensions, ``tip_twist = 0``; series
   ``tip_position`` (k, 3), ``tendon_tensions`` (k, n), ``length_change`` (k,); extras
-  ``static_steps``, ``failed_steps``, ``tendon_iterations``, ``gravity_out_of_plane``, stresses
-  (:func:`_backbone_stress`, :mod:`workbench.models.stress`; dynamics: the largest over time).
+  ``static_steps``, ``failed_steps``, ``tendon_iterations``, ``gravity_out_of_plane`` (always 0), stresses
+  (:func:`~workbench.physics._ancf_stress.ancf_stress_extras`; dynamics: the largest over time).
 Checked by ``tests/physics/test_ancf.py``, ``test_ancf_reeving.py`` (eyelet chain = reeving rope),
 ``test_ancf_geometry.py``, ``tests/models/test_stress.py``; accuracy: ``docs/models.md``.
 """
@@ -50,10 +49,11 @@ import numpy as np
 
 from ..models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ..robot import LoadCase, Robot
-from ._ancf_geometry import (arc_length, centreline, element_lengths, gauss_points, hermite, locate,
+from ._ancf_geometry import (arc_length, centreline, element_lengths, gauss_points, locate,
                              offset_curve_length, offset_points)
 from ..models.backbone_frames import backbone_series, frame_stride
 from ._ancf_problem import AncfProblem, PlanarModelError, build_problem
+from ._ancf_stress import ancf_stress_extras
 from ._stepping import ancf_load_ramp
 from .tendon_loads import solve_length_controlled, tendon_path_compliance, tendon_rest_lengths, tension_from_stretch
 
@@ -109,7 +109,7 @@ class _System:
             self.elements.append(mbs.AddObject(ObjectANCFCable2D(
                 nodeNumbers=[self.nodes[e], self.nodes[e + 1]], length=float(le[e]),
                 bendingStiffness=float(pb.EI[e]), axialStiffness=float(pb.EA[e]),
-                massPerLength=float(pb.mu[e]), bendingDamping=float(damping * pb.EI[e]),
+                massPerLength=float(pb.mu_rod[e]), bendingDamping=float(damping * pb.EI[e]),
                 axialDamping=float(damping * pb.EA[e]), useReducedOrderIntegration=2,
             )))
         ground = mbs.AddObject(ObjectGround())
@@ -128,6 +128,7 @@ class _System:
         has_g = bool(np.any(pb.gravity != 0))
         self.grav_loads = add_gravity_loads(mbs, self.elements) if has_g else []
         tipm = mbs.AddMarker(MarkerNodePosition(nodeNumber=self.nodes[-1]))
+        self.disk_loads = self._add_disks(has_g)
         self.payload_load = None
         if pb.payload > 0:
             mbs.AddObject(ObjectMassPoint2D(nodeNumber=self.nodes[-1], mass=pb.payload))
@@ -141,6 +142,30 @@ class _System:
             tip_x = float(pb.s_nodes[-1] - pb.s_nodes[-2])
             mr = mbs.AddMarker(MarkerBodyRigid(bodyNumber=self.elements[-1], localPosition=[tip_x, 0, 0]))
             self.torque_load = mbs.AddLoad(LoadTorqueVector(markerNumber=mr, loadVector=[0, 0, 0]))
+
+    def _add_disks(self, has_g: bool) -> list[int]:
+        """Disks: each weight a force at its station (a position marker on the element that holds it,
+        Exudyn's consistent Hermite load), each mass a point mass lumped linearly onto that element's two
+        nodes (the formulation has no mass at an arbitrary station: exact inertia when disks sit on nodes;
+        node 0's share sits on the clamp).  Returns the weight loads (set by :meth:`set_external`).
+        Checked by ``tests/physics/test_ancf_disks.py``."""
+        from exudyn.itemInterface import LoadForceVector, MarkerBodyPosition, ObjectMassPoint2D
+
+        pb, mbs, sn = self.pb, self.mbs, self.pb.s_nodes
+        if pb.disk_m.size == 0:
+            return []
+        elem, x = locate(sn, pb.disk_s)
+        w1 = x / np.diff(sn)[elem]
+        lumped = np.zeros(sn.size)
+        np.add.at(lumped, elem, pb.disk_m * (1.0 - w1))
+        np.add.at(lumped, elem + 1, pb.disk_m * w1)
+        for i in np.flatnonzero(lumped[1:] > 0) + 1:
+            mbs.AddObject(ObjectMassPoint2D(nodeNumber=self.nodes[int(i)], mass=float(lumped[i])))
+        if not has_g:
+            return []
+        return [mbs.AddLoad(LoadForceVector(markerNumber=mbs.AddMarker(MarkerBodyPosition(
+                    bodyNumber=self.elements[int(e)], localPosition=[float(xi), 0.0, 0.0])), loadVector=[0, 0, 0]))
+                for e, xi in zip(elem, x)]
 
     def _add_tendons(self, ground: int) -> None:
         """Per-unit-tension reference curvature / axial strain (continuum) or the eyelet rope segments."""
@@ -177,6 +202,8 @@ class _System:
         g = lam * pb.gravity
         for ld in self.grav_loads:
             mbs.SetLoadParameter(ld, "loadVector", [float(g[0]), float(g[1]), 0.0])
+        for ld, m in zip(self.disk_loads, pb.disk_m):
+            mbs.SetLoadParameter(ld, "loadVector", [float(m * g[0]), float(m * g[1]), 0.0])
         if self.payload_load is not None:
             f = pb.payload * g
             mbs.SetLoadParameter(self.payload_load, "loadVector", [float(f[0]), float(f[1]), 0.0])
@@ -350,36 +377,6 @@ def _frame_and_positions(sysm: _System, qn: np.ndarray, stations: np.ndarray):
     return pos, t
 
 
-def _backbone_stress(pb: AncfProblem, qn: np.ndarray):
-    """Backbone stress at five points per element of the states ``qn`` (..., n+1, 4) and the strengths there.
-
-    Axial strain ``|r'| - 1`` and bending ``theta' = (r' x r'') / |r'|^2`` of the material (the
-    continuum tendon's reference curvature / strain are the load, not the backbone's strain).
-    Returns ``(sigma (..., 5 n), strength (5 n,))`` or ``None`` without stress geometry.
-    """
-    from ..models.stress import combined_stress, section_arrays
-
-    arrs = section_arrays(pb.cross_sections) if pb.cross_sections else None
-    if arrs is None:
-        return None
-    n = pb.s_nodes.size - 1
-    elem = np.repeat(np.arange(n), 5)
-    x = np.tile(np.linspace(0.0, 1.0, 5), n) * np.diff(pb.s_nodes)[elem]
-    _, dr, ddr = hermite(qn, pb.s_nodes, elem, x)
-    nrm2 = np.sum(dr * dr, axis=-1)
-    eps = np.sqrt(nrm2) - 1.0
-    kap = (dr[..., 0] * ddr[..., 1] - dr[..., 1] * ddr[..., 0]) / nrm2
-    A, W, Y = (a[elem] for a in arrs)
-    return combined_stress(pb.EA[elem] * eps, pb.EI[elem] * kap, A, W), Y
-
-
-def _stress(pb: AncfProblem, robot: Robot, qn: np.ndarray, tensions: np.ndarray) -> dict[str, float]:
-    from ..models.stress import stress_extras
-
-    bs = _backbone_stress(pb, qn)
-    return stress_extras(None if bs is None else bs[0], None if bs is None else bs[1], robot, tensions)
-
-
 def _tip_frame(tip: np.ndarray, t_tip: np.ndarray) -> np.ndarray:
     th = math.atan2(float(t_tip[1]), float(t_tip[0]))
     c, s = math.cos(th), math.sin(th)
@@ -422,7 +419,7 @@ def run(
     PlanarModelError
         Tendons off the x-z plane, out-of-plane tip loads, payload offsets.
     ModelFailure
-        No convergence or an implausible state.
+        Gravity out of the base x-z plane, no convergence or an implausible state.
     """
     from ._exudyn import quiet_exudyn
 
@@ -441,7 +438,7 @@ def run(
             T, tendon_it = _static_tensions(sysm, drv, act, cmd)
             q = sysm.coords()
             series, times = {}, None
-            stress = _stress(pb, robot, sysm.node_coords(q), T)
+            stress = ancf_stress_extras(pb, robot, sysm.node_coords(q), T)
         else:
             T, tendon_it, q, times, series, stress = _dynamic(sysm, drv, load, options, initial_state, robot)
     qn = sysm.node_coords(q)
@@ -585,7 +582,7 @@ def _dynamic(sysm: _System, drv: _StaticDriver, load: LoadCase, options: SolverO
     times = np.array(rec_t)
     Q = np.array(rec_q)
     T_final, series = _dynamic_series(sysm, cmd, Q, times, h, np.linspace(0.0, sysm.pb.L, options.n_stations))
-    stress = _stress(sysm.pb, robot, sysm.node_coords(Q), series["tendon_tensions"]) if robot is not None else {}
+    stress = ancf_stress_extras(sysm.pb, robot, sysm.node_coords(Q), series["tendon_tensions"]) if robot is not None else {}
     # stored on the shared output grid (workbench.models.result.series_times), every step checked above;
     # the backbone frames keep their own (decimated) time axis
     from ..models.result import series_times

@@ -14,6 +14,8 @@ of :mod:`workbench.physics.beam3d` for those cases.  It raises :class:`ModelFail
 * a non-zero tip torque (no rotational degrees of freedom);
 * a payload with a non-zero offset (no tip frame to carry it).
 
+Disks: weights at their stations, masses lumped onto the element's nodes (:meth:`_System._disk_weights`).
+
 Discretisation: ``options.n_elements`` cable elements distributed over the sections like
 :func:`workbench.physics._beam3d_layout.element_layout`, each with the cross-section at its
 midpoint (EI, EA, mass per length; GJ and GA do not exist in this element).
@@ -97,8 +99,8 @@ class _System:
     """The assembled Exudyn system of one ancf3d solve: cable, clamp, masses and the ramped loads.
 
     ``loads`` lists ``(load index, full vector)`` in the order added: gravity on the elements and
-    on the node masses (disks lumped linearly onto their element's nodes, the payload on the tip),
-    then the tip force.
+    on the payload (a tip mass point), the disks' weights at their stations (:meth:`_disk_weights`),
+    then the tip force.  Disk masses (inertia) are lumped linearly onto their element's two nodes.
     """
 
     def __init__(self, robot: Robot, load: LoadCase, options: SolverOptions):
@@ -127,16 +129,39 @@ class _System:
                 useReducedOrderIntegration=2,
             )))
         clamp_coordinates(mbs, self.nodes[0], (0, 1, 2, 3, 4))  # position and the transverse slopes x', y'
-        lumped = lumped_disk_masses(robot, node_s)
-        lumped[-1] += robot.payload.mass
-        points = add_point_masses(mbs, self.nodes, lumped)
+        add_point_masses(mbs, self.nodes, lumped_disk_masses(robot, node_s))  # disk inertia (weights below)
+        payload = np.zeros(len(node_s))
+        payload[-1] = robot.payload.mass
+        points = add_point_masses(mbs, self.nodes, payload)
         g = robot.gravity_in_base()
         self.loads = [(ld, g) for ld in add_gravity_loads(mbs, self.elements + points)] if np.any(g != 0) else []
+        if np.any(g != 0):
+            self.loads += self._disk_weights(robot, g)
         F = np.asarray(load.tip_force)
         if np.any(F != 0):
             mt = mbs.AddMarker(MarkerNodePosition(nodeNumber=self.nodes[-1]))
             self.loads.append((mbs.AddLoad(LoadForceVector(markerNumber=mt, loadVector=[0, 0, 0])), F))
         mbs.Assemble()
+
+    def _disk_weights(self, robot: Robot, g: np.ndarray) -> list:
+        """Each disk's weight as a force at its station (position marker on the element that holds it,
+        Exudyn's consistent Hermite load: exact nodal values of the linear beam on any mesh); ``(load index,
+        full vector)`` per disk of mass > 0.  The disk masses (inertia) are lumped linearly onto the element's
+        two nodes (exact when disks sit on nodes).  Checked by ``tests/physics/test_ancf_disks.py``."""
+        from exudyn.itemInterface import LoadForceVector, MarkerBodyPosition
+
+        mbs, node_s = self.mbs, self.node_s
+        starts = np.concatenate([[0.0], robot.section_ends[:-1]])
+        out = []
+        for j, sec in enumerate(robot.sections):
+            if sec.disk_mass <= 0:
+                continue
+            for sd in starts[j] + sec.disk_positions():
+                e = min(max(int(np.searchsorted(node_s, sd, side="left")) - 1, 0), len(self.elements) - 1)
+                mk = mbs.AddMarker(MarkerBodyPosition(bodyNumber=self.elements[e],
+                                                      localPosition=[float(sd - node_s[e]), 0.0, 0.0]))
+                out.append((mbs.AddLoad(LoadForceVector(markerNumber=mk, loadVector=[0, 0, 0])), sec.disk_mass * g))
+        return out
 
     def tip_position(self) -> np.ndarray:
         """Tip node position ``(3,)`` [m] (base frame)."""

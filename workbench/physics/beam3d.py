@@ -66,6 +66,20 @@ def _check(robot: Robot, load: LoadCase, options: SolverOptions) -> None:
         raise ModelFailure("beam3d: a payload with non-zero offset is supported in static analysis only")
 
 
+def _built_tensions(system, mode: str, n_tendons: int) -> np.ndarray:
+    """Tensions of all ``n_tendons`` tendons: zeros when none was built (``mode == "none"``: no tendon
+    loads), else one per built tendon; a count that differs raises :class:`ModelFailure` with both lengths
+    (it used to be replaced by zeros; ``tests/physics/test_beam3d_tensions.py``)."""
+    if mode == "none":
+        return np.zeros(n_tendons)
+    T, _ = system.tendon_state()
+    T = np.asarray(T, dtype=float)
+    if T.size != n_tendons:
+        raise ModelFailure(f"beam3d: {T.size} tendon tensions from the built system for the robot's {n_tendons} "
+                           f"tendons (mode {mode!r}); the tendon objects do not match the robot")
+    return T
+
+
 def _tendons_active(robot: Robot, load: LoadCase) -> str:
     """'none', 'tension' or 'length': which tendon objects the case needs."""
     act = load.actuation
@@ -411,27 +425,24 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions, *, stiffness_stage
             extras.update(load_steps=float(acc), n_steps=float(n_steps))
         positions = system.positions(stations)
         tip = system.tip_frame()
-        T, _ = system.tendon_state()
+        T = _built_tensions(system, mode, n_t)
         strains = system.element_strains()
         dl, tw = system.shape_scalars(strains)
         if load.analysis == "static":
             from ..models.stress import stress_extras
 
             bs = system.backbone_stress(strains)
-            Tn = T if T.size == n_t else np.zeros(n_t)
-            stress = stress_extras(None if bs is None else bs[0], None if bs is None else bs[1], robot, Tn)
+            stress = stress_extras(None if bs is None else bs[0], None if bs is None else bs[1], robot, T)
         extras.update(stress)
     if not (np.all(np.isfinite(positions)) and np.all(np.isfinite(tip))):
         raise ModelFailure("beam3d: non-finite state after the solve")
-    if n_t and T.size != n_t:
-        T = np.zeros(n_t)
     return PhysicsResult(
         model="beam3d",
         stations=stations,
         positions=positions,
         tip_frame=tip,
         length_change=dl,
-        tendon_tensions=T if n_t else np.zeros(0),
+        tendon_tensions=T,
         tip_twist=tw,
         solver=SolverInfo(converged=True, iterations=int(att), wall_time=_time.perf_counter() - t_wall, message="ok"),
         time=times,

@@ -9,8 +9,10 @@ one line per problem, naming the key to change and the model::
     solver.tendon_model: model 'beam3d' supports loaded tendons only with tendon_model = 'eyelets' (got 'continuum'); change the key or drop the model
 
 :func:`workbench.study.checks.check_cases` calls it for every distinct robot/load combination of
-a sweep, so ``validate`` refuses what would fail at run time.  Checked by
-``tests/study/test_capabilities.py`` (every declared limit is one the model itself enforces).
+a sweep, so ``validate`` refuses what would fail at run time.  :func:`represents_table` writes the
+table "What each model represents" of ``docs/models.md`` from the same declarations
+(``workbench list represents`` prints it).  Checked by ``tests/study/test_capabilities.py`` (every
+declared limit is one the model itself enforces; the table in the docs is the generated one).
 """
 
 from __future__ import annotations
@@ -21,9 +23,11 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
-__all__ = ["CaseFeatures", "case_features", "describe", "unsupported"]
+__all__ = ["CaseFeatures", "case_features", "describe", "represents_table", "unsupported"]
 
 _TOL = 1e-12
+#: relative base-y gravity component a planar model refuses (as ``workbench.physics._ancf_problem``)
+_GRAVITY_TOL = 1e-9
 
 
 @dataclass(frozen=True)
@@ -42,6 +46,10 @@ class CaseFeatures:
     payload_key: str
     analysis: str
     damping: float
+    gravity_out_of_plane: float = 0.0  # base-y component of gravity [m/s^2] (0 when within the tolerance)
+    gravity_key: str = "robot.gravity"
+    tapered: bool = False  # some tendon group has a tapered offset (offset_tip)
+    tapered_key: str = "robot.preset"
 
 
 def _first_key(params: Mapping[str, Any], section: str, names: Sequence[str], fallback: str) -> str:
@@ -87,12 +95,18 @@ def case_features(robot: Any, load_case: Any, params: Mapping[str, Any], solver:
     if act is not None and not any(v != 0 for v in act.values) and act.pretension > 0:
         tendon_key = "load.pretension"
     offset = robot.payload.mass > 0 and any(robot.payload.offset)
+    g = np.asarray(robot.gravity_in_base(), float)
+    g_out = float(g[1]) if abs(g[1]) > _GRAVITY_TOL * float(np.linalg.norm(g)) else 0.0
+    tapered = any(grp.offset_tip is not None for _, _, grp in robot.tendon_table())
     return CaseFeatures(
         planar=planar, planar_key=key, planar_why=why, tendon_mode=mode, tendon_key=tendon_key,
         tendon_model=str(solver.get("tendon_model", "continuum")), tip_torque=bool(np.any(M != 0)),
         tip_force=bool(np.any(F != 0)), payload_offset=bool(offset),
         payload_key=_first_key(rp, "robot", ("payload_offset", "payload_mass"), "robot.preset"),
-        analysis=str(load_case.analysis), damping=float(solver.get("damping", 0.0)))
+        analysis=str(load_case.analysis), damping=float(solver.get("damping", 0.0)),
+        gravity_out_of_plane=g_out,
+        gravity_key=_first_key(rp, "robot", ("gravity_direction", "base_orientation", "gravity"), "robot.preset"),
+        tapered=tapered, tapered_key=_first_key(rp, "robot", ("disk_diameter_step",), "robot.preset"))
 
 
 def unsupported(model: str, caps: Any, f: CaseFeatures) -> list[str]:
@@ -113,10 +127,24 @@ def unsupported(model: str, caps: Any, f: CaseFeatures) -> list[str]:
         elif f.tendon_model not in caps.tendon_models:
             out.append(f"solver.tendon_model: {m} supports loaded tendons only with tendon_model = "
                        f"{' or '.join(repr(t) for t in caps.tendon_models)} (got {f.tendon_model!r}){tail}")
+        elif f.tendon_mode == "length" and f.tendon_model not in caps.length_tendon_models:
+            out.append(f"solver.tendon_model: {m} supports length-controlled tendons only with tendon_model = "
+                       f"{' or '.join(repr(t) for t in caps.length_tendon_models)} (got {f.tendon_model!r}){tail}")
         elif f.tendon_mode == "length" and not f.planar and f.tendon_model not in caps.spatial_length_tendon_models:
             out.append(f"solver.tendon_model: {m} supports length-controlled tendons in a non-planar case only with "
                        f"tendon_model = {' or '.join(repr(t) for t in caps.spatial_length_tendon_models)} (got "
                        f"{f.tendon_model!r}; {f.planar_why}){tail}")
+        elif f.tapered and f.tendon_model == "continuum":
+            modes = caps.tapered_continuum_tendons if f.planar else caps.spatial_tapered_continuum_tendons
+            if f.tendon_mode not in modes:
+                where = "a planar" if f.planar else "a non-planar"
+                ok = f"only in {' / '.join(modes)} mode" if modes else "in no mode"
+                hint = "; or set solver.tendon_model = 'eyelets'" if "eyelets" in caps.tendon_models else ""
+                out.append(f"{f.tapered_key}: {m} carries continuum tendons with a tapered offset in {where} case "
+                           f"{ok} (got {f.tendon_mode}){hint}{tail}")
+    if f.gravity_out_of_plane and caps.gravity == "in_plane":
+        out.append(f"{f.gravity_key}: {m} is planar and refuses gravity out of the base x-z plane (base y component "
+                   f"{f.gravity_out_of_plane:.4g} m/s^2){tail}")
     if f.tip_torque and "tip_torque" not in caps.loads:
         out.append(f"load.tip_torque: {m} cannot carry a tip torque{tail}")
     if f.tip_force and "tip_force" not in caps.loads:
@@ -143,6 +171,44 @@ def describe(caps: Any) -> str:
                             f"{'/'.join(caps.actuation)} via {'/'.join(caps.tendon_models)}"),
              "loads: " + ("/".join(caps.loads) or "none"), "analysis: " + "/".join(caps.analyses),
              "torsion" if caps.torsion else "no torsion"]
+    if caps.gravity == "in_plane":
+        parts.append("gravity in the base x-z plane only")
     if not caps.dynamic_damping:
         parts.append("no damping in dynamics")
     return "; ".join(parts)
+
+
+_PATHS = {"continuum": "continuous", "eyelets": "eyelets (straight between disks)"}
+_GRAVITY = {"any": "any direction", "in_plane": "base x-z plane only (else refused)", "ignored": "ignored"}
+
+
+def _tendon_path(caps: Any) -> str:
+    if caps.tendon_path:
+        return caps.tendon_path
+    if not caps.actuation:
+        return "no tendons"
+    return " or ".join(_PATHS.get(t, t) for t in caps.tendon_models)
+
+
+def represents_table(models: Mapping[str, Any] | None = None) -> str:
+    """The markdown table "What each model represents" from the models' capabilities.
+
+    One row per declared model of ``models`` (default ``workbench.registry.MODELS``): dimensions,
+    tendon path, where disk weights act, extensibility, torsion, tendon friction, gravity and
+    analyses.  ``docs/models.md`` holds its output (``workbench list represents`` prints it;
+    ``tests/study/test_capabilities.py`` checks the docs against it).
+    """
+    if models is None:
+        from ..registry import MODELS as models
+    head = ("model", "dimensions", "tendon path", "disk weights", "extensibility", "torsion", "tendon friction",
+            "gravity", "analyses")
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for name, info in models.items():
+        c = info.capabilities
+        if c is None:
+            continue
+        cells = (f"`{name}`", " / ".join(c.dimensions), _tendon_path(c), c.disk_weights,
+                 " + ".join(c.extensibility) or "inextensible", "yes" if c.torsion else "no",
+                 "yes" if c.tendon_friction else "none", _GRAVITY.get(c.gravity, c.gravity), " / ".join(c.analyses))
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
