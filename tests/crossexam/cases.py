@@ -26,6 +26,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from workbench.models.cc import actuation_from_arc
 from workbench.robot import LoadCase, TendonActuation
 from workbench.robot.presets import build_preset
 
@@ -114,9 +115,12 @@ def _draw(rng: np.random.Generator, seed: int, index: int) -> XCase:
         for j in range(ns):
             for t in rng.choice(k, size=int(rng.integers(1, 3)) if spatial else 1, replace=False):
                 theta[j * k + t] = rng.uniform(0.1, 0.9) / ns
-    if length_mode:
-        load["length_changes"] = [float(-off * th * L * 0.5) for th in theta]
-        load["pretension"] = float(round(rng.uniform(0.2, 0.5) * EI / (L * off) * 0.1, 6))
+    if length_mode:  # the CC length changes of one arc per section (antagonists let out), plus pretension
+        load["pretension"] = float(round(rng.uniform(0.02, 0.05) * EI / (L * off), 6))
+        phi = rng.uniform(0.0, 2.0 * math.pi, ns) if spatial else rng.choice((0.0, math.pi), ns)
+        kappa = rng.uniform(0.1, 0.9, ns) / ns / sec_len * (rng.random(ns) < 0.85)
+        act = actuation_from_arc(build_preset("steel_rod", **robot), kappa, phi, "length", load["pretension"])
+        load["length_changes"] = [float(x) for x in act.values]
     else:
         load["tensions"] = [float(th * EI / (L * off)) for th in theta]
     if rng.random() < 0.35:

@@ -36,7 +36,7 @@ from workbench.study.capabilities import case_features, unsupported
 
 from .cases import XCase, build
 
-__all__ = ["COSSERAT_TOL", "Side", "Spec", "TIMEOUT", "solve_side"]
+__all__ = ["COSSERAT_TOL", "Side", "Spec", "TIMEOUT", "refusal", "solve_side"]
 
 #: Longest accepted single solve [s] (diagnostics.md: a Cosserat spatial length-mode case ran > 600 s).
 TIMEOUT = 20.0
@@ -129,6 +129,13 @@ def _solves(spec: Spec, case: XCase):
                 for k in (1, 2)]
     return [(_with_disks(robot, k * spec.disks), SolverOptions(n_elements=k * spec.per * spec.disks * ns,
                                                                tendon_model="eyelets", **tight)) for k in (1, 2)]
+
+
+def refusal(spec: Spec, case: XCase) -> str:
+    """The capability check's first objection to ``spec`` on ``case`` (``""``: none)."""
+    _, load = build(case)
+    robot, opts = _solves(spec, case)[-1]
+    return _capability(spec.model, robot, load, opts.tendon_model)
 
 
 @functools.lru_cache(maxsize=None)

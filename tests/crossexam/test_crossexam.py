@@ -22,11 +22,11 @@ from workbench.study.spec import parse_study
 
 from .cases import build, generate
 from .pairs import KNOWN, PAIRS, compare, known_class, pairs_for, side_study
-from .sides import Spec, solve_side
+from .sides import Spec, refusal, solve_side
 
 #: Default tier: cases of seed 0 (indices), chosen cheap: no spatial length mode (its Cosserat
 #: solve is the slow case of diagnostics.md, "Dropped silently"), see DEFAULT_SECONDS.
-DEFAULT_CASES = tuple(range(0, 30))
+DEFAULT_CASES = (4, 5, 7, 9, 11, 13, 16, 21, 23, 26, 28)
 #: Slow tier: seed 1, cases 0 .. SLOW_COUNT - 1.
 SLOW_COUNT = 300
 
@@ -36,7 +36,7 @@ def _params(seed: int, indices, slow: bool):
         case = generate(seed, 1, i)[0]
         for pair in pairs_for(case, slow):
             k = known_class(case, pair)
-            marks = [pytest.mark.xfail(strict=True, reason=KNOWN[k])] if k else []
+            marks = [pytest.mark.xfail(strict=not slow, reason=KNOWN[k])] if k else []
             if slow:
                 marks.append(pytest.mark.slow)
             yield pytest.param(case, pair, id=f"{case.name}-{pair}", marks=marks)
@@ -75,10 +75,18 @@ def test_default_cases_deflect_moderately():
 
 
 def test_failure_message_carries_a_study_file_that_validates():
-    """The study file of each side of a failing case parses and passes the capability check."""
-    case = next(c for c in generate(0, 30) if not c.tilted and c.offset_tip is None and "spatial" in c.tags)
-    for pair in pairs_for(case):
-        for side in (PAIRS[pair].a(case), PAIRS[pair].b(case)):
-            text = side_study(case, side)
-            study = parse_study(tomllib.loads(text), source=f"{case.name}:{side.label}")
-            assert list(study.models) == [side.model], text
+    """The study file of every side the capability check accepts parses and passes ``validate``'s
+    checks (cases the steel_rod preset expresses exactly: no tilt, no taper)."""
+    checked = 0
+    for case in generate(0, 12):
+        if case.tilted or case.offset_tip is not None:
+            continue
+        for pair in pairs_for(case, slow=True):
+            for spec in (PAIRS[pair].a(case), PAIRS[pair].b(case)):
+                if refusal(spec, case):
+                    continue
+                text = side_study(case, spec)
+                study = parse_study(tomllib.loads(text), source=f"{case.name}:{spec.label}")
+                assert list(study.models) == [spec.model], text
+                checked += 1
+    assert checked >= 10
