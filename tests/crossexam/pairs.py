@@ -102,8 +102,9 @@ KNOWN: dict[str, str] = {
     "ancf heavy disks": "issue 28 finding 3 (ANCF smears the disk weights), fixed on branch caps28",
     "ancf tapered offset": "new finding of tests/crossexam: ANCF's continuum tendon with a tapered offset converges "
                            "at order ~2, not its declared 4, so its Richardson bar is ~5x too small; no fix branch",
-    "cosserat length mode under load": "issue 28 diagnostics 'Dropped silently': the Cosserat length-mode solve "
-                                       "takes > TIMEOUT under gravity / external loads; no fix branch named",
+    "length mode under load / 3 sections": "issue 28 diagnostics 'Dropped silently' (Cosserat > 600 s on a spatial "
+                                           "length-mode case): Cosserat, and beam3d at 20 disks, length-mode solves "
+                                           "exceed sides.TIMEOUT under loads or with 3 sections; no fix branch named",
 }
 
 
@@ -112,7 +113,7 @@ def known_class(case: XCase, pair: str) -> str | None:
     models = pair.split("~")[0], pair.split("~")[1].split()[0]
     external = case.has("force") or case.has("torque") or "gravity" in dict(case.robot)
     if "cosserat" in models and case.has("length") and (external or dict(case.robot)["n_sections"] == 3):
-        return "cosserat length mode under load"
+        return "length mode under load / 3 sections"
     if "spring_link" in models:
         if case.has("disks"):
             return "spring_link heavy disks"

@@ -24,8 +24,9 @@ from .cases import build, generate
 from .pairs import KNOWN, PAIRS, compare, known_class, pairs_for, side_study
 from .sides import Spec, refusal, solve_side
 
-#: Default tier: cases of seed 0 (indices), chosen cheap: no spatial length mode (its Cosserat
-#: solve is the slow case of diagnostics.md, "Dropped silently"), see DEFAULT_SECONDS.
+#: Default tier: cases of seed 0 (indices), chosen to cover every pair, both materials, 1-3
+#: sections, planar and spatial, both modes, every load kind, and cheap: no length mode under
+#: load (the slow Cosserat solve of diagnostics.md, "Dropped silently"); wall time in docs/models.md.
 DEFAULT_CASES = (4, 5, 7, 9, 11, 13, 16, 21, 23, 26, 28)
 #: Slow tier: seed 1, cases 0 .. SLOW_COUNT - 1.
 SLOW_COUNT = 300
