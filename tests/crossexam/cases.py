@@ -30,7 +30,7 @@ from workbench.models.cc import actuation_from_arc
 from workbench.robot import LoadCase, TendonActuation
 from workbench.robot.presets import build_preset
 
-__all__ = ["MATERIALS", "XCase", "build", "generate", "study_toml", "TILT"]
+__all__ = ["MATERIALS", "XCase", "build", "diagnostic_cases", "generate", "study_toml", "TILT"]
 
 #: Rod materials: preset parameters per material and the section length [m].
 MATERIALS = {
@@ -162,6 +162,20 @@ def _freeze(v):
 def generate(seed: int, count: int, start: int = 0) -> list[XCase]:
     """Cases ``start .. start + count - 1`` of ``seed`` (pure: see the module docstring)."""
     return [_draw(np.random.default_rng((seed, i)), seed, i) for i in range(start, start + count)]
+
+
+def diagnostic_cases() -> list[XCase]:
+    """The fixed cases of issue 28's diagnostics.md that the random draw does not reach (seed -1).
+
+    0: the branch jump -- Rao NiTi, 3 sections, tensions 0.69 N (section 1's -30 deg tendon) and
+    3.11 N (section 3's 90 deg tendon), tip force (0, -0.259, 0) N (tendon order here: 90, 210, 330 deg).
+    """
+    mat, sec = MATERIALS["niti"]
+    robot = dict(mat, length=3 * sec, n_sections=3, tendon_count=3, first_tendon_angle=math.pi / 2,
+                 disks_per_section=10, tendon_stiffness=1e7)
+    load = dict(tensions=(0.0, 0.0, 0.69, 0.0, 0.0, 0.0, 3.11, 0.0, 0.0), tip_force=(0.0, -0.259, 0.0))
+    return [XCase(-1, 0, tuple(sorted(robot.items())), tuple(sorted(load.items())),
+                  tags=("niti", "3sec", "spatial", "tension", "force", "branch_jump"))]
 
 
 def _toml_value(v) -> str:

@@ -20,7 +20,7 @@ import pytest
 
 from workbench.study.spec import parse_study
 
-from .cases import build, generate
+from .cases import build, diagnostic_cases, generate
 from .pairs import KNOWN, PAIRS, TIMING, compare, known_class, pairs_for, side_study
 from .sides import Spec, refusal, solve_side
 
@@ -51,6 +51,21 @@ def test_pair_agrees_or_one_refuses(case, pair):
 
 @pytest.mark.parametrize("case, pair", list(_params(1, range(SLOW_COUNT), True)))
 def test_pair_agrees_or_one_refuses_slow_tier(case, pair):
+    v = compare(case, pair)
+    assert v.ok, v.message()
+
+
+def _diagnostic_params():
+    for case in diagnostic_cases():
+        for pair in pairs_for(case, slow=True):
+            k = known_class(case, pair)
+            marks = [pytest.mark.slow] + ([pytest.mark.xfail(strict=True, reason=KNOWN[k])] if k else [])
+            yield pytest.param(case, pair, id=f"{case.name}-{pair}", marks=marks)
+
+
+@pytest.mark.parametrize("case, pair", list(_diagnostic_params()))
+def test_diagnostic_case_pair_agrees_or_one_refuses(case, pair):
+    """The fixed cases of diagnostics.md (:func:`~tests.crossexam.cases.diagnostic_cases`)."""
     v = compare(case, pair)
     assert v.ok, v.message()
 
