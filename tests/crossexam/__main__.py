@@ -14,8 +14,8 @@ import argparse
 import sys
 import time
 
-from .cases import generate
-from .pairs import PAIRS, compare, known_class, pairs_for, relative
+from tests.crossexam.cases import generate
+from tests.crossexam.pairs import PAIRS, compare, known_class, pairs_for, relative
 
 
 def main(argv: list[str]) -> int:

@@ -25,7 +25,7 @@ from workbench.models.discretization import DYNAMIC_ORDER, richardson_error
 from workbench.robot import LoadCase, TendonActuation
 from workbench.robot.presets import build_preset
 
-from .cases import MATERIALS
+from tests.crossexam.cases import MATERIALS
 
 __all__ = ["DYNAMIC_CASES", "DynSide", "amplitude", "dynamic_pair", "dynamic_side", "dynamic_study"]
 

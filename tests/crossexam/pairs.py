@@ -26,10 +26,10 @@ from typing import Callable
 
 import numpy as np
 
-from .cases import XCase, build, study_toml
-from .sides import COSSERAT_TOL, Side, Spec, solve_side
+from tests.crossexam.cases import XCase, build, study_toml
+from tests.crossexam.sides import COSSERAT_TOL, Side, Spec, solve_side
 
-__all__ = ["KNOWN", "PAIRS", "TIMING", "Pair", "Verdict", "compare", "known_class", "pairs_for", "side_study"]
+__all__ = ["KNOWN", "PAIRS", "TIMING", "Pair", "Verdict", "compare", "known_class", "pairs_for", "relative", "side_study"]
 
 NUMERICAL_FLOOR = 1e-6  # [L]
 

@@ -34,7 +34,7 @@ from workbench.models import ModelFailure, SolverOptions, get_model
 from workbench.models.discretization import richardson_error
 from workbench.study.capabilities import case_features, unsupported
 
-from .cases import XCase, build
+from tests.crossexam.cases import XCase, build
 
 __all__ = ["COSSERAT_TOL", "Side", "Spec", "TIMEOUT", "refusal", "solve_side"]
 

@@ -20,9 +20,9 @@ import pytest
 
 from workbench.study.spec import parse_study
 
-from .cases import build, diagnostic_cases, generate
-from .pairs import KNOWN, PAIRS, TIMING, compare, known_class, pairs_for, side_study
-from .sides import Spec, refusal, solve_side
+from tests.crossexam.cases import build, diagnostic_cases, generate
+from tests.crossexam.pairs import KNOWN, PAIRS, TIMING, compare, known_class, pairs_for, side_study
+from tests.crossexam.sides import Spec, refusal, solve_side
 
 #: Default tier: cases of seed 0 (indices), chosen to cover every pair, both materials, 1-3
 #: sections, planar and spatial, both modes, every load kind, and cheap: no length mode under

@@ -13,7 +13,7 @@ import tomllib
 
 from workbench.study.spec import parse_study
 
-from .dynamic import DYNAMIC_CASES, amplitude, dynamic_pair, dynamic_side, dynamic_study
+from tests.crossexam.dynamic import DYNAMIC_CASES, amplitude, dynamic_pair, dynamic_side, dynamic_study
 
 #: (side a, side b): (model, tendon model, elements of the coarse run, time step of the coarse run [s])
 PAIRS = {"ancf~spring_link": (("ancf", "continuum", 8, 1e-3), ("spring_link", "continuum", 16, 1e-3)),
