@@ -169,13 +169,20 @@ def diagnostic_cases() -> list[XCase]:
 
     0: the branch jump -- Rao NiTi, 3 sections, tensions 0.69 N (section 1's -30 deg tendon) and
     3.11 N (section 3's 90 deg tendon), tip force (0, -0.259, 0) N (tendon order here: 90, 210, 330 deg).
+    1: disk weights -- planar Rao NiTi, 2 sections, horizontal base, 10 x 0.5 g disks per section, g.
+    2: length mode -- planar Rao NiTi, 1 section, tendon EA 2e4 N, commands (0, -5 mm), pretension 0.32 N.
     """
     mat, sec = MATERIALS["niti"]
-    robot = dict(mat, length=3 * sec, n_sections=3, tendon_count=3, first_tendon_angle=math.pi / 2,
-                 disks_per_section=10, tendon_stiffness=1e7)
-    load = dict(tensions=(0.0, 0.0, 0.69, 0.0, 0.0, 0.0, 3.11, 0.0, 0.0), tip_force=(0.0, -0.259, 0.0))
-    return [XCase(-1, 0, tuple(sorted(robot.items())), tuple(sorted(load.items())),
-                  tags=("niti", "3sec", "spatial", "tension", "force", "branch_jump"))]
+    base = dict(mat, disks_per_section=10, tendon_stiffness=1e7)
+    jump = dict(base, length=3 * sec, n_sections=3, tendon_count=3, first_tendon_angle=math.pi / 2)
+    disks = dict(base, length=2 * sec, n_sections=2, tendon_count=2, gravity=9.81, base_orientation="horizontal",
+                 disk_mass=0.5e-3)
+    length = dict(base, length=sec, n_sections=1, tendon_count=2, tendon_stiffness=2e4)
+    rows = [(jump, dict(tensions=(0.0, 0.0, 0.69, 0.0, 0.0, 0.0, 3.11, 0.0, 0.0), tip_force=(0.0, -0.259, 0.0)),
+             ("niti", "3sec", "spatial", "tension", "force", "branch_jump")),
+            (disks, dict(tensions=(0.0, 0.0, 0.0, 0.0)), ("niti", "2sec", "planar", "tension", "g_horizontal", "disks")),
+            (length, dict(length_changes=(0.0, -5e-3), pretension=0.32), ("niti", "1sec", "planar", "length"))]
+    return [XCase(-1, i, tuple(sorted(r.items())), tuple(sorted(ld.items())), tags=t) for i, (r, ld, t) in enumerate(rows)]
 
 
 def _toml_value(v) -> str:
