@@ -59,15 +59,18 @@ class RampPolicy:
         The ramp is done once ``lam >= 1 - end_tolerance``.
     max_motion : float
         Path check (attempts returning a :class:`PathPoint`): a step whose measure moves more
-        than this (Euclidean norm) is rejected.
+        than this (Euclidean norm) is rejected (``inf``: no cap).
     jump_ratio, jump_floor : float
-        Path check: a step whose measure lands farther than ``max(jump_ratio * motion,
+        Path check: a step whose measure lands farther than ``max(jump_ratio * |predicted move|,
         jump_floor)`` from the secant prediction of the last two accepted points is rejected
-        (``motion``: the step's own move; the secant error of a smooth path is of second order
-        in the step, a jump's is the whole move).
+        (the secant error of a smooth path is of second order in the step, a jump's is the whole
+        move), unless halving the step halved its move too (a smooth path that the secant of
+        a long earlier step mispredicts: its motion per load factor at most 1.5 x the rejected
+        step's, where a jump's doubles).  A change of the stiffness sign is rejected as well.
     jump_min_increment : float
         A path-check rejection that would halve the increment below this is accepted instead
-        and recorded as a ``"jump"`` event.
+        and recorded as an event (``"jump"``, or ``"bifurcation"`` when only the stiffness sign
+        changed).
     """
 
     first_increment: float = 1.0
@@ -204,10 +207,12 @@ def load_ramp(
             ok = out is not False
         except failure as err:  # type: ignore[misc] - an empty tuple catches nothing
             ok, cause = False, err
-        jump = ok and isinstance(out, PathPoint) and path.jumps(lam, trial, out)
+        leaves = path.leaves(lam, trial, out) if ok and isinstance(out, PathPoint) else ""
+        jump = bool(leaves)
         if jump and 0.5 * inc < p.jump_min_increment:
-            path.record("jump", lam)  # unresolved down to the smallest step: a limit point / snap
-            path.history.clear()  # the new branch starts a new history
+            path.record(leaves, lam)  # unresolved down to the smallest step: a limit point, snap or bifurcation
+            if leaves == "jump":
+                path.history.clear()  # the new branch starts a new history
             jump = False
         if not ok or jump:
             failed += 1
@@ -245,30 +250,30 @@ class _Path:
         if start is not None:
             self.accept(0.0, start)
 
-    def jumps(self, lam: float, trial: float, point: PathPoint) -> bool:
-        """Whether the step ``lam -> trial`` landing on ``point`` leaves the path."""
+    def leaves(self, lam: float, trial: float, point: PathPoint) -> str:
+        """How the step ``lam -> trial`` landing on ``point`` leaves the path: ``"jump"``,
+        ``"bifurcation"`` (continuous, but the stiffness sign changed) or ``""`` (it follows it)."""
+        sign_changed = bool(point.stiffness_sign and self.sign and point.stiffness_sign != self.sign)
         if not self.history:
-            return False
+            return "bifurcation" if sign_changed else ""
         m = np.asarray(point.measure, dtype=float)
         la, ma = self.history[-1]
         motion = float(np.linalg.norm(m - ma))
         if not math.isfinite(motion) or motion > self.policy.max_motion:
-            return True
-        if point.stiffness_sign and self.sign and point.stiffness_sign != self.sign:
-            return True
-        if len(self.history) < 2:
-            return False
-        lb, mb = self.history[-2]
-        move = (trial - la) / (la - lb) * (ma - mb)
-        error = float(np.linalg.norm(m - ma - move))
-        if error <= max(self.policy.jump_ratio * float(np.linalg.norm(move)), self.policy.jump_floor):
-            return False
-        # far from the secant: a jump moves as far for any step, a smooth path that the stale
-        # secant mispredicts moves about half as far for half the step
-        rate = motion / (trial - la)
-        smooth = self.rejected is not None and self.rejected[0] == la and rate <= 1.5 * self.rejected[1]
-        self.rejected = (la, rate)
-        return not smooth
+            return "jump"
+        if len(self.history) >= 2:
+            lb, mb = self.history[-2]
+            move = (trial - la) / (la - lb) * (ma - mb)
+            error = float(np.linalg.norm(m - ma - move))
+            if error > max(self.policy.jump_ratio * float(np.linalg.norm(move)), self.policy.jump_floor):
+                # far from the secant: a jump moves as far for any step, a smooth path that the
+                # stale secant mispredicts moves about half as far for half the step
+                rate = motion / (trial - la)
+                smooth = self.rejected is not None and self.rejected[0] == la and rate <= 1.5 * self.rejected[1]
+                self.rejected = (la, rate)
+                if not smooth:
+                    return "jump"
+        return "bifurcation" if sign_changed else ""
 
     def accept(self, lam: float, out: object) -> None:
         """Append an accepted point (a bool / None attempt result keeps no history)."""
@@ -276,8 +281,6 @@ class _Path:
             return
         self.history.append((lam, np.asarray(out.measure, dtype=float)))
         del self.history[:-2]
-        if out.stiffness_sign and self.sign and out.stiffness_sign != self.sign:
-            self.record("bifurcation", lam)
         self.sign = out.stiffness_sign or self.sign
 
     def record(self, kind: str, lam: float) -> None:

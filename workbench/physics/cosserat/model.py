@@ -6,7 +6,9 @@ rest lengths from :func:`~workbench.physics.tendon_loads.tendon_rest_lengths`, c
 straight rod as the first quasi-Newton matrix), each ``l(T)`` a shooting solve warm-started from
 the previous one.  Outputs (base frame): positions at ``options.n_stations`` stations (dense
 output of the final integration), tip frame ``R(L)``, ``length_change`` = integral of
-``|v| - 1``, ``tip_twist`` = integral of ``u_3``, tensions; ``extras``: ``newton_iterations``,
+``|v| - 1``, ``tip_twist`` = integral of ``u_3``, tensions; the load path (``SolverInfo.path_steps`` /
+``path_event`` / ``path_event_fraction``: :meth:`~workbench.physics.cosserat.shooting.Shooter.go_to`'s
+ramps, the event of the first one that had one); ``extras``: ``newton_iterations``,
 ``load_steps``, ``shots`` (integrated trajectories) and ``tip_residual``.  Checked by
 ``tests/physics/test_cosserat_model.py``.
 """
@@ -116,8 +118,11 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     frame[:3, 3] = tip[0, 0:3]
     U, _, Vt = np.linalg.svd(frame[:3, :3])
     frame[:3, :3] = U @ Vt
+    events = [r for r in shooter.ramps if r.path_event]
     info = SolverInfo(converged=True, iterations=shooter.newton_iterations, wall_time=time.perf_counter() - t0,
-                      message=f"{attempts} load steps")
+                      message=f"{attempts} load steps", path_steps=sum(r.accepted for r in shooter.ramps),
+                      path_event=events[0].path_event if events else "",
+                      path_event_fraction=events[0].path_event_fraction if events else float("nan"))
     return PhysicsResult(
         model="cosserat", stations=stations, positions=Y[:, 0, 0:3], tip_frame=frame,
         length_change=float(tip[0, N_BASE] - robot.length), tendon_tensions=T, tip_twist=float(tip[0, N_BASE + 1]),
