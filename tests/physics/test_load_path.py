@@ -92,3 +92,82 @@ def test_stiffness_sign_change_on_a_continuous_path_is_a_bifurcation():
     assert info.path_event == "bifurcation"
     assert info.path_event_fraction <= 0.3 <= info.path_event_fraction + RampPolicy().jump_min_increment
     assert s.x == pytest.approx(s.root(-10.0, 1.0))
+
+
+# --------------------------------------------------------------------------- the models
+
+def _rao_niti(n_sections: int, axial_stiffness: float = 1e7, disk_mass: float = 0.0, **robot_kw):
+    """The Rao et al. NiTi robot of ``../shared/notes/peer-benchmark.md``: 0.2 m sections, d 1.4 mm,
+    E 54 GPa, 3 tendons at 90, -30, 210 deg, offset 10 mm, 10 disks per section."""
+    from workbench.robot import CrossSection, Robot, Section, TendonGroup
+
+    rod = CrossSection.circular(1.4e-3, 54e9, 6450.0, 0.33)
+    tg = TendonGroup(angles=(math.pi / 2, -math.pi / 6, 7 * math.pi / 6), offset=0.01, axial_stiffness=axial_stiffness)
+    return Robot(sections=tuple(Section(0.2, rod, tg, n_disks=10, disk_mass=disk_mass) for _ in range(n_sections)),
+                 **robot_kw)
+
+
+JUMP_TENSIONS = (0.0, 0.69, 0.0, 0.0, 0.0, 0.0, 3.11, 0.0, 0.0)
+JUMP_TIP_FORCE = (0.0, -0.259, 0.0)
+
+
+def _continuation_tip(robot, load, tensions, steps: int = 20) -> np.ndarray:
+    """Tip of the Cosserat rod reached in ``steps`` equal load steps (tensions and tip force
+    together), each Newton started from the secant of the last two: the path from the unloaded rod,
+    independent of the load ramp."""
+    from workbench.physics.cosserat.problem import rod_problem
+    from workbench.physics.cosserat.rod import integrate_segments
+    from workbench.physics.cosserat.shooting import Shooter, straight_rod_base_wrench
+
+    pb = rod_problem(robot, load)
+    sh = Shooter(pb, 1e-10)
+    T = np.asarray(tensions, dtype=float)
+    prev, x = None, np.zeros(6)
+    for k in range(1, steps + 1):
+        lam = k / steps
+        guess = straight_rod_base_wrench(pb, lam) if prev is None else 2.0 * x - prev
+        prev, x = x, sh.newton(guess, lam, lam * T)
+    tip, _ = integrate_segments(pb, x[None], T, 1.0, sh.rtol)
+    return tip[0, 0:3]
+
+
+@pytest.mark.slow
+def test_cosserat_follows_the_load_path_in_the_branch_jump_case():
+    # diagnostics.md "Branch jump": the whole load in one step landed on a curled state 1.2 L away
+    from workbench.models import SolverOptions
+    from workbench.physics.cosserat import run
+    from workbench.robot import LoadCase, TendonActuation
+
+    robot = _rao_niti(3)
+    load = LoadCase(actuation=TendonActuation("tension", JUMP_TENSIONS), tip_force=JUMP_TIP_FORCE)
+    res = run(robot, load, SolverOptions(newton_tolerance=1e-10))
+    ref = _continuation_tip(robot, load, JUMP_TENSIONS)
+    assert np.linalg.norm(res.positions[-1] - ref) < 1e-4 * robot.length
+    assert res.solver.path_steps > 1 and res.solver.path_event == ""  # refined, and the path is continuous
+
+
+HANG_COMMANDS = (-3e-3, 0.0, 0.0, 0.0, -2e-3, 0.0)
+
+
+def _hang_case():
+    """diagnostics.md "Dropped silently": spatial, length mode, tendon EA 2e4 N, pretension 0.3 N,
+    tip force 0.05 N, gravity along base x (horizontal base), heavy (0.5 g) disks; 2 sections."""
+    from workbench.robot import LoadCase, TendonActuation
+    from workbench.robot.orientation import base_rotation_for
+
+    robot = _rao_niti(2, axial_stiffness=2e4, disk_mass=5e-4, gravity=(0.0, 0.0, -9.81),
+                      base_rotation=base_rotation_for("horizontal"))
+    load = LoadCase(actuation=TendonActuation("length", HANG_COMMANDS, pretension=0.3), tip_force=(0.0, 0.05, 0.0))
+    return robot, load
+
+
+@pytest.mark.slow
+def test_cosserat_length_mode_ends_within_its_load_step_budget():
+    # the length solve's tension solves share one budget of max_load_steps ramp attempts: with 6
+    # the case (about 40 tension solves to converge) stops after at most 6 shooting solves
+    from workbench.models import ModelFailure, SolverOptions
+    from workbench.physics.cosserat import run
+
+    robot, load = _hang_case()
+    with pytest.raises(ModelFailure, match="length-controlled tendon solve used all max_load_steps=6 load steps"):
+        run(robot, load, SolverOptions(max_load_steps=6))

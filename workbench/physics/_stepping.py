@@ -33,7 +33,7 @@ import numpy as np
 
 __all__ = [
     "ContinuationInfo", "LoadRampInfo", "PathPoint", "RampExhausted", "RampPolicy", "RampStalled",
-    "ancf_load_ramp", "continuation", "load_ramp",
+    "ancf_load_ramp", "continuation", "load_ramp", "path_fields",
 ]
 
 
@@ -79,7 +79,7 @@ class RampPolicy:
     cap: Literal["one", "remaining"] = "one"
     min_increment: float | None = 1e-6
     end_tolerance: float = 0.0
-    max_motion: float = 1.0
+    max_motion: float = 1.5
     jump_ratio: float = 1.0
     jump_floor: float = 0.02
     jump_min_increment: float = 1.0 / 128
@@ -236,6 +236,16 @@ def load_ramp(
                 inc = min(1.0 - lam, p.growth * inc)
     return LoadRampInfo(attempts=attempts, accepted=accepted, failed=failed, smallest_increment=smallest,
                         path_event=path.event, path_event_fraction=path.fraction, rejected_jumps=jumps)
+
+
+def path_fields(*infos: LoadRampInfo | None) -> dict[str, object]:
+    """``path_steps``, ``path_event``, ``path_event_fraction`` of :class:`~workbench.models.result.SolverInfo`
+    from the ramps of one solve (``None`` entries skipped): accepted steps summed, the first event."""
+    done = [i for i in infos if i is not None]
+    events = [i for i in done if i.path_event]
+    return {"path_steps": sum(i.accepted for i in done),
+            "path_event": events[0].path_event if events else "",
+            "path_event_fraction": events[0].path_event_fraction if events else math.nan}
 
 
 class _Path:

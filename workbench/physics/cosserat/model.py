@@ -22,6 +22,7 @@ import numpy as np
 from ...models.inputs import check_model_inputs
 from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ...robot import LoadCase, Robot
+from .._stepping import path_fields
 from ..tendon_loads import solve_length_controlled, tendon_rest_lengths
 from .problem import RodProblem, rod_problem
 from .rod import N_BASE, integrate_segments
@@ -65,8 +66,18 @@ def _tensions(pb: RodProblem, load: LoadCase, options: SolverOptions, shooter: S
     shooter.tol = max(1e-13, 1e-3 * shooter.tol)
     shooter.rtol = max(1e-13, 0.1 * shooter.tol)
 
+    budget = options.max_load_steps
+    solves = [0]
+
     def equilibrium(T: np.ndarray) -> np.ndarray:
-        attempts[0] += shooter.go_to(T, options.max_load_steps)
+        # one budget of load-ramp attempts (failed ones included) for the whole length solve: every
+        # tension solve costs at least one, so it ends after at most max_load_steps shooting solves
+        left = budget - shooter.attempts
+        if left <= 0:
+            raise ShootingFailure(f"length-controlled tendon solve used all max_load_steps={budget} load steps "
+                                  f"in {solves[0]} tension solves without converging")
+        solves[0] += 1
+        attempts[0] += shooter.go_to(T, left)
         tip, _ = integrate_segments(pb, shooter.x[None], T, 1.0, shooter.rtol)
         return tip[0, N_BASE + 2:]
 
@@ -118,11 +129,8 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     frame[:3, 3] = tip[0, 0:3]
     U, _, Vt = np.linalg.svd(frame[:3, :3])
     frame[:3, :3] = U @ Vt
-    events = [r for r in shooter.ramps if r.path_event]
     info = SolverInfo(converged=True, iterations=shooter.newton_iterations, wall_time=time.perf_counter() - t0,
-                      message=f"{attempts} load steps", path_steps=sum(r.accepted for r in shooter.ramps),
-                      path_event=events[0].path_event if events else "",
-                      path_event_fraction=events[0].path_event_fraction if events else float("nan"))
+                      message=f"{attempts} load steps", **path_fields(*shooter.ramps))
     return PhysicsResult(
         model="cosserat", stations=stations, positions=Y[:, 0, 0:3], tip_frame=frame,
         length_change=float(tip[0, N_BASE] - robot.length), tendon_tensions=T, tip_twist=float(tip[0, N_BASE + 1]),

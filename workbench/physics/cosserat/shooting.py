@@ -77,6 +77,7 @@ class Shooter:
         self.point = _Point(0.0, np.zeros(pb.n_tendons), np.zeros(6))
         self.newton_iterations = 0
         self.shots = 0
+        self.attempts = 0  # load-ramp attempts of every go_to, failed ones included
         self.sign = 0  # sign of det of the shooting Jacobian at the last converged Newton solve
         self.ramps: list[LoadRampInfo] = []  # every go_to's ramp outcome, in order
         self._tip = np.zeros(0)
@@ -171,6 +172,7 @@ class Shooter:
         def attempt(t: float) -> bool | PathPoint:
             lam = start.lam + t * (1.0 - start.lam)
             ta = start.tau + t * (tau - start.tau)
+            self.attempts += 1
             try:
                 x = self.newton(predict(t, lam), lam, ta)
             except ShootingFailure:
