@@ -54,7 +54,7 @@ from ._ancf_geometry import (arc_length, centreline, element_lengths, gauss_poin
                              offset_curve_length, offset_points)
 from ..models.backbone_frames import backbone_series, frame_stride
 from ._ancf_problem import AncfProblem, PlanarModelError, build_problem
-from ._stepping import ancf_load_ramp
+from ._stepping import PathPoint, ancf_load_ramp, path_fields
 from .tendon_loads import solve_length_controlled, tendon_path_compliance, tendon_rest_lengths, tension_from_stretch
 
 __all__ = ["run", "PlanarModelError"]
@@ -261,12 +261,19 @@ class _StaticDriver:
         self.newton = 0
         self.ext = 0.0
         self.T = np.zeros(len(sysm.pb.tendons))
+        self.ramps: list = []  # the LoadRampInfo of every go_to
 
-    def _solve(self) -> None:
+    def _path_point(self) -> PathPoint:
+        """The load-path measure of the current state: tip position / L and unit tip tangent."""
+        qn = self.sysm.node_coords(self.sysm.coords())
+        return PathPoint((*(qn[-1, :2] / self.sysm.pb.L), *(qn[-1, 2:] / np.linalg.norm(qn[-1, 2:]))))
+
+    def _solve(self) -> PathPoint:
         mbs = self.sysm.mbs
         mbs.SolveStatic(self.settings, updateInitialValues=True, storeSolver=True)
         self.newton += int(mbs.sys["staticSolver"].it.newtonStepsCount)
         _check_state(self.sysm, self.sysm.coords())
+        return self._path_point()
 
     def go_to(self, ext: float, T: np.ndarray) -> None:
         """Ramp from the current (ext, T) to the given ones."""
@@ -286,11 +293,12 @@ class _StaticDriver:
 
         try:
             info = ancf_load_ramp(apply, self._solve, save, restore, max_steps=self.options.max_load_steps,
-                                  failure=(exu.SolverError, ModelFailure))
+                                  failure=(exu.SolverError, ModelFailure), start=self._path_point())
         except RuntimeError as err:
             raise ModelFailure(f"ANCF static solve failed: {err}") from err
         self.steps += info.attempts
         self.failed += info.failed
+        self.ramps.append(info)
         self.ext, self.T = ext, T.copy()
 
 
@@ -457,7 +465,8 @@ def run(
         tendon_tensions=T,
         tip_twist=0.0,
         solver=SolverInfo(converged=True, iterations=drv.newton, wall_time=wall,
-                          message=f"{drv.steps} load steps ({drv.failed} halved), {tendon_it} tendon iterations"),
+                          message=f"{drv.steps} load steps ({drv.failed} halved), {tendon_it} tendon iterations",
+                          **path_fields(*drv.ramps)),
         time=times,
         series=series,
         extras={"static_steps": float(drv.steps), "failed_steps": float(drv.failed),
