@@ -17,10 +17,12 @@ of the accepted history is rejected like a failed solve (the increment halves). 
 persists down to ``policy.jump_min_increment`` is a limit point / snap of the load path: the step
 is accepted and the event recorded (:attr:`LoadRampInfo.path_event` = ``"jump"`` and the load
 factor where it happened); a change of ``PathPoint.stiffness_sign`` between accepted steps (the
-tangent stiffness losing definiteness on a continuous path) is recorded as ``"bifurcation"``.
+tangent stiffness losing definiteness on a continuous path) is rejected the same way and, when it
+persists, recorded as ``"bifurcation"``.  Attempts returning a bool keep the plain step sequence.
 
 Checked by ``tests/physics/test_stepping.py`` (step sequences of each policy, limits, state
-restore) and, through the models, by their validation tests.
+restore), ``tests/physics/test_load_path.py`` (the path check: a fold, a smooth path, a sign
+change, the branch-jump case of issue 28) and, through the models, by their validation tests.
 """
 
 from __future__ import annotations
@@ -91,6 +93,8 @@ class RampPolicy:
             raise ValueError(f"growth must be >= 1 and grow_after >= 1, got {self.growth}, {self.grow_after}")
         if self.cap not in ("one", "remaining"):
             raise ValueError(f"cap must be 'one' or 'remaining', got {self.cap!r}")
+        if not (self.max_motion > 0 and self.jump_ratio > 0 and self.jump_floor >= 0 and self.jump_min_increment > 0):
+            raise ValueError("max_motion, jump_ratio and jump_min_increment must be > 0 and jump_floor >= 0")
 
 
 @dataclass(frozen=True)

@@ -8,8 +8,14 @@ force scale ``F_s`` and by ``F_s L``.  One Newton iteration integrates seven sho
 difference quotients see one discretisation); the step is backtracked until the residual norm
 falls.  Large loads are reached with the common load ramp (:func:`workbench.physics._stepping.load_ramp`:
 external loads and tendon tensions move together along a straight path from the last converged
-point; the first attempt is the whole way, a failure halves the increment), each Newton started
-from a secant predictor.  Checked by ``tests/physics/test_cosserat_model.py``.
+point; the first attempt is the whole way, a failure halves the increment, growth is capped at the
+load still to go), each Newton started from a secant predictor.  Each accepted solve reports its
+load-path measure (:meth:`Shooter.path_point`: tip position / L, tip tangent, and the sign of the
+shooting Jacobian's determinant, which changes where the rod's tangent stiffness loses
+definiteness); the ramp rejects a step that jumps or flips that sign (no cap on the motion of a
+step: the sign catches a first step that lands on a curled, unstable branch), so the solve follows
+the branch loaded from the straight rod.  Checked by ``tests/physics/test_cosserat_model.py`` and
+``tests/physics/test_load_path.py`` (the branch-jump case of issue 28).
 """
 
 from __future__ import annotations
