@@ -24,7 +24,7 @@ class _Cubic:
     """Equilibria ``x^3 - 3 x = g(lam)`` with ``g(lam) = -2.5 + 5 lam`` (or another ``g``); a solve
     lands on the real root nearest to the last state (a Newton solve started there).  The branch
     ``x < -1`` exists while ``g <= 2``, i.e. up to ``lam = FOLD``; beyond it the state must snap to
-    ``x > 2``.  The measure is ``x / 2`` (dimensionless, order 1)."""
+    ``x > 2``.  The measure is ``x`` (dimensionless, order 1)."""
 
     def __init__(self, g=lambda lam: -2.5 + 5.0 * lam, sign=None):
         self.g, self.sign, self.trials = g, sign, []
@@ -38,7 +38,7 @@ class _Cubic:
     def attempt(self, lam: float) -> PathPoint:
         self.trials.append(lam)
         self.x = self.root(self.x, lam)
-        return PathPoint((self.x / 2.0,), self.sign(lam) if self.sign else 0)
+        return PathPoint((self.x,), self.sign(lam) if self.sign else 0)
 
     def save(self) -> float:
         return self.x
@@ -49,7 +49,7 @@ class _Cubic:
 
 def _ramp(s: _Cubic, policy: RampPolicy = RampPolicy(), max_attempts: int = 200):
     return load_ramp(s.attempt, s.save, s.restore, max_attempts=max_attempts, policy=policy,
-                     start=PathPoint((s.x / 2.0,), s.sign(0.0) if s.sign else 0))
+                     start=PathPoint((s.x,), s.sign(0.0) if s.sign else 0))
 
 
 def test_snap_through_is_refined_and_recorded_with_its_load_fraction():
@@ -79,9 +79,9 @@ def test_smooth_path_keeps_the_policy_step_sequence():
 
 
 def test_smooth_large_motion_is_split_by_the_motion_cap_without_event():
-    # x from -2.10 to -3.3 (measure moves 0.6 > max_motion 0.5): halved once, no event
+    # x from -2.10 to -3.3 (measure moves 1.2 > max_motion 1.0): halved once, no event
     s = _Cubic(g=lambda lam: -2.5 - 23.0 * lam)
-    info = _ramp(s, RampPolicy(max_motion=0.5))
+    info = _ramp(s, RampPolicy(max_motion=1.0))
     assert s.trials[:2] == [1.0, 0.5] and info.path_event == "" and info.rejected_jumps == 1
     assert s.x == pytest.approx(s.root(-10.0, 1.0))
 

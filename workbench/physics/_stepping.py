@@ -81,7 +81,7 @@ class RampPolicy:
     cap: Literal["one", "remaining"] = "one"
     min_increment: float | None = 1e-6
     end_tolerance: float = 0.0
-    max_motion: float = 1.5
+    max_motion: float = 2.0
     jump_ratio: float = 1.5
     jump_floor: float = 0.02
     jump_min_increment: float = 1.0 / 128
