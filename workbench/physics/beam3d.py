@@ -49,7 +49,7 @@ import numpy as np
 from ..models.inputs import check_model_inputs
 from ..models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ..robot import LoadCase, Robot
-from ._stepping import PathPoint, RampExhausted, RampPolicy, RampStalled, load_ramp, path_fields
+from ._stepping import LoadRampInfo, PathPoint, RampExhausted, RampPolicy, RampStalled, load_ramp, path_fields
 
 __all__ = ["run", "auto_stiffness_stages"]
 
@@ -144,8 +144,9 @@ def _check_stages(stages) -> tuple[float, ...] | str:
 
 
 def _ramp_static(system, options: SolverOptions, values_at, lam_pre_at, loads_at, *,
-                 stages=STIFFNESS_STAGES, jacobian: str = "numerical") -> tuple[int, int]:
-    """Static equilibrium at lambda = 1; returns (accepted increments, attempts), one ``SolveStatic`` each.
+                 stages=STIFFNESS_STAGES, jacobian: str = "numerical") -> tuple[int, int, LoadRampInfo]:
+    """Static equilibrium at lambda = 1; returns (accepted increments, attempts), one ``SolveStatic`` each,
+    and the outcome of the load ramp that was used (its path event: :func:`_path_point` measures the tip).
 
     ``values_at(lam)`` tendon commands, ``lam_pre_at(lam)`` pretension factor, ``loads_at(lam)``
     load factor.  With ``stages`` ("auto": :func:`auto_stiffness_stages`; axial-shear stiffness

@@ -5,9 +5,9 @@ solve ``T = EA_t max(0, (l(T) - l0) / l0)`` (:func:`workbench.physics.tendon_loa
 rest lengths from :func:`~workbench.physics.tendon_loads.tendon_rest_lengths`, compliance of the
 straight rod as the first quasi-Newton matrix), each ``l(T)`` a shooting solve warm-started from
 the previous one; all those solves share one budget of ``options.max_load_steps`` load-ramp
-attempts, so a length solve that creeps ends with :class:`ModelFailure` naming the budget (it
-ran for more than 600 s before: ``tests/physics/test_load_path.py``).  Outputs (base frame): positions at ``options.n_stations`` stations (dense
-output of the final integration), tip frame ``R(L)``, ``length_change`` = integral of
+attempts, so a length solve that creeps ends with :class:`ModelFailure` naming the budget
+(``tests/physics/test_load_path.py``).  Outputs (base frame): positions at ``options.n_stations``
+stations (dense output of the final integration), tip frame ``R(L)``, ``length_change`` = integral of
 ``|v| - 1``, ``tip_twist`` = integral of ``u_3``, tensions; the load path (``SolverInfo.path_steps`` /
 ``path_event`` / ``path_event_fraction``: :meth:`~workbench.physics.cosserat.shooting.Shooter.go_to`'s
 ramps, the event of the first one that had one); ``extras``: ``newton_iterations``,

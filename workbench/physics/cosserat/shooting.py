@@ -20,9 +20,8 @@ the branch loaded from the straight rod.  Checked by ``tests/physics/test_cosser
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -32,7 +31,8 @@ from .rod import integrate_segments
 
 __all__ = ["Shooter", "ShootingFailure", "straight_rod_base_wrench"]
 
-_POLICY = RampPolicy(first_increment=1.0, growth=2.0, grow_after=1, cap="remaining", min_increment=1e-6, max_motion=math.inf)
+_POLICY = RampPolicy(first_increment=1.0, growth=2.0, grow_after=1, cap="remaining", min_increment=1e-6,
+                     max_motion=math.inf)
 _MAX_NEWTON = 15
 
 

@@ -68,8 +68,9 @@ def static_ramp(model: Chain, options: SolverOptions, params: SpringLinkParams,
     One attempt applies the load factor and solves, re-solving while the slack/taut active set
     of length-controlled tendons changes (at most ``params.max_active_set_iterations`` passes);
     the ramp checks the load path on :func:`_path_point` (:func:`~workbench.physics._stepping.load_ramp`:
-    a jump of the last link is refined).  A failed attempt (Exudyn ``SolverError``, non-finite state, an unsettled active set) restores
-    the chain's state (:meth:`Chain.save_state`) and halves the increment (:data:`_STATIC_RAMP`);
+    a jump of the last link is refined).  A failed attempt (Exudyn ``SolverError``, non-finite state,
+    an unsettled active set) restores the chain's state (:meth:`Chain.save_state`) and halves the
+    increment (:data:`_STATIC_RAMP`);
     a non-positive rope rest length is not a solver failure and propagates.  Newton iterations
     of every attempt are counted.  Checked by ``test_max_load_steps_is_a_failure``,
     ``test_rigid_body_ramp_failure_names_the_numerical_cause`` and ``test_spring_link_layout.py``.
