@@ -175,3 +175,27 @@ def test_cosserat_length_mode_ends_within_its_load_step_budget():
     robot, load = _hang_case()
     with pytest.raises(ModelFailure, match="length-controlled tendon solve used all max_load_steps=6 load steps"):
         run(robot, load, SolverOptions(max_load_steps=6))
+
+
+def test_cosserat_ramp_doubles_capped_at_the_remaining_load(monkeypatch):
+    # deliberately changed with the path check (issue 28): growth capped at the load still to go, as
+    # beam3d and ancf3d (the cap at one retried the failed full step once more); no jump here
+    from workbench.models import SolverOptions
+    from workbench.physics.cosserat import run, shooting
+    from workbench.robot import LoadCase
+    from workbench.robot.presets.steel_rod import steel_rod
+
+    trials: list[float] = []
+    orig = shooting.Shooter.newton
+
+    def newton(self, x, lam, tau):
+        trials.append(lam)
+        out = orig(self, x, lam, tau)
+        if len(trials) - 1 in (0, 2, 4):
+            raise shooting.ShootingFailure("injected failure")
+        return out
+
+    monkeypatch.setattr(shooting.Shooter, "newton", newton)
+    res = run(steel_rod(), LoadCase(tip_force=(1.0, 0.0, 0.0)), SolverOptions())
+    assert trials == [1.0, 0.5, 1.0, 0.75, 1.0, 0.875, 1.0]
+    assert (res.solver.path_steps, res.solver.path_event) == (4, "")
