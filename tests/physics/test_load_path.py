@@ -52,14 +52,24 @@ def _ramp(s: _Cubic, policy: RampPolicy = RampPolicy(), max_attempts: int = 200)
                      start=PathPoint((s.x,), s.sign(0.0) if s.sign else 0))
 
 
+SNAP = RampPolicy(max_motion=2.0)  # the first full step has no secant: the motion cap catches it
+
+
 def test_snap_through_is_refined_and_recorded_with_its_load_fraction():
     s = _Cubic()
-    info = _ramp(s)
+    info = _ramp(s, SNAP)
     assert info.path_event == "jump"
     # the fold lies in the unresolved step: [fraction, fraction + jump_min_increment]
-    assert info.path_event_fraction <= FOLD <= info.path_event_fraction + RampPolicy().jump_min_increment
+    assert info.path_event_fraction <= FOLD <= info.path_event_fraction + SNAP.jump_min_increment
     assert s.x == pytest.approx(s.root(10.0, 1.0))  # on the far branch at the full load
     assert info.rejected_jumps > 0 and info.accepted == info.attempts - info.failed
+
+
+def test_without_motion_cap_a_first_full_step_is_not_checked():
+    # the default policy (no cap): nothing to compare the first step with, accepted as before
+    s = _Cubic()
+    info = _ramp(s)
+    assert (s.trials, info.path_event) == ([1.0], "")
 
 
 def test_without_path_measure_the_same_solver_jumps_silently():

@@ -61,7 +61,10 @@ class RampPolicy:
         The ramp is done once ``lam >= 1 - end_tolerance``.
     max_motion : float
         Path check (attempts returning a :class:`PathPoint`): a step whose measure moves more
-        than this (Euclidean norm) is rejected (``inf``: no cap).
+        than this (Euclidean norm) is rejected.  Default ``inf`` (no cap): the first step from
+        the start has no secant to be checked against, and a cap cannot tell a large legitimate
+        bend from a curl (both move a tip measure by ~2), so it costs extra steps in every
+        large-bend case; the models that need it set it (``spring_link``: 2.0).
     jump_ratio, jump_floor : float
         Path check: a step whose measure lands farther than ``max(jump_ratio * |predicted move|,
         jump_floor)`` from the secant prediction of the last two accepted points is rejected
@@ -81,7 +84,7 @@ class RampPolicy:
     cap: Literal["one", "remaining"] = "one"
     min_increment: float | None = 1e-6
     end_tolerance: float = 0.0
-    max_motion: float = 2.0
+    max_motion: float = math.inf
     jump_ratio: float = 1.5
     jump_floor: float = 0.02
     jump_min_increment: float = 1.0 / 128

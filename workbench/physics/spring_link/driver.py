@@ -35,7 +35,10 @@ _SPARSE_FROM = 16
 
 #: The static ramp's step rule: first try the full load, halve on failure, double (capped at 1)
 #: after every success, give up below an increment of 1e-6.
-_STATIC_RAMP = RampPolicy(first_increment=1.0, growth=2.0, grow_after=1, cap="one", min_increment=1e-6)
+#: a first step that moves the last link's measure by more than 2 (tip position / L and axis together) is
+#: halved: the whole load in one step curled the chain in issue 28's branch-jump case
+_STATIC_RAMP = RampPolicy(first_increment=1.0, growth=2.0, grow_after=1, cap="one", min_increment=1e-6,
+                          max_motion=2.0)
 
 _BODIES_HINT = ("; the rigid-body chain's static Newton converges only linearly under large joint reactions "
                 "(Exudyn's iteration matrix lacks their geometric stiffness; numerical, not a physical "
