@@ -90,7 +90,8 @@ UNITS: dict[str, tuple[str | None, str | UnitBy | None]] = {
     "tip_x": (None, "m"), "tip_y": (None, "m"), "tip_z": (None, "m"),
     "tip_world_x": (None, "m"), "tip_world_y": (None, "m"), "tip_world_z": (None, "m"),
     "tip_frame": (None, "m"),  # homogeneous base <- tip transform: rotation dimensionless, translation [m]
-    "iterations": (None, ""), "stations": (None, "m"), "positions": (None, "m"), "joint_angles": (None, "rad"),
+    "iterations": (None, ""), "path_steps": ("load path steps", ""), "path_event": ("load path event", None),
+    "path_event_fraction": ("load fraction of the path event", ""), "stations": (None, "m"), "positions": (None, "m"), "joint_angles": (None, "rad"),
     "time": (None, "s"), "backbone": (None, "m"), "backbone_time": (None, "s"),
 }
 

@@ -108,12 +108,24 @@ class SolverOptions:
 
 @dataclass(frozen=True)
 class SolverInfo:
-    """How a solve went."""
+    """How a solve went.
+
+    ``path_steps``: accepted steps of the static load path (0: not a ramped static solve);
+    ``path_event``: ``""`` when the path from the unloaded state was followed without an event,
+    ``"jump"`` when the state jumped at a step that could not be refined (a limit point or snap:
+    the answer may lie on another equilibrium branch than the one loaded from the start),
+    ``"bifurcation"`` when the tangent stiffness changed sign on the path;
+    ``path_event_fraction``: the load fraction of the first event (NaN without one).  Set by the
+    load ramp (:func:`workbench.physics._stepping.load_ramp`); checked by ``tests/physics/test_load_path.py``.
+    """
 
     converged: bool
     iterations: int = 0
     wall_time: float = 0.0
     message: str = ""
+    path_steps: int = 0
+    path_event: str = ""
+    path_event_fraction: float = math.nan
 
 
 @dataclass(frozen=True)

@@ -54,7 +54,7 @@ from ._ancf_geometry import (arc_length, centreline, element_lengths, gauss_poin
 from ..models.backbone_frames import backbone_series, frame_stride
 from ._ancf_problem import AncfProblem, PlanarModelError, build_problem
 from ._ancf_stress import ancf_stress_extras
-from ._stepping import ancf_load_ramp
+from ._stepping import PathPoint, ancf_load_ramp, path_fields
 from .tendon_loads import solve_length_controlled, tendon_path_compliance, tendon_rest_lengths, tension_from_stretch
 
 __all__ = ["run", "PlanarModelError"]
@@ -283,17 +283,16 @@ class _StaticDriver:
         self.options = options
         self.settings = static_settings(options, 1)
         self.settings.staticSolver.adaptiveStep = False
-        self.steps = 0
-        self.failed = 0
         self.newton = 0
         self.ext = 0.0
         self.T = np.zeros(len(sysm.pb.tendons))
+        self.ramps: list = []  # the LoadRampInfo of every go_to
 
-    def _solve(self) -> None:
+    def _solve(self) -> PathPoint:
         mbs = self.sysm.mbs
         mbs.SolveStatic(self.settings, updateInitialValues=True, storeSolver=True)
         self.newton += int(mbs.sys["staticSolver"].it.newtonStepsCount)
-        _check_state(self.sysm, self.sysm.coords())
+        return _check_state(self.sysm, self.sysm.coords())
 
     def go_to(self, ext: float, T: np.ndarray) -> None:
         """Ramp from the current (ext, T) to the given ones."""
@@ -313,15 +312,16 @@ class _StaticDriver:
 
         try:
             info = ancf_load_ramp(apply, self._solve, save, restore, max_steps=self.options.max_load_steps,
-                                  failure=(exu.SolverError, ModelFailure))
+                                  failure=(exu.SolverError, ModelFailure),
+                                  start=_check_state(self.sysm, self.sysm.coords()))
         except RuntimeError as err:
             raise ModelFailure(f"ANCF static solve failed: {err}") from err
-        self.steps += info.attempts
-        self.failed += info.failed
+        self.ramps.append(info)
         self.ext, self.T = ext, T.copy()
 
 
-def _check_state(sysm: _System, q: np.ndarray) -> None:
+def _check_state(sysm: _System, q: np.ndarray) -> PathPoint:
+    """Reject an implausible state; returns its load-path measure (tip position / L, unit tip tangent)."""
     qn = sysm.node_coords(q)
     if not np.all(np.isfinite(qn)):
         raise ModelFailure("ANCF solve produced non-finite coordinates")
@@ -330,6 +330,7 @@ def _check_state(sysm: _System, q: np.ndarray) -> None:
         raise ModelFailure(f"ANCF solve produced implausible axial stretch |r'| in [{slope.min():.3g}, {slope.max():.3g}]")
     if np.max(np.linalg.norm(qn[:, :2], axis=-1)) > 2.0 * sysm.pb.L:
         raise ModelFailure("ANCF solve produced a point further than 2 L from the base")
+    return PathPoint((*(qn[-1, :2] / sysm.pb.L), *(qn[-1, 2:] / slope[-1])))
 
 
 def _static_tensions(sysm: _System, drv: _StaticDriver, actuation, commands, T_start=None) -> tuple[np.ndarray, int]:
@@ -445,6 +446,7 @@ def run(
     pos, tang = _frame_and_positions(sysm, qn, stations)
     length_change = float(arc_length(qn, pb.s_nodes, quad=sysm.quad)) - pb.L
     wall = _time.perf_counter() - t_wall
+    steps, failed = (sum(getattr(r, k) for r in drv.ramps) for k in ("attempts", "failed"))
     return PhysicsResult(
         model="ancf",
         stations=stations,
@@ -454,10 +456,11 @@ def run(
         tendon_tensions=T,
         tip_twist=0.0,
         solver=SolverInfo(converged=True, iterations=drv.newton, wall_time=wall,
-                          message=f"{drv.steps} load steps ({drv.failed} halved), {tendon_it} tendon iterations"),
+                          message=f"{steps} load steps ({failed} halved), {tendon_it} tendon iterations",
+                          **path_fields(*drv.ramps)),
         time=times,
         series=series,
-        extras={"static_steps": float(drv.steps), "failed_steps": float(drv.failed),
+        extras={"static_steps": float(steps), "failed_steps": float(failed),
                 "tendon_iterations": float(tendon_it), "gravity_out_of_plane": pb.g_out, **stress},
     )
 

@@ -50,7 +50,7 @@ import numpy as np
 from ..models.inputs import check_model_inputs
 from ..models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ..robot import LoadCase, Robot
-from ._stepping import RampExhausted, RampPolicy, RampStalled, load_ramp
+from ._stepping import LoadRampInfo, PathPoint, RampExhausted, RampPolicy, RampStalled, load_ramp, path_fields
 from ._beam3d_layout import element_layout
 
 __all__ = ["run"]
@@ -229,25 +229,33 @@ class _System:
         return tip
 
 
-def _ramp_static(system: _System, options: SolverOptions) -> tuple[int, int]:
-    """Load ramp lambda: 0 -> 1 (``_RAMP_POLICY``); returns (accepted increments, attempts)."""
+def _path_point(system: _System, length: float) -> PathPoint:
+    """The load-path measure of the current state: tip position / L and tip tangent (base frame)."""
+    T = system.tip_frame()
+    return PathPoint(tuple(np.concatenate([T[:3, 3] / length, T[:3, 2]])))
+
+
+def _ramp_static(system: _System, options: SolverOptions, length: float) -> LoadRampInfo:
+    """Load ramp lambda: 0 -> 1 (``_RAMP_POLICY``, the path checked on the tip measure of
+    :func:`_path_point`); returns the ramp's outcome."""
     from ._exudyn import ode2_saver, set_load_factor, static_settings
 
     exu, mbs = system.exu, system.mbs
     settings = static_settings(options, 1)
     settings.staticSolver.adaptiveStep = False
 
-    def attempt(lam: float) -> bool:
+    def attempt(lam: float) -> bool | PathPoint:
         set_load_factor(mbs, system.loads, lam)
         try:
             exu.SolveStatic(mbs, settings, updateInitialValues=True)
         except exu.SolverError:
             return False
-        return bool(np.all(np.isfinite(mbs.systemData.GetODE2Coordinates())))
+        return bool(np.all(np.isfinite(mbs.systemData.GetODE2Coordinates()))) and _path_point(system, length)
 
     save, restore = ode2_saver(mbs, with_ae=False)
     try:
-        info = load_ramp(attempt, save, restore, max_attempts=options.max_load_steps, policy=_RAMP_POLICY)
+        info = load_ramp(attempt, save, restore, max_attempts=options.max_load_steps, policy=_RAMP_POLICY,
+                         start=_path_point(system, length))
     except RampExhausted as stop:
         raise ModelFailure(
             f"ancf3d: static load ramp needs more than max_load_steps={options.max_load_steps} "
@@ -255,7 +263,7 @@ def _ramp_static(system: _System, options: SolverOptions) -> tuple[int, int]:
         ) from None
     except RampStalled as stop:
         raise ModelFailure(f"ancf3d: static solve failed (increment below {_MIN_INCREMENT} at lambda={stop.lam:.4g})") from None
-    return info.accepted, info.attempts
+    return info
 
 
 def _dynamic(system: _System, load: LoadCase, options: SolverOptions, stations: np.ndarray
@@ -327,9 +335,9 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     t_wall = _time.perf_counter()
     with quiet_exudyn():
         system = _System(robot, load, options)
-        accepted, attempts = _ramp_static(system, options)
+        ramp = _ramp_static(system, options, robot.length)
         times, series = None, {}
-        extras = {"n_elements": float(len(system.elements)), "load_steps": float(accepted)}
+        extras = {"n_elements": float(len(system.elements)), "load_steps": float(ramp.accepted)}
         stations = np.linspace(0.0, robot.length, options.n_stations)
         if load.analysis == "dynamic":
             times, series, n_steps = _dynamic(system, load, options, stations)
@@ -351,7 +359,8 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
         length_change=dl,
         tendon_tensions=np.zeros(robot.n_tendons),
         tip_twist=0.0,
-        solver=SolverInfo(converged=True, iterations=attempts, wall_time=_time.perf_counter() - t_wall, message="ok"),
+        solver=SolverInfo(converged=True, iterations=ramp.attempts, wall_time=_time.perf_counter() - t_wall,
+                          message="ok", **path_fields(ramp)),
         time=times,
         series=series,
         extras=extras,

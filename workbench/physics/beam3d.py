@@ -49,7 +49,7 @@ import numpy as np
 from ..models.inputs import check_model_inputs
 from ..models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ..robot import LoadCase, Robot
-from ._stepping import RampExhausted, RampPolicy, RampStalled, load_ramp
+from ._stepping import LoadRampInfo, PathPoint, RampExhausted, RampPolicy, RampStalled, load_ramp, path_fields
 
 __all__ = ["run", "auto_stiffness_stages"]
 
@@ -158,8 +158,9 @@ def _check_stages(stages) -> tuple[float, ...] | str:
 
 
 def _ramp_static(system, options: SolverOptions, values_at, lam_pre_at, loads_at, *,
-                 stages=STIFFNESS_STAGES, jacobian: str = "numerical") -> tuple[int, int]:
-    """Static equilibrium at lambda = 1; returns (accepted increments, attempts), one ``SolveStatic`` each.
+                 stages=STIFFNESS_STAGES, jacobian: str = "numerical") -> tuple[int, int, LoadRampInfo]:
+    """Static equilibrium at lambda = 1; returns (accepted increments, attempts), one ``SolveStatic`` each,
+    and the outcome of the load ramp that was used (its path event: :func:`_path_point` measures the tip).
 
     ``values_at(lam)`` tendon commands, ``lam_pre_at(lam)`` pretension factor, ``loads_at(lam)``
     load factor.  With ``stages`` ("auto": :func:`auto_stiffness_stages`; axial-shear stiffness
@@ -192,19 +193,21 @@ def _ramp_static(system, options: SolverOptions, values_at, lam_pre_at, loads_at
         return bool(np.all(np.isfinite(np.asarray(mbs.systemData.GetODE2Coordinates()))))
 
     def attempt_with(s):
-        def attempt(lam: float) -> bool:
+        def attempt(lam: float) -> bool | PathPoint:
             system.set_tendons(values_at(lam), lam_pre_at(lam))
             system.set_loads(loads_at(lam))
-            return solve(s)
+            return solve(s) and _path_point(system)
         return attempt
 
     save, restore = ode2_saver(mbs, with_ae=True)
     accepted = attempts = 0
+    begin = _path_point(system)
     if stages:
         start = save()
         system.set_axial_shear_scale(stages[0])
         try:
-            info = load_ramp(attempt_with(loose), save, restore, max_attempts=options.max_load_steps, policy=_RAMP_POLICY)
+            info = load_ramp(attempt_with(loose), save, restore, max_attempts=options.max_load_steps,
+                             policy=_RAMP_POLICY, start=begin)
             accepted, attempts = info.accepted, info.attempts
             ok = True
             for a in stages[1:] + (1.0,):
@@ -217,11 +220,12 @@ def _ramp_static(system, options: SolverOptions, values_at, lam_pre_at, loads_at
         except (RampExhausted, RampStalled):
             ok = False
         if ok:
-            return accepted, attempts
+            return accepted, attempts, info
         system.set_axial_shear_scale(1.0)  # fall back: the plain load ramp from the start
         restore(start)
     try:
-        info = load_ramp(attempt_with(settings), save, restore, max_attempts=options.max_load_steps, policy=_RAMP_POLICY)
+        info = load_ramp(attempt_with(settings), save, restore, max_attempts=options.max_load_steps,
+                         policy=_RAMP_POLICY, start=begin)
     except RampExhausted as stop:
         raise ModelFailure(
             f"beam3d: static load ramp needs more than max_load_steps={options.max_load_steps} "
@@ -231,7 +235,13 @@ def _ramp_static(system, options: SolverOptions, values_at, lam_pre_at, loads_at
         raise ModelFailure(
             f"beam3d: static solve failed to converge (load increment below {_MIN_INCREMENT} at lambda={stop.lam:.4g})"
         ) from None
-    return accepted + info.accepted, attempts + info.attempts
+    return accepted + info.accepted, attempts + info.attempts, info
+
+
+def _path_point(system) -> PathPoint:
+    """The load-path measure of the current state: tip position / L and tip tangent (base frame)."""
+    T = system.tip_frame()
+    return PathPoint(tuple(np.concatenate([T[:3, 3] / system.robot.length, T[:3, 2]])))
 
 
 class _Recorder:
@@ -313,8 +323,8 @@ def _dynamic(system, load: LoadCase, options: SolverOptions, n_t: int, drive: bo
     cmd0 = act.command_at(0.0, load.ramp_time) if act is not None else np.zeros(n_t)
     # initial equilibrium: the plain ramp with Exudyn's beam Jacobian (no stiffness stages); the dynamic
     # answers are pinned with it (tests/regression golden wire_delay_arm)
-    acc, att = _ramp_static(system, options, lambda lam: lam * cmd0, lambda lam: lam, lambda lam: lam,
-                            stages=(), jacobian="exudyn_beam")
+    acc, att, _ = _ramp_static(system, options, lambda lam: lam * cmd0, lambda lam: lam, lambda lam: lam,
+                               stages=(), jacobian="exudyn_beam")
     sim = dynamic_settings(options, load.duration)
     ti = sim.timeIntegration
     ti.newton.numericalDifferentiation.forODE2Connectors = True
@@ -415,11 +425,12 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions, *, stiffness_stage
         extras = {"n_elements": float(len(system.elements))}
         if load.analysis == "static":
             final = np.asarray(act.values) if act is not None else np.zeros(n_t)
-            acc, att = _ramp_static(system, options, lambda lam: lam * final, lambda lam: lam, lambda lam: lam,
-                                    stages=stiffness_stages, jacobian=jacobian)
+            acc, att, path = _ramp_static(system, options, lambda lam: lam * final, lambda lam: lam, lambda lam: lam,
+                                          stages=stiffness_stages, jacobian=jacobian)
             extras["load_steps"] = float(acc)
             times, series = None, {}
         else:
+            path = None
             acc, att, n_steps, times, series, stress = _dynamic(system, load, options, n_t,
                                                                 act is not None and mode != "none", stations)
             extras.update(load_steps=float(acc), n_steps=float(n_steps))
@@ -444,7 +455,8 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions, *, stiffness_stage
         length_change=dl,
         tendon_tensions=T,
         tip_twist=tw,
-        solver=SolverInfo(converged=True, iterations=int(att), wall_time=_time.perf_counter() - t_wall, message="ok"),
+        solver=SolverInfo(converged=True, iterations=int(att), wall_time=_time.perf_counter() - t_wall, message="ok",
+                          **path_fields(path)),
         time=times,
         series=series,
         extras=extras,

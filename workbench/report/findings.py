@@ -8,7 +8,7 @@
   (:mod:`.headline`; dynamics: the peak over time and the final value), marked **not converged**
   where the error bar exceeds 10 % of the error (:mod:`workbench.compare.convergence`); stresses
   against the declared strengths (inadmissible hardware is said to make the result an elastic
-  idealisation); the study's own sentences (``registry.FIGURES[...].findings``); failed runs;
+  idealisation); load-path events (:mod:`.path_events`); the study's own sentences (``registry.FIGURES[...].findings``); failed runs;
 * Assumptions: :func:`.assumptions.assumption_rows`;
 * Sensitivity: per ``[report] sensitivity`` key the headline against the assumed value with
   error bars (:mod:`.errorbars`), and whether it moves by more than its error bar.
@@ -30,6 +30,7 @@ from .assumptions import assumption_rows
 from .context import PageContext, Section
 from .errorbars import sensitivity_figures
 from .headline import Headline, baseline_cases, headlines, sensitivity_keys
+from .path_events import path_event_findings
 from .load import ResultSet, numeric
 from .style import ReportFigure, case_title, fmt, model_label, pair_label
 
@@ -119,6 +120,7 @@ def findings_list(study: ResultSet, cmp: pd.DataFrame) -> list[str]:
     if not items:
         items.append("Nothing to compare (one model, or no case with two successful models).")
     items += stress_findings(study)
+    items += path_event_findings(study)  # static solves whose load path jumped (may be on another branch)
     for name, fs in registry.FIGURES.items():
         if fs.findings and registry.resolve(fs.matches)(study):
             items += list(registry.resolve(fs.findings)(study, cmp))

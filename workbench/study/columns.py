@@ -20,7 +20,7 @@ __all__ = ["COLUMNS", "FRAMES", "column_meta", "field_metadata"]
 COLUMNS = (
     "case_id", "model", "status", "error", "failure", "wall_time", "robot_length", "robot_gravity",
     "tip_x", "tip_y", "tip_z", "tip_world_x", "tip_world_y", "tip_world_z", "tip_frame", "length_change",
-    "tip_twist", "converged", "iterations", "stations", "positions", "tendon_tensions", "joint_angles", "time",
+    "tip_twist", "converged", "iterations", "path_steps", "path_event", "path_event_fraction", "stations", "positions", "tendon_tensions", "joint_angles", "time",
     "tip_position", "commands", "tendon_stretch", "tendon_lengths", "backbone", "backbone_time",
 )
 

@@ -4,9 +4,13 @@ Statics only.  Tension control: the tensions are the commands.  Length control: 
 solve ``T = EA_t max(0, (l(T) - l0) / l0)`` (:func:`workbench.physics.tendon_loads.solve_length_controlled`,
 rest lengths from :func:`~workbench.physics.tendon_loads.tendon_rest_lengths`, compliance of the
 straight rod as the first quasi-Newton matrix), each ``l(T)`` a shooting solve warm-started from
-the previous one.  Outputs (base frame): positions at ``options.n_stations`` stations (dense
-output of the final integration), tip frame ``R(L)``, ``length_change`` = integral of
-``|v| - 1``, ``tip_twist`` = integral of ``u_3``, tensions; ``extras``: ``newton_iterations``,
+the previous one; all those solves share one budget of ``options.max_load_steps`` load-ramp
+attempts, so a length solve that creeps ends with :class:`ModelFailure` naming the budget
+(``tests/physics/test_load_path.py``).  Outputs (base frame): positions at ``options.n_stations``
+stations (dense output of the final integration), tip frame ``R(L)``, ``length_change`` = integral of
+``|v| - 1``, ``tip_twist`` = integral of ``u_3``, tensions; the load path (``SolverInfo.path_steps`` /
+``path_event`` / ``path_event_fraction``: :meth:`~workbench.physics.cosserat.shooting.Shooter.go_to`'s
+ramps, the event of the first one that had one); ``extras``: ``newton_iterations``,
 ``load_steps``, ``shots`` (integrated trajectories) and ``tip_residual``.  Checked by
 ``tests/physics/test_cosserat_model.py``.
 """
@@ -20,6 +24,7 @@ import numpy as np
 from ...models.inputs import check_model_inputs
 from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ...robot import LoadCase, Robot
+from .._stepping import path_fields
 from ..tendon_loads import solve_length_controlled, tendon_rest_lengths
 from .problem import RodProblem, rod_problem
 from .rod import N_BASE, integrate_segments
@@ -63,8 +68,18 @@ def _tensions(pb: RodProblem, load: LoadCase, options: SolverOptions, shooter: S
     shooter.tol = max(1e-13, 1e-3 * shooter.tol)
     shooter.rtol = max(1e-13, 0.1 * shooter.tol)
 
+    budget = options.max_load_steps
+    solves = [0]
+
     def equilibrium(T: np.ndarray) -> np.ndarray:
-        attempts[0] += shooter.go_to(T, options.max_load_steps)
+        # one budget of load-ramp attempts (failed ones included) for the whole length solve: every
+        # tension solve costs at least one, so it ends after at most max_load_steps shooting solves
+        left = budget - shooter.attempts
+        if left <= 0:
+            raise ShootingFailure(f"length-controlled tendon solve used all max_load_steps={budget} load steps "
+                                  f"in {solves[0]} tension solves without converging")
+        solves[0] += 1
+        attempts[0] += shooter.go_to(T, left)
         tip, _ = integrate_segments(pb, shooter.x[None], T, 1.0, shooter.rtol)
         return tip[0, N_BASE + 2:]
 
@@ -117,7 +132,7 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     U, _, Vt = np.linalg.svd(frame[:3, :3])
     frame[:3, :3] = U @ Vt
     info = SolverInfo(converged=True, iterations=shooter.newton_iterations, wall_time=time.perf_counter() - t0,
-                      message=f"{attempts} load steps")
+                      message=f"{attempts} load steps", **path_fields(*shooter.ramps))
     return PhysicsResult(
         model="cosserat", stations=stations, positions=Y[:, 0, 0:3], tip_frame=frame,
         length_change=float(tip[0, N_BASE] - robot.length), tendon_tensions=T, tip_twist=float(tip[0, N_BASE + 1]),

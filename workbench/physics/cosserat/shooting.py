@@ -8,23 +8,31 @@ force scale ``F_s`` and by ``F_s L``.  One Newton iteration integrates seven sho
 difference quotients see one discretisation); the step is backtracked until the residual norm
 falls.  Large loads are reached with the common load ramp (:func:`workbench.physics._stepping.load_ramp`:
 external loads and tendon tensions move together along a straight path from the last converged
-point; the first attempt is the whole way, a failure halves the increment), each Newton started
-from a secant predictor.  Checked by ``tests/physics/test_cosserat_model.py``.
+point; the first attempt is the whole way, a failure halves the increment, growth is capped at the
+load still to go), each Newton started from a secant predictor.  Each accepted solve reports its
+load-path measure (:meth:`Shooter.path_point`: tip position / L, tip tangent, and the sign of the
+shooting Jacobian's determinant, which changes where the rod's tangent stiffness loses
+definiteness); the ramp rejects a step that jumps or flips that sign (no cap on the motion of a
+step: the sign catches a first step that lands on a curled, unstable branch), so the solve follows
+the branch loaded from the straight rod.  Checked by ``tests/physics/test_cosserat_model.py`` and
+``tests/physics/test_load_path.py`` (the branch-jump case of issue 28).
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from .._stepping import RampExhausted, RampPolicy, RampStalled, load_ramp
+from .._stepping import LoadRampInfo, PathPoint, RampExhausted, RampPolicy, RampStalled, load_ramp
 from .problem import RodProblem
 from .rod import integrate_segments
 
 __all__ = ["Shooter", "ShootingFailure", "straight_rod_base_wrench"]
 
-_POLICY = RampPolicy(first_increment=1.0, growth=2.0, grow_after=1, cap="one", min_increment=1e-6)
+_POLICY = RampPolicy(first_increment=1.0, growth=2.0, grow_after=1, cap="remaining", min_increment=1e-6,
+                     max_motion=math.inf)
 _MAX_NEWTON = 15
 
 
@@ -75,6 +83,10 @@ class Shooter:
         self.point = _Point(0.0, np.zeros(pb.n_tendons), np.zeros(6))
         self.newton_iterations = 0
         self.shots = 0
+        self.attempts = 0  # load-ramp attempts of every go_to, failed ones included
+        self.sign = 0  # sign of det of the shooting Jacobian at the last converged Newton solve
+        self.ramps: list[LoadRampInfo] = []  # every go_to's ramp outcome, in order
+        self._tip = np.zeros(0)
 
     def _scales(self, lam: float, tau: np.ndarray) -> tuple[float, float]:
         pb = self.pb
@@ -90,6 +102,7 @@ class Shooter:
         pb = self.pb
         tip, _ = integrate_segments(pb, X, tau, lam, self.rtol)
         self.shots += X.shape[0]
+        self._tip = tip[0]
         Wp = lam * pb.payload_mass * pb.gravity
         arm = np.einsum("bij,j->bi", tip[:, 3:12].reshape(-1, 3, 3), pb.payload_offset)
         F = lam * (pb.tip_force + pb.point_forces[-1]) + Wp
@@ -114,10 +127,12 @@ class Shooter:
                 r0 = res[0]
                 if not np.all(np.isfinite(res)):
                     raise ShootingFailure("non-finite tip residual")
+                J = ((res[1:] - r0) / h[:, None]).T
                 if np.max(np.abs(r0)) <= self.tol:
+                    self.sign = int(np.sign(np.linalg.det(J)))
                     return x
                 self.newton_iterations += 1
-                dx = np.linalg.solve(((res[1:] - r0) / h[:, None]).T, -r0)
+                dx = np.linalg.solve(J, -r0)
                 x = self._line_search(x, dx, r0, lam, tau)
         except (RuntimeError, np.linalg.LinAlgError) as err:
             raise ShootingFailure(str(err)) from err
@@ -133,6 +148,13 @@ class Shooter:
                 return xa
             a *= 0.5
         raise ShootingFailure("line search failed to reduce the tip residual")
+
+    def path_point(self) -> PathPoint:
+        """The load-path measure of the last converged state: tip position / L and tip tangent,
+        with the sign of the shooting Jacobian's determinant (the last integrated shot's tip)."""
+        tip = self._tip
+        return PathPoint(tuple(np.concatenate([tip[0:3] / self.pb.length, tip[3:12].reshape(3, 3)[:, 2]])),
+                         self.sign)
 
     def go_to(self, tau: np.ndarray, max_attempts: int) -> int:
         """Follow the straight load path from the last converged point to the full external
@@ -153,16 +175,17 @@ class Shooter:
                 return xb + (t - tb) / (tb - ta) * (xb - xa)
             return start.x + straight_rod_base_wrench(self.pb, lam) - straight_rod_base_wrench(self.pb, start.lam)
 
-        def attempt(t: float) -> bool:
+        def attempt(t: float) -> bool | PathPoint:
             lam = start.lam + t * (1.0 - start.lam)
             ta = start.tau + t * (tau - start.tau)
+            self.attempts += 1
             try:
                 x = self.newton(predict(t, lam), lam, ta)
             except ShootingFailure:
                 return False
             path.append((t, x))
             self.point = _Point(lam, ta, x)
-            return True
+            return self.path_point()
 
         def restore(saved) -> None:  # noqa: ANN001
             n, point = saved
@@ -170,13 +193,23 @@ class Shooter:
             self.point = point
 
         try:
-            info = load_ramp(attempt, lambda: (len(path), self.point), restore, max_attempts=max_attempts, policy=_POLICY)
+            info = load_ramp(attempt, lambda: (len(path), self.point), restore, max_attempts=max_attempts,
+                             policy=_POLICY, start=self._start_point())
         except RampExhausted as err:
             raise ShootingFailure(f"load ramp exceeded max_load_steps={max_attempts} "
                                   f"(reached {err.lam:.4g} of the way)") from None
         except RampStalled as err:
             raise ShootingFailure(f"load ramp stalled at {err.lam:.4g} of the way (increment below 1e-6)") from None
+        self.ramps.append(info)
         return info.attempts
+
+    def _start_point(self) -> PathPoint:
+        """The path measure of the current point (one shot; the straight rod at the unloaded start)."""
+        p = self.point
+        if p.lam == 0.0 and not np.any(p.tau) and not np.any(p.x):
+            return PathPoint((0.0, 0.0, 1.0, 0.0, 0.0, 1.0), 1)
+        self.residual(p.x[None], p.lam, p.tau)
+        return self.path_point()
 
     @property
     def x(self) -> np.ndarray:

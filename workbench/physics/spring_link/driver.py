@@ -21,7 +21,7 @@ from ...models.inputs import check_model_inputs
 from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ...robot import LoadCase, Robot
 from ...models.backbone_frames import backbone_series, frame_stride
-from .._stepping import RampExhausted, RampPolicy, RampStalled, load_ramp
+from .._stepping import PathPoint, RampExhausted, RampPolicy, RampStalled, load_ramp
 from .chain import Chain
 from .geometry import ChainGeometry, chain_geometry_from_robot
 from .params import SpringLinkParams, is_planar
@@ -35,7 +35,10 @@ _SPARSE_FROM = 16
 
 #: The static ramp's step rule: first try the full load, halve on failure, double (capped at 1)
 #: after every success, give up below an increment of 1e-6.
-_STATIC_RAMP = RampPolicy(first_increment=1.0, growth=2.0, grow_after=1, cap="one", min_increment=1e-6)
+#: a first step that moves the last link's measure by more than 2 (tip position / L and axis together) is
+#: halved: the whole load in one step curled the chain in issue 28's branch-jump case
+_STATIC_RAMP = RampPolicy(first_increment=1.0, growth=2.0, grow_after=1, cap="one", min_increment=1e-6,
+                          max_motion=2.0)
 
 _BODIES_HINT = ("; the rigid-body chain's static Newton converges only linearly under large joint reactions "
                 "(Exudyn's iteration matrix lacks their geometric stiffness; numerical, not a physical "
@@ -50,14 +53,27 @@ def _use_sparse(settings, model) -> None:  # noqa: ANN001
         settings.linearSolver.solverType = exu.LinearSolverType.EigenSparse
 
 
+def _path_point(model: Chain) -> PathPoint:
+    """The load-path measure of the chain's state: last joint position / L and last link axis."""
+    if model.planar:
+        P, beta = model.link_states()
+        axis = np.array([math.sin(beta[-1]), 0.0, math.cos(beta[-1])])
+    else:
+        P, R = model.link_frames()
+        axis = R[-1][:, 2]
+    return PathPoint(tuple(np.concatenate([P[-1] / model.robot.length, axis])))
+
+
 def static_ramp(model: Chain, options: SolverOptions, params: SpringLinkParams,
                  apply: Callable[[float], None]) -> tuple[int, int]:
     """Ramp ``apply(lam)`` from 0 to 1 with repeated static solves; returns (steps, newton its).
 
     One attempt applies the load factor and solves, re-solving while the slack/taut active set
-    of length-controlled tendons changes (at most ``params.max_active_set_iterations`` passes).
-    A failed attempt (Exudyn ``SolverError``, non-finite state, an unsettled active set) restores
-    the chain's state (:meth:`Chain.save_state`) and halves the increment (:data:`_STATIC_RAMP`);
+    of length-controlled tendons changes (at most ``params.max_active_set_iterations`` passes);
+    the ramp checks the load path on :func:`_path_point` (:func:`~workbench.physics._stepping.load_ramp`:
+    a jump of the last link is refined).  A failed attempt (Exudyn ``SolverError``, non-finite state,
+    an unsettled active set) restores the chain's state (:meth:`Chain.save_state`) and halves the
+    increment (:data:`_STATIC_RAMP`);
     a non-positive rope rest length is not a solver failure and propagates.  Newton iterations
     of every attempt are counted.  Checked by ``test_max_load_steps_is_a_failure``,
     ``test_rigid_body_ramp_failure_names_the_numerical_cause`` and ``test_spring_link_layout.py``.
@@ -81,7 +97,7 @@ def static_ramp(model: Chain, options: SolverOptions, params: SpringLinkParams,
     settings.staticSolver.newton.maxIterations = (250 if eyelet_ropes else 40) if model.rigid_bodies else 25
     newton_its = 0
 
-    def attempt(lam: float) -> bool:
+    def attempt(lam: float) -> bool | PathPoint:
         nonlocal newton_its
         try:
             apply(lam)
@@ -95,7 +111,7 @@ def static_ramp(model: Chain, options: SolverOptions, params: SpringLinkParams,
                     raise exu.SolverError("non-finite state")
                 mbs.systemData.SetODE2Coordinates(q, configuration=exu.ConfigurationType.Initial)
                 if not model.update_active_set():
-                    return True
+                    return _path_point(model)
                 apply(lam)
             raise ModelFailure("spring_link: tendon slack/taut switching did not settle")
         except (exu.SolverError, RuntimeError) as err:  # ModelFailure is a RuntimeError too
@@ -105,7 +121,7 @@ def static_ramp(model: Chain, options: SolverOptions, params: SpringLinkParams,
 
     try:
         info = load_ramp(attempt, model.save_state, model.restore_state, max_attempts=options.max_load_steps,
-                    policy=_STATIC_RAMP)
+                         policy=_STATIC_RAMP, start=_path_point(model))
     except RampExhausted as err:
         hint = _BODIES_HINT if model.rigid_bodies and not model.axial else ""
         raise ModelFailure(

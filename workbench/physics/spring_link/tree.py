@@ -26,7 +26,7 @@ from ...robot import LoadCase, Payload, Robot
 from .chain import Chain
 from .geometry import ChainGeometry, chain_geometry_from_robot
 from .routing import end_link_torque, TendonRoute
-from .._stepping import RampExhausted, RampPolicy, load_ramp
+from .._stepping import PathPoint, RampExhausted, RampPolicy, load_ramp
 
 __all__ = ["tree_tip_position"]
 
@@ -307,19 +307,23 @@ def tree_tip_position(robot: Robot, load: LoadCase, options: SolverOptions, dime
         settings.staticSolver.adaptiveStep = False
         initial = exu.ConfigurationType.Initial
 
-        def attempt(lam: float) -> bool:
+        def point() -> PathPoint:  # the load-path measure: tip position / L
+            q = np.asarray(mbs.systemData.GetODE2Coordinates())
+            return PathPoint(tuple(_tip_by_forward_kinematics(q, geo, per) / robot.length))
+
+        def attempt(lam: float) -> bool | PathPoint:
             mbs.SetObjectParameter(tree, "gravity", (lam * g).tolist())
             mbs.SetObjectParameter(tree, "jointForceVector", (lam * Qfull).tolist())
             solver = exu.MainSolverStatic()
             if not solver.SolveSystem(mbs, settings):
                 return False
             mbs.systemData.SetODE2Coordinates(mbs.systemData.GetODE2Coordinates(), configuration=initial)
-            return True
+            return point()
 
         try:
             load_ramp(attempt, lambda: mbs.systemData.GetODE2Coordinates(configuration=initial),
-                 lambda q: mbs.systemData.SetODE2Coordinates(q, configuration=initial),
-                 max_attempts=options.max_load_steps, policy=_TIP_RAMP, failure=exu.SolverError)
+                      lambda q: mbs.systemData.SetODE2Coordinates(q, configuration=initial),
+                      max_attempts=options.max_load_steps, policy=_TIP_RAMP, failure=exu.SolverError, start=point())
         except RampExhausted:
             raise ModelFailure("kinematic tree: load ramp exceeded options.max_load_steps") from None
         q = np.asarray(mbs.systemData.GetODE2Coordinates())
