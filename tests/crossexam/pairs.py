@@ -107,8 +107,6 @@ KNOWN: dict[str, str] = {
     "spring_link length mode under load": "issue 28 finding 4 (spring-link length mode; with a tip force 2.6-3.2 x "
                                           "the tolerance, without one within the strain floor), fixed on branch "
                                           "spring28",
-    "ancf heavy disks": "issue 28 finding 3 (ANCF smears the disk weights), fixed on branch caps28 (ancf3d: the same "
-                        "symptom, 3.5 x the tolerance in diagnostic case 1, found here; its fix branch not known)",
     "ancf tapered offset": "new finding of tests/crossexam: ANCF's continuum tendon with a tapered offset converges "
                            "at order ~2, not its declared 4, so its Richardson bar is ~5x too small; no fix branch",
     "length mode under load / 3 sections": "issue 28 diagnostics 'Dropped silently' (Cosserat > 600 s on a spatial "
@@ -135,8 +133,6 @@ def known_class(case: XCase, pair: str) -> str | None:
         lateral = case.has("force") or case.has("torque") or case.has("g_horizontal") or case.has("g_tilted")
         if not _planar(case) and _loaded_tendons(case) and lateral and pair == "spring_link~cosserat":
             return "spring_link 3-D continuum tendons + lateral load"
-    if ("ancf" in models or "ancf3d" in models) and case.has("disks") and "gravity" in dict(case.robot):
-        return "ancf heavy disks"
     if "cosserat" in models and case.has("length") and (external or dict(case.robot)["n_sections"] == 3):
         return "length mode under load / 3 sections"
     if pair == "cosserat~ancf" and case.has("tapered"):
