@@ -99,8 +99,6 @@ def pairs_for(case: XCase, slow: bool = False) -> list[str]:
 
 #: Case classes that fail on main, with the finding of issue 28 and the branch that fixes it.
 KNOWN: dict[str, str] = {
-    "branch jump": "issue 28 finding 1 (branch jump: the ramp tries the whole load from the straight rod first), "
-                   "fixed on branch path28",
     "spring_link 3-D continuum tendons + lateral load": "issue 28 finding 2 (spring-link continuous tendons in 3-D "
                                                          "under external loads), fixed on branch spring28",
     "spring_link heavy disks": "issue 28 finding 3 (spring-link disk weights), fixed on branch spring28",
@@ -123,8 +121,6 @@ def known_class(case: XCase, pair: str) -> str | None:
     """The :data:`KNOWN` class of ``(case, pair)``, or ``None``."""
     models = pair.split("~")[0], pair.split("~")[1].split()[0]
     external = case.has("force") or case.has("torque") or "gravity" in dict(case.robot)
-    if case.has("branch_jump") and pair == "cosserat~beam3d":
-        return "branch jump"
     if "spring_link" in models:
         if case.has("length") and _planar(case) and external:  # spatial: refused by the capability check
             return "spring_link length mode under load"
