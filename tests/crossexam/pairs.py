@@ -105,8 +105,6 @@ KNOWN: dict[str, str] = {
     "spring_link length mode under load": "issue 28 finding 4 (spring-link length mode; with a tip force 2.6-3.2 x "
                                           "the tolerance, without one within the strain floor), fixed on branch "
                                           "spring28",
-    "ancf tapered offset": "new finding of tests/crossexam: ANCF's continuum tendon with a tapered offset converges "
-                           "at order ~2, not its declared 4, so its Richardson bar is ~5x too small; no fix branch",
     "length mode under load / 3 sections": "issue 28 diagnostics 'Dropped silently' (Cosserat > 600 s on a spatial "
                                            "length-mode case): Cosserat, and beam3d at 20 disks, length-mode solves "
                                            "exceed sides.TIMEOUT under loads or with 3 sections; no fix branch named",
@@ -131,8 +129,6 @@ def known_class(case: XCase, pair: str) -> str | None:
             return "spring_link 3-D continuum tendons + lateral load"
     if "cosserat" in models and case.has("length") and (external or dict(case.robot)["n_sections"] == 3):
         return "length mode under load / 3 sections"
-    if pair == "cosserat~ancf" and case.has("tapered"):
-        return "ancf tapered offset"
     return None
 
 
