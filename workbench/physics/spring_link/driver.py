@@ -77,7 +77,7 @@ def static_ramp(model: Chain, options: SolverOptions, params: SpringLinkParams,
     # linearly (~100-125 iterations at N = 16 vs 3-6 for continuum tendons, docs/models.md): allow
     # more there.  The tree's Newton is quadratic (4-16 iterations per step up to alpha = 10);
     # a failing step is cut off early, a 3-D tree Jacobian with ropes costs ~0.5-2 s.
-    eyelet_ropes = model.model == "eyelets" and model.mode is not None
+    eyelet_ropes = model.ropes and model.mode is not None
     settings.staticSolver.newton.maxIterations = (250 if eyelet_ropes else 40) if model.rigid_bodies else 25
     newton_its = 0
 

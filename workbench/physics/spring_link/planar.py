@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...models.result import ModelFailure, SolverOptions
+from ...models.result import SolverOptions
 from ...robot import LoadCase, Payload, Robot
 from .chain import Chain
 from .geometry import ChainGeometry
@@ -49,12 +49,6 @@ class PlanarChain(Chain):
                  axial: bool = False) -> None:
         self.axial = bool(axial)
         super().__init__(robot, load, options, geo)
-
-    def _check(self) -> None:
-        if self.axial and self.mode == "length" and self.model == "continuum":
-            raise ModelFailure("spring_link: axial=True with continuum tendons in length mode is not supported; "
-                               "use tendon_model='eyelets'")
-        self._reject_tapered_length()
 
     def _build(self, mbs) -> None:  # noqa: ANN001
         eii, geo = self.eii, self.geo
