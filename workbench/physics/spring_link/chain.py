@@ -20,6 +20,7 @@ from ...models.inputs import check_model_inputs
 from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ...robot import LoadCase, Robot
 from .geometry import ChainGeometry
+from .lengthmode import gap_sums
 from .routing import add_eyelet_rope, TendonRoute, route_tendons
 from .shape import planar_shape, spatial_shape, twist_vs_parallel_transport
 
@@ -63,6 +64,10 @@ class Chain:
         self.mode = None if load.actuation is None else load.actuation.mode
         self.model = options.tendon_model
         self.ropes = self.model == "eyelets" or self._continuum_ropes()
+        # planar continuum length mode with axial springs (:mod:`.lengthmode`): lagged couplings
+        self.lagged_length = self.axial and self.planar and self.mode == "length" and not self.ropes
+        self.lag_gaps = np.zeros(len(self.tendons))
+        self.lag_tensions = np.zeros(len(self.tendons))
         self._check()
         self.SC = exu.SystemContainer()
         self.mbs = self.SC.AddSystem()
@@ -106,15 +111,14 @@ class Chain:
         offset: the rope (constant-force segments in tension mode, a reeving rope in length mode)
         follows the deformed chain, so its forces are exact for the routed tendon under any
         external load, and the continuous routing is its limit as the links grow (the chord's
-        lever-arm error is ``O(ds^2)``, ``test_spring_link_crossexam.py``).  Planar chains
-        otherwise use the exact internal moment ``T d cos(alpha)`` (tension) or the terminating
-        link's rotation (length, inextensible), both exact in the plane for any load.
+        lever-arm error is ``O(ds^2)``, ``test_spring_link_crossexam.py``).  Planar chains use the
+        exact internal moment ``T d cos(alpha)`` (tension) or the terminating link's rotation
+        (length, constant offset; with axial springs through :mod:`.lengthmode`), exact in the
+        plane under any load; planar length mode with a tapered offset uses the ropes too.
         """
         if self.model != "continuum" or self.mode is None:
             return False
-        if not self.planar:
-            return True
-        return self.mode == "length" and (self.axial or any(t.tapered for t in self.tendons))
+        return not self.planar or (self.mode == "length" and any(t.tapered for t in self.tendons))
 
     # -- shared build steps --------------------------------------------------------------------
     def _eyelet_marker_type(self):  # noqa: ANN202
@@ -199,10 +203,11 @@ class Chain:
 
     def _set_compression(self, axis: int) -> None:
         """Continuum tendons with axial springs: compression sum(T) in every joint a tendon
-        passes, as a rest-length offset of the joint spring's coordinate ``axis``."""
+        passes, as a rest-length offset of the joint spring's coordinate ``axis`` (length mode:
+        the lagged tensions of :mod:`.lengthmode`)."""
         N = self.geo.n_links
         comp = np.zeros(N)
-        for t, v in zip(self.tendons, self._values):
+        for t, v in zip(self.tendons, self.lag_tensions if self.mode == "length" else self._values):
             comp[: t.end_eyelet] += v * t.cos_alpha
         for k in range(N):
             off = [0.0] * 6
@@ -228,8 +233,9 @@ class Chain:
         of their terminating link, ropes (and 3-D chains) from the eyelet marker positions."""
         if not self.ropes and self.planar:
             _, beta = self.link_states()
-            return np.asarray([t.reference_length - t.offsets[-1] * s * beta[t.end_eyelet - 1]
-                               for t, s in zip(self.tendons, self.sign)])
+            gaps = gap_sums(self) if self.axial else np.zeros(len(self.tendons))
+            return np.asarray([t.reference_length - t.offsets[-1] * s * beta[t.end_eyelet - 1] + g
+                               for t, s, g in zip(self.tendons, self.sign, gaps)])
         exu = self.exu
         out = []
         for marks in self.eyelet_markers:

@@ -24,7 +24,8 @@ from ...models.backbone_frames import backbone_series, frame_stride
 from .._stepping import RampExhausted, RampPolicy, RampStalled, load_ramp
 from .chain import Chain
 from .geometry import ChainGeometry, chain_geometry_from_robot
-from .params import SpringLinkParams, is_planar
+from .lengthmode import settle_lagged
+from .params import SpringLinkParams, is_planar, resolve_axial
 from .planar import PlanarChain
 from .spatial import SpatialChain
 from .tree import TreeChain
@@ -147,8 +148,22 @@ def _solve_static(model: Chain, params: SpringLinkParams, t0: float) -> PhysicsR
     act = model.load.actuation
     final = np.zeros(len(model.tendons)) if act is None else np.asarray(act.values)
     steps, its = ramp_to(model, params, final)
+    repeats = 0
+    if model.lagged_length:  # planar continuum length mode with axial springs: lagged couplings
+
+        def resolve(old: tuple, new: tuple) -> None:
+            def apply(lam: float) -> None:
+                model.lag_gaps = old[0] + lam * (new[0] - old[0])
+                model.lag_tensions = old[1] + lam * (new[1] - old[1])
+                model.set_tendons(final, 1.0)
+
+            nonlocal steps, its
+            s, i = static_ramp(model, model.options, params, apply)
+            steps, its = steps + s, its + i
+
+        repeats = settle_lagged(model, resolve)
     info = SolverInfo(converged=True, iterations=its, wall_time=time.perf_counter() - t0,
-                      message=f"{steps} load steps")
+                      message=f"{steps} load steps" + (f" ({repeats} lagged-coupling equilibria)" if repeats else ""))
     return model.result(info)
 
 
@@ -251,6 +266,7 @@ def solve(robot: Robot, load: LoadCase, options: SolverOptions,
     if params.dimension == "2d" and not planar:
         raise ModelFailure(f"spring_link: dimension='2d' requested but the case is not planar: {why}")
     use_2d = params.dimension == "2d" or (params.dimension == "auto" and planar)
+    params = replace(params, axial=resolve_axial(params, robot, load, options.tendon_model, use_2d))
     geo = chain_geometry_from_robot(robot, options.n_elements)
     t0 = time.perf_counter()
     with quiet_exudyn():

@@ -137,10 +137,10 @@ class PlanarChain(Chain):
                 continue
             d, c, L0 = t.offsets[-1], self.sign[i], float(self._L0[i])
             K = t.axial_stiffness * d * d / L0
-            phi_star = (L0 - t.reference_length) / (d * c)
+            phi_star = (L0 - self.lag_gaps[i] - t.reference_length) / (d * c)
             mbs.SetObjectParameter(items[0], "stiffness", K if self.tendon_active[i] else 0.0)
             mbs.SetObjectParameter(items[0], "offset", float(phi_star))
-        if self.axial and self.mode == "tension":
+        if self.axial:
             self._set_compression(axis=1)
 
     def _continuum_torques(self, i: int, v: float) -> list[list[float]]:
