@@ -180,8 +180,7 @@ MODELS: Mapping[str, ModelInfo] = {
         actuation=(), loads=("tip_force",), torsion=False,
         note="3-D ANCF cable without a cross-section frame: no tendons, tip torque or payload offset")),
     "spring_link": ModelInfo("workbench.physics.spring_link:run", "spring-link", "#2ca02c", order=2.0, capabilities=Capabilities(
-        spatial_length_tendon_models=("eyelets",),
-        note="rigid links and joint springs; continuum tendons in length mode only in planar cases")),
+        note="rigid links and joint springs; 3-D continuum tendons as ropes through every link eyelet")),
     # no mesh (shooting to newton_tolerance): no declared order, so its rows carry no estimate
     "cosserat": ModelInfo("workbench.physics.cosserat:run", "Cosserat rod", "#8c564b", capabilities=Capabilities(
         tendon_models=("continuum",), spatial_length_tendon_models=("continuum",), analyses=("static",),
@@ -189,7 +188,6 @@ MODELS: Mapping[str, ModelInfo] = {
              "static only; accuracy from newton_tolerance, n_elements unused")),
     "spring_link_cardan": ModelInfo("workbench.physics.spring_link.cardan:run", "spring-link, 2-DOF joints",
                                     "#17becf", order=2.0, capabilities=Capabilities(
-        spatial_length_tendon_models=("eyelets",),
         note="3-D chain of Cardan (two-DOF, torsion-locked) joints, Hannan & Walker's robot; refuses states "
              "with cable strain > 2 % (folded branches)")),
     # planar ANCF with a rigid circle (without an object: equal to ancf with continuum tendons, order 4);

@@ -65,8 +65,6 @@ CORPUS = [
      "is not about base y"),
     ("ancf_swept_angle", study('"ancf"', sweep='product = { "robot.first_tendon_angle" = [0.0, 3.141592653589793, '
                                                 '1.0] }'), E, "robot.first_tendon_angle", "(case 2: "),
-    ("spring_link_spatial_length_continuum", study('"spring_link"', robot="first_tendon_angle = 0.3", load=LENGTH),
-     E, "solver.tendon_model", "model 'spring_link' supports length-controlled tendons in a non-planar case"),
     ("report_axis_typo", study(report='axes = ["kapaL"]'), E, "report.axes[0]", "did you mean 'kappaL'?"),
     ("report_axis_parameter_typo", study(report='axes = ["p.robot.lenght"]'), E, "report.axes[0]",
      "did you mean 'p.robot.length'?"),
@@ -77,6 +75,8 @@ CORPUS = [
     ("report_frame", study(report='frame = "side"'), E, "report.frame", "'world'"),
     ("report_unknown_key", study(report='axis = ["kappaL"]'), E, "report.axis", "unknown key"),
     ("fat_rod", study(robot="diameter = 6.0"), W, "robot.diameter", "is no slender rod"),
+    ("spring_link_length_inextensible", study('"spring_link"', load=LENGTH, solver='tendon_model = "eyelets"'), W,
+     "solver.spring_link_axial", "model 'spring_link' solves these length-controlled tendons on an inextensible chain"),
     ("short_rod", study(robot="length = 0.02"), W, "robot.diameter", "length / diameter = 3.33"),
     ("huge_tension_backbone", study(load='mode = "tension"\ntensions = [3340.0, 0.0]'), W, "load.tensions",
      "stresses the backbone of section 0 to 3268 MPa (bending EI kappa / W 3150 MPa + axial sum T / A 118 MPa), "
@@ -102,8 +102,10 @@ CONTROLS = [
     ("beam3d_eyelets", study('"cc", "beam3d"', solver='tendon_model = "eyelets"')),
     ("ancf3d_tip_force", study('"ancf3d"', load='tip_force = [0.01, 0.02, 0.0]')),
     ("ancf_pi_tendon", study('"ancf"', robot="first_tendon_angle = 3.141592653589793")),
+    ("spring_link_spatial_length_continuum", study('"spring_link"', robot="first_tendon_angle = 0.3", load=LENGTH,
+                                                   solver="spring_link_axial = true")),
     ("spring_link_spatial_length_eyelets", study('"spring_link"', robot="first_tendon_angle = 0.3", load=LENGTH,
-                                                 solver='tendon_model = "eyelets"')),
+                                                 solver='tendon_model = "eyelets"\nspring_link_axial = true')),
     ("report_ok", study(report='axes = ["kappaL", "p.robot.length", "tip_x"]\nlabels = { kappaL = "k" }')),
 ]
 
@@ -155,7 +157,6 @@ PROBES = [  # (model, corpus id): validate refuses it, so must the model
     ("beam3d", "beam3d_continuum_tension"),
     ("ancf3d", "ancf3d_tension"), ("ancf3d", "ancf3d_pretension"), ("ancf3d", "ancf3d_tip_torque"),
     ("ancf", "ancf_tendon_angle"), ("ancf", "ancf_tip_force_y"), ("ancf", "ancf_tip_torque_z"),
-    ("spring_link", "spring_link_spatial_length_continuum"),
     ("cosserat", "cosserat_eyelets"), ("cosserat", "cosserat_dynamic"),
 ]
 

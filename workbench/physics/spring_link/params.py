@@ -13,7 +13,7 @@ import numpy as np
 
 from ...robot import LoadCase, Robot
 
-__all__ = ["SpringLinkParams", "is_planar", "resolve_axial"]
+__all__ = ["SpringLinkParams", "inextensible_length_warning", "is_planar", "resolve_axial"]
 
 _PLANE_TOL = 1e-12
 
@@ -93,6 +93,31 @@ def resolve_axial(params: SpringLinkParams, robot: Robot, load: LoadCase, tendon
     if not (use_2d and tendon_model == "continuum" and act is not None and act.mode == "length"):
         return False
     return not any(grp.offset_tip is not None for _, _, grp in robot.tendon_table())
+
+
+def inextensible_length_warning(robot: Robot, load: LoadCase, tendon_model: str,
+                                params: SpringLinkParams) -> str | None:
+    """The ``validate`` warning text for length-controlled tendons on the inextensible chain, or ``None``.
+
+    With joints that cannot shorten, a length command is taken up by bending and tendon stretch
+    alone, so the tensions come out too high wherever the real backbone's compression is not
+    negligible against the tendons' stretch (a continuous rod: ``EA_t / L_t`` not << ``EA / L``;
+    measured in ``tests/physics/test_spring_link_crossexam.py``).  A jointed robot (Hannan & Walker's
+    trunk) is inextensible by construction and may ignore it.  Called by
+    :func:`workbench.study.checks.case_rules` for the spring-link models.
+    """
+    act = load.actuation
+    if act is None or act.mode != "length":
+        return None
+    planar, _ = is_planar(robot, load)
+    use_2d = params.dimension == "2d" or (params.dimension == "auto" and planar)
+    if resolve_axial(params, robot, load, tendon_model, use_2d):
+        return None
+    return ("solves these length-controlled tendons on an inextensible "
+            "chain (the backbone cannot shorten: the command is taken up by bending and tendon stretch alone, "
+            "so the tensions are too high for a continuous rod whose compression is not negligible); "
+            "spring_link_axial = true adds axial springs EA/ds (2-D, or 3-D on rigid bodies), "
+            "a jointed robot is inextensible by construction")
 
 
 def is_planar(robot: Robot, load: LoadCase) -> tuple[bool, str]:
