@@ -278,6 +278,6 @@ def solve(robot: Robot, load: LoadCase, options: SolverOptions,
 
 def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     """Registered model ``"spring_link"``: :func:`solve` with default :class:`SpringLinkParams` except
-    the model's own settings in ``options`` (``options.settings("spring_link")``: ``backend``, the
-    study key ``solver.spring_link_backend``)."""
+    the model's own settings in ``options`` (``options.settings("spring_link")``: ``backend`` and
+    ``axial``, the study keys ``solver.spring_link_backend`` and ``solver.spring_link_axial``)."""
     return solve(robot, load, options, SpringLinkParams(**options.settings("spring_link")))
