@@ -125,6 +125,27 @@ def test_length_mode_tensions_match_the_cosserat_rod(n_sec):
     assert np.max(stiff.tendon_tensions / ref.tendon_tensions) > 1.4  # the option keeps the old chain
 
 
+def test_axial_default_only_where_the_lagged_coupling_applies():
+    """Axial springs by default for planar, static, constant-offset continuum length mode only; an
+    explicit axial chain in dynamics is refused before it runs (the coupling is static only)."""
+    from workbench.models.result import ModelFailure
+    from workbench.physics.spring_link import resolve_axial
+
+    length = TendonActuation("length", (0.0, -1e-3), pretension=0.32)
+    planar = rao(1, planar=True)
+    assert resolve_axial(SpringLinkParams(), planar, LoadCase(actuation=length), "continuum", True)
+    assert not resolve_axial(SpringLinkParams(), planar, LoadCase(actuation=length), "eyelets", True)
+    assert not resolve_axial(SpringLinkParams(), planar, LoadCase(actuation=length), "continuum", False)
+    assert not resolve_axial(SpringLinkParams(), rao(1, planar=True, offset_tip=5e-3), LoadCase(actuation=length),
+                             "continuum", True)
+    dyn = LoadCase(actuation=length, analysis="dynamic", duration=0.01)
+    assert not resolve_axial(SpringLinkParams(), planar, dyn, "continuum", True)
+    assert resolve_axial(SpringLinkParams(axial=False, backend="tree"), planar, LoadCase(actuation=length),
+                         "continuum", True) is False
+    with pytest.raises(ModelFailure, match="static only"):
+        solve(planar, dyn, SolverOptions(n_elements=4), SpringLinkParams(axial=True))
+
+
 def test_3d_tapered_continuum_tendons_converge_to_the_cosserat_rod():
     """Tapered offsets (10 -> 5 mm) in 3-D under a tip force, refused at run time before the fix:
     the rope through every link eyelet follows the taper (order 2 towards the Cosserat rod)."""

@@ -42,6 +42,6 @@ from __future__ import annotations
 
 from .driver import run, solve
 from .geometry import ChainGeometry, chain_geometry_from_robot
-from .params import SpringLinkParams, is_planar
+from .params import SpringLinkParams, is_planar, resolve_axial
 
-__all__ = ["SpringLinkParams", "run", "solve", "is_planar", "chain_geometry_from_robot", "ChainGeometry"]
+__all__ = ["SpringLinkParams", "run", "solve", "is_planar", "resolve_axial", "chain_geometry_from_robot", "ChainGeometry"]

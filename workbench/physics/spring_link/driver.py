@@ -271,6 +271,10 @@ def solve(robot: Robot, load: LoadCase, options: SolverOptions,
     t0 = time.perf_counter()
     with quiet_exudyn():
         model = build_chain(robot, load, options, geo, params, use_2d)
+        if model.lagged_length and load.analysis != "static":
+            raise ModelFailure("spring_link: planar continuum tendons in length mode with axial springs are static "
+                               "only (lagged coupling, workbench/physics/spring_link/lengthmode.py); use axial=False "
+                               "or tendon_model='eyelets'")
         if load.analysis == "static":
             return _solve_static(model, params, t0)
         return _solve_dynamic(model, params, t0)

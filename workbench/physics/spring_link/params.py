@@ -38,7 +38,7 @@ class SpringLinkParams:
         constrained (Hannan & Walker's 2-DOF joints; an oblique bend then carries the Cardan
         twist, reported as ``tip_twist``).
     axial : bool or None
-        ``None`` (default): ``True`` for constant-offset continuum tendons in length mode on the planar chain (the
+        ``None`` (default): ``True`` for constant-offset continuum tendons in static length mode on the planar chain (the
         backbone's compression under the tendon forces changes the tendon length, so the
         inextensible chain overestimates the tensions), ``False`` otherwise (:func:`resolve_axial`).
         ``False``: inextensible pin (2-D) / spherical or Cardan (3-D) joints.  ``True``:
@@ -90,7 +90,8 @@ def resolve_axial(params: SpringLinkParams, robot: Robot, load: LoadCase, tendon
     if params.backend == "tree":  # the tree is inextensible
         return False
     act = load.actuation
-    if not (use_2d and tendon_model == "continuum" and act is not None and act.mode == "length"):
+    if not (use_2d and tendon_model == "continuum" and act is not None and act.mode == "length"
+            and load.analysis == "static"):
         return False
     return not any(grp.offset_tip is not None for _, _, grp in robot.tendon_table())
 
