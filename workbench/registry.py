@@ -213,10 +213,9 @@ MODELS: Mapping[str, ModelInfo] = {
         extensibility=("axial",), tendon_path="no tendons",
         note="3-D ANCF cable without a cross-section frame: no tendons, tip torque or payload offset")),
     "spring_link": ModelInfo("workbench.physics.spring_link:run", "spring-link", "#2ca02c", order=2.0, capabilities=Capabilities(
-        spatial_length_tendon_models=("eyelets",), tapered_continuum_tendons=("tension",),
-        spatial_tapered_continuum_tendons=(), disk_weights="spread over the section's links", extensibility=(),
-        note="rigid links and joint springs; continuum tendons in length mode only in planar cases, with a "
-             "tapered offset only in planar tension mode")),
+        disk_weights="at the disk", extensibility=(),
+        note="rigid links and joint springs; continuum tendons as ropes through every link eyelet in 3-D; axial and "
+             "shear springs by default only in planar continuum length mode ([solver] spring_link_axial)")),
     # no mesh (shooting to newton_tolerance): no declared order, so its rows carry no estimate
     "cosserat": ModelInfo("workbench.physics.cosserat:run", "Cosserat rod", "#8c564b", capabilities=Capabilities(
         tendon_models=("continuum",), spatial_length_tendon_models=("continuum",), analyses=("static",),
@@ -224,11 +223,9 @@ MODELS: Mapping[str, ModelInfo] = {
              "static only; accuracy from newton_tolerance, n_elements unused")),
     "spring_link_cardan": ModelInfo("workbench.physics.spring_link.cardan:run", "spring-link, 2-DOF joints",
                                     "#17becf", order=2.0, capabilities=Capabilities(
-        length_tendon_models=("eyelets",), spatial_length_tendon_models=("eyelets",), tapered_continuum_tendons=(),
-        spatial_tapered_continuum_tendons=(), disk_weights="spread over the section's links", extensibility=(),
-        note="3-D chain of Cardan (two-DOF, torsion-locked) joints, Hannan & Walker's robot, also for planar cases "
-             "(continuum tendons only in tension mode with constant offsets); refuses states with cable strain "
-             "> 2 % (folded branches)")),
+        disk_weights="at the disk", extensibility=(),
+        note="3-D chain of Cardan (two-DOF, torsion-locked) joints, Hannan & Walker's robot, also for planar cases; "
+             "refuses states with cable strain > 2 % (folded branches)")),
     # planar ANCF with a rigid circle (without an object: equal to ancf with continuum tendons, order 4);
     # order 1.5: the held tip of whole-arm wraps at 8-64 elements (observed 1.2-1.7, friction cases ~1,
     # where the per-case observed order is used; benchmarks/measure_contact_convergence.py)

@@ -105,5 +105,12 @@ def test_spatial_preset_bends_out_of_plane_with_cardan_joints():
                 SolverOptions(n_elements=16, tendon_model="continuum"), SpringLinkParams(torsion="locked"))
     assert res.extras["dimension"] == 3.0 and res.joint_angles.shape == (16, 2)
     assert res.tip_position[1] > 0.01 and abs(res.tip_position[0]) < 1e-12
-    # section 1 joints all turn by T d / k about -x (towards +y)
-    assert res.joint_angles[:4, 0] == pytest.approx(-40.0 * 0.0508 / 120.0, rel=1e-9)
+    # section 1 joints all turn by theta about -x (towards +y): the continuum tendon is a rope
+    # through every link eyelet, whose chord passes joint k at the lever arm
+    # d cos(theta/2) + (ds/2) sin(theta/2) (eyelets ds/2 either side, bent towards the tendon):
+    # k theta = T * lever arm
+    from scipy.optimize import brentq
+
+    ds = robot.length / 16
+    theta = brentq(lambda th: 120.0 * th - 40.0 * (0.0508 * np.cos(th / 2) + ds / 2 * np.sin(th / 2)), 0.0, 1.0)
+    assert res.joint_angles[:4, 0] == pytest.approx(-theta, rel=1e-9)

@@ -151,6 +151,7 @@ def test_solver_section_mirrors_solver_and_pipeline_options():
     fields = {f.name: f.default for f in dataclasses.fields(SolverOptions) if f.name != "model_settings"}
     fields.update({f.name: f.default for f in dataclasses.fields(PipelineOptions)})
     fields["spring_link_backend"] = "auto"  # SpringLinkParams.backend's default
+    fields["spring_link_axial"] = None  # SpringLinkParams.axial's default (the model's own rule)
     section = SolverSection()
     assert set(SolverSection.model_fields) == set(fields) | set(LIMIT_KEYS)
     # tuples are lists in the section; n_elements_by_model's (name, n) pairs are a table there
@@ -159,6 +160,7 @@ def test_solver_section_mirrors_solver_and_pipeline_options():
         for k, v in fields.items()}
     options = build_options(section.model_dump(exclude=set(LIMIT_KEYS)))
     assert options.settings("spring_link") == {"backend": "auto"} and options.settings("cc") == {}
+    assert build_options({"spring_link_axial": False}).settings("spring_link") == {"axial": False}
     assert build_pipeline_options({"n_elements_by_model": {"ancf": 32}}).for_model("ancf", options).n_elements == 32
 
 

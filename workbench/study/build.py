@@ -171,14 +171,17 @@ def build_options(solver: Mapping[str, Any]):
     """:class:`~workbench.models.SolverOptions` from the ``[solver]`` parameters of one case.
 
     The pipeline's keys (:data:`PIPELINE_KEYS`) are left out (:func:`build_pipeline_options`);
-    ``spring_link_backend`` becomes the spring-link model's own setting ``backend``
-    (``SolverOptions.model_settings``, read by ``workbench.physics.spring_link.run``).
+    ``spring_link_backend`` and ``spring_link_axial`` (when not ``None``) become the spring-link
+    model's own settings ``backend`` and ``axial`` (``SolverOptions.model_settings``, read by
+    ``workbench.physics.spring_link.run``).
     """
     from ..models.result import SolverOptions
 
-    fields = {k: v for k, v in solver.items() if k not in PIPELINE_KEYS and k != "spring_link_backend"}
-    if "spring_link_backend" in solver:
-        fields["model_settings"] = {"spring_link": {"backend": solver["spring_link_backend"]}}
+    own = {"spring_link_backend": "backend", "spring_link_axial": "axial"}
+    fields = {k: v for k, v in solver.items() if k not in PIPELINE_KEYS and k not in own}
+    spring = {name: solver[k] for k, name in own.items() if solver.get(k) is not None}
+    if spring:
+        fields["model_settings"] = {"spring_link": spring}
     return SolverOptions(**fields)
 
 

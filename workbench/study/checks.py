@@ -220,6 +220,24 @@ def _case_rules(params: dict[str, Any], min_time_step: float | None, models: Seq
             from .plausibility import plausibility_warnings
 
             warnings_out.extend(plausibility_warnings(robot, load_case, {**params, "load": load}))
+            warnings_out.extend(_spring_link_warnings(robot, load_case, params, models))
+    return out
+
+
+def _spring_link_warnings(robot, load_case, params: Mapping[str, Any], models: Sequence[str]) -> list[str]:
+    """The spring-link models' own warning (length mode on the inextensible chain)."""
+    from ..physics.spring_link.cardan import CARDAN
+    from ..physics.spring_link.params import SpringLinkParams, inextensible_length_warning
+
+    out = []
+    for m in models:
+        if m not in ("spring_link", "spring_link_cardan"):
+            continue
+        options = build_options({k: v for k, v in params.get("solver", {}).items() if k not in LIMIT_KEYS})
+        p = CARDAN if m == "spring_link_cardan" else SpringLinkParams(**options.settings("spring_link"))
+        line = inextensible_length_warning(robot, load_case, options.tendon_model, p)
+        if line:
+            out.append(f"solver.spring_link_axial: model '{m}' {line}")
     return out
 
 

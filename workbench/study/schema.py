@@ -91,6 +91,8 @@ class SolverSection(CaseLimitFields):
     damping: float = Field(default=0.0, ge=0.0)
     spectral_radius: float = Field(default=0.8, ge=0.0, le=1.0)
     spring_link_backend: Literal["auto", "tree", "bodies"] = "auto"
+    # spring-link axial springs (SpringLinkParams.axial); None: the model's own rule (a case key only when set)
+    spring_link_axial: bool | None = None
     error_estimate: Literal["richardson", "none"] = "richardson"
     error_estimate_exempt: list[str] = Field(default_factory=list)
     # per-model n_elements (a study key only when set: keeps the case ids of studies without it)

@@ -274,9 +274,10 @@ def _resolve_base(sections: Mapping[str, BaseModel], robot_base: dict[str, Any] 
     base = {
         "robot": robot_base,
         "load": sections["load"].model_dump(),
-        # n_elements_by_model only when set (keeps the case ids of the studies without it)
+        # n_elements_by_model and spring_link_axial only when set (keeps the case ids of the studies without them)
         "solver": sections["solver"].model_dump(exclude=set(LIMIT_KEYS) | (
-            set() if sections["solver"].n_elements_by_model else {"n_elements_by_model"})),
+            set() if sections["solver"].n_elements_by_model else {"n_elements_by_model"}) | (
+            set() if sections["solver"].spring_link_axial is not None else {"spring_link_axial"})),
         "derived": sections["derived"].model_dump(),
     }
     if scenario_base is not None:  # only when given: keeps case ids of scenario-free studies

@@ -14,20 +14,27 @@ A segmented backbone (Hannan & Walker's trunk: a robot with joint springs ``k`` 
   :mod:`.tree` (one ``ObjectKinematicTree``, planar or Cardan; used for eyelet ropes).
 * :mod:`.routing` -- tendons: ``tendon_model="eyelets"``, one frictionless rope per tendon through
   the robot's disks (constant-force segments in tension mode, one reeving rope with slack/taut
-  switching in length mode); ``"continuum"``, the exact internal moment ``T d cos(alpha)`` at every
-  joint the tendon passes (and its compression ``T`` with ``axial=True``).
+  switching in length mode); ``"continuum"`` on planar chains, the exact internal moment
+  ``T d cos(alpha)`` at every joint the tendon passes (and its compression ``T`` with axial springs);
+  in 3-D (and planar tapered length mode) a rope through an eyelet at every link, whose limit as the
+  links grow is the continuous routing (:mod:`.linkrope` on the kinematic tree).
+* :mod:`.lengthmode` -- planar continuum length mode with axial springs (the default there,
+  :func:`.params.resolve_axial`): the tendon length includes the backbone's compression.
 * :mod:`.driver` -- :func:`solve` and the registered :func:`run`: a static load ramp (gravity, tip
   loads and tendon commands together, on :func:`workbench.physics._stepping.load_ramp`); dynamics:
   equilibrium at ``t = 0``, then implicit generalised-alpha with the commands updated every step,
   joint damping ``options.damping * k``.
 * :mod:`.shape` -- the result: positions at ``options.n_stations`` stations along the links, tip
   frame, ``length_change`` (axial springs only), tensions, ``joint_angles``, ``tip_twist`` (3-D).
+* Disks are point masses at their own stations (:mod:`.geometry`).
 
 Checked by ``tests/physics/test_spring_link.py`` (order-2 convergence to the arc and the heavy
 elastica, CC limit exact to 1e-12, 2-D = 3-D, tree = bodies, axial compression, dynamics settle to
 statics), ``test_spring_link_eyelets.py`` (rope routing, convergence to the ANCF rope model),
-``test_hannan_walker.py`` (Eq. 1 cable geometry) and ``test_spring_link_layout.py`` (the chain
-hooks, the load ramp's steps).  Measured behaviour (timings, Newton convergence with eyelet ropes, why
+``test_hannan_walker.py`` (Eq. 1 cable geometry, the link rope's chord lever arm),
+``test_spring_link_layout.py`` (the chain hooks, the load ramp's steps) and
+``test_spring_link_crossexam.py`` (3-D continuum tendons under external loads, disk weights and
+length-mode tensions against the Cosserat rod and beam theory).  Measured behaviour (timings, Newton convergence with eyelet ropes, why
 the tree backend is chosen) and the limitations: ``docs/models.md``, "Spring-link".
 """
 
@@ -35,6 +42,6 @@ from __future__ import annotations
 
 from .driver import run, solve
 from .geometry import ChainGeometry, chain_geometry_from_robot
-from .params import SpringLinkParams, is_planar
+from .params import SpringLinkParams, is_planar, resolve_axial
 
-__all__ = ["SpringLinkParams", "run", "solve", "is_planar", "chain_geometry_from_robot", "ChainGeometry"]
+__all__ = ["SpringLinkParams", "run", "solve", "is_planar", "resolve_axial", "chain_geometry_from_robot", "ChainGeometry"]

@@ -20,6 +20,7 @@ from ...models.inputs import check_model_inputs
 from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ...robot import LoadCase, Robot
 from .geometry import ChainGeometry
+from .lengthmode import gap_sums
 from .routing import add_eyelet_rope, TendonRoute, route_tendons
 from .shape import planar_shape, spatial_shape, twist_vs_parallel_transport
 
@@ -62,6 +63,11 @@ class Chain:
         self.tendons: list[TendonRoute] = route_tendons(robot, geo, options.tendon_model)
         self.mode = None if load.actuation is None else load.actuation.mode
         self.model = options.tendon_model
+        self.ropes = self.model == "eyelets" or self._continuum_ropes()
+        # planar continuum length mode with axial springs (:mod:`.lengthmode`): lagged couplings
+        self.lagged_length = self.axial and self.planar and self.mode == "length" and not self.ropes
+        self.lag_gaps = np.zeros(len(self.tendons))
+        self.lag_tensions = np.zeros(len(self.tendons))
         self._check()
         self.SC = exu.SystemContainer()
         self.mbs = self.SC.AddSystem()
@@ -98,18 +104,27 @@ class Chain:
         for ld in self.gravity_loads:
             self.mbs.SetLoadParameter(ld, "loadVector", (lam * self.g2).tolist())
 
-    # -- shared build steps --------------------------------------------------------------------
-    def _reject_tapered_length(self) -> None:
-        if self.mode == "length" and self.model == "continuum" and any(t.tapered for t in self.tendons):
-            raise ModelFailure(
-                "spring_link: continuum tendons with tapered offsets (offset_tip) are not supported in "
-                "length mode; use tendon_model='eyelets'"
-            )
+    def _continuum_ropes(self) -> bool:
+        """Whether continuum tendons are ropes through an eyelet at every link eyelet ``e_k``.
 
+        3-D chains (tension or length) and planar length mode with axial springs or a tapered
+        offset: the rope (constant-force segments in tension mode, a reeving rope in length mode)
+        follows the deformed chain, so its forces are exact for the routed tendon under any
+        external load, and the continuous routing is its limit as the links grow (the chord's
+        lever-arm error is ``O(ds^2)``, ``test_spring_link_crossexam.py``).  Planar chains use the
+        exact internal moment ``T d cos(alpha)`` (tension) or the terminating link's rotation
+        (length, constant offset; with axial springs through :mod:`.lengthmode`), exact in the
+        plane under any load; planar length mode with a tapered offset uses the ropes too.
+        """
+        if self.model != "continuum" or self.mode is None:
+            return False
+        return not self.planar or (self.mode == "length" and any(t.tapered for t in self.tendons))
+
+    # -- shared build steps --------------------------------------------------------------------
     def _eyelet_marker_type(self):  # noqa: ANN202
         """Rigid markers for reeving ropes (Exudyn needs them), position markers otherwise."""
         eii = self.eii
-        return eii.MarkerBodyRigid if (self.model == "eyelets" and self.mode == "length") else eii.MarkerBodyPosition
+        return eii.MarkerBodyRigid if (self.ropes and self.mode == "length") else eii.MarkerBodyPosition
 
     def _add_gravity(self, mbs) -> None:  # noqa: ANN001
         """Mass-proportional gravity loads on the rigid bodies (set by the load factor)."""
@@ -138,7 +153,7 @@ class Chain:
             self.eyelet_markers.append(marks)
             if self.mode is None:
                 items = []
-            elif self.model == "eyelets":
+            elif self.ropes:
                 items = add_eyelet_rope(mbs, marks, t, self.mode, self.options.damping)
             else:
                 items = self._continuum_items(mbs, i, t)
@@ -170,7 +185,7 @@ class Chain:
         self._values = np.asarray(values, dtype=float)
         if self.mode == "length":
             self._L0 = self.rest_lengths(self._values, pretension_factor)
-        if self.model == "eyelets":
+        if self.ropes:
             self._set_ropes()
         else:
             self._set_continuum()
@@ -188,10 +203,11 @@ class Chain:
 
     def _set_compression(self, axis: int) -> None:
         """Continuum tendons with axial springs: compression sum(T) in every joint a tendon
-        passes, as a rest-length offset of the joint spring's coordinate ``axis``."""
+        passes, as a rest-length offset of the joint spring's coordinate ``axis`` (length mode:
+        the lagged tensions of :mod:`.lengthmode`)."""
         N = self.geo.n_links
         comp = np.zeros(N)
-        for t, v in zip(self.tendons, self._values):
+        for t, v in zip(self.tendons, self.lag_tensions if self.mode == "length" else self._values):
             comp[: t.end_eyelet] += v * t.cos_alpha
         for k in range(N):
             off = [0.0] * 6
@@ -215,10 +231,11 @@ class Chain:
     def tendon_lengths(self) -> np.ndarray:
         """Current tendon path lengths [m]: continuum tendons of planar chains from the rotation
         of their terminating link, ropes (and 3-D chains) from the eyelet marker positions."""
-        if self.model == "continuum" and self.planar:
+        if not self.ropes and self.planar:
             _, beta = self.link_states()
-            return np.asarray([t.reference_length - t.offsets[-1] * s * beta[t.end_eyelet - 1]
-                               for t, s in zip(self.tendons, self.sign)])
+            gaps = gap_sums(self) if self.axial else np.zeros(len(self.tendons))
+            return np.asarray([t.reference_length - t.offsets[-1] * s * beta[t.end_eyelet - 1] + g
+                               for t, s, g in zip(self.tendons, self.sign, gaps)])
         exu = self.exu
         out = []
         for marks in self.eyelet_markers:

@@ -24,7 +24,8 @@ from ...models.backbone_frames import backbone_series, frame_stride
 from .._stepping import PathPoint, RampExhausted, RampPolicy, RampStalled, load_ramp
 from .chain import Chain
 from .geometry import ChainGeometry, chain_geometry_from_robot
-from .params import SpringLinkParams, is_planar
+from .lengthmode import settle_lagged
+from .params import SpringLinkParams, is_planar, resolve_axial
 from .planar import PlanarChain
 from .spatial import SpatialChain
 from .tree import TreeChain
@@ -93,7 +94,7 @@ def static_ramp(model: Chain, options: SolverOptions, params: SpringLinkParams,
     # linearly (~100-125 iterations at N = 16 vs 3-6 for continuum tendons, docs/models.md): allow
     # more there.  The tree's Newton is quadratic (4-16 iterations per step up to alpha = 10);
     # a failing step is cut off early, a 3-D tree Jacobian with ropes costs ~0.5-2 s.
-    eyelet_ropes = model.model == "eyelets" and model.mode is not None
+    eyelet_ropes = model.ropes and model.mode is not None
     settings.staticSolver.newton.maxIterations = (250 if eyelet_ropes else 40) if model.rigid_bodies else 25
     newton_its = 0
 
@@ -163,8 +164,22 @@ def _solve_static(model: Chain, params: SpringLinkParams, t0: float) -> PhysicsR
     act = model.load.actuation
     final = np.zeros(len(model.tendons)) if act is None else np.asarray(act.values)
     steps, its = ramp_to(model, params, final)
+    repeats = 0
+    if model.lagged_length:  # planar continuum length mode with axial springs: lagged couplings
+
+        def resolve(old: tuple, new: tuple) -> None:
+            def apply(lam: float) -> None:
+                model.lag_gaps = old[0] + lam * (new[0] - old[0])
+                model.lag_tensions = old[1] + lam * (new[1] - old[1])
+                model.set_tendons(final, 1.0)
+
+            nonlocal steps, its
+            s, i = static_ramp(model, model.options, params, apply)
+            steps, its = steps + s, its + i
+
+        repeats = settle_lagged(model, resolve)
     info = SolverInfo(converged=True, iterations=its, wall_time=time.perf_counter() - t0,
-                      message=f"{steps} load steps")
+                      message=f"{steps} load steps" + (f" ({repeats} lagged-coupling equilibria)" if repeats else ""))
     return model.result(info)
 
 
@@ -267,10 +282,15 @@ def solve(robot: Robot, load: LoadCase, options: SolverOptions,
     if params.dimension == "2d" and not planar:
         raise ModelFailure(f"spring_link: dimension='2d' requested but the case is not planar: {why}")
     use_2d = params.dimension == "2d" or (params.dimension == "auto" and planar)
+    params = replace(params, axial=resolve_axial(params, robot, load, options.tendon_model, use_2d))
     geo = chain_geometry_from_robot(robot, options.n_elements)
     t0 = time.perf_counter()
     with quiet_exudyn():
         model = build_chain(robot, load, options, geo, params, use_2d)
+        if model.lagged_length and load.analysis != "static":
+            raise ModelFailure("spring_link: planar continuum tendons in length mode with axial springs are static "
+                               "only (lagged coupling, workbench/physics/spring_link/lengthmode.py); use axial=False "
+                               "or tendon_model='eyelets'")
         if load.analysis == "static":
             return _solve_static(model, params, t0)
         return _solve_dynamic(model, params, t0)
@@ -278,6 +298,6 @@ def solve(robot: Robot, load: LoadCase, options: SolverOptions,
 
 def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     """Registered model ``"spring_link"``: :func:`solve` with default :class:`SpringLinkParams` except
-    the model's own settings in ``options`` (``options.settings("spring_link")``: ``backend``, the
-    study key ``solver.spring_link_backend``)."""
+    the model's own settings in ``options`` (``options.settings("spring_link")``: ``backend`` and
+    ``axial``, the study keys ``solver.spring_link_backend`` and ``solver.spring_link_axial``)."""
     return solve(robot, load, options, SpringLinkParams(**options.settings("spring_link")))

@@ -52,7 +52,8 @@ class ChainGeometry:
     shear_stiffness : ndarray, shape (N,)
         Shear stiffness of joint ``k`` [N/m], ``GA(s_k) / ds_k`` (``EA`` where ``GA`` is None).
     mass : ndarray, shape (N,)
-        Link masses [kg] (rod material of the link span plus lumped disk masses).
+        Link masses [kg] (rod material of the link span plus the disks on it, each a point mass
+        at its own station).
     com : ndarray, shape (N,)
         Centre of mass of each link, distance from its joint along the link [m].
     inertia_bending : ndarray, shape (N,)
@@ -146,14 +147,26 @@ def _rod_moments(robot: Robot, joints: np.ndarray, ends: np.ndarray, n_quad: int
     return mass, first, second, radial
 
 
-def _disk_masses(robot: Robot, per: int, n_links: int) -> np.ndarray:
-    """Lumped disks: each section's total disk mass spread over its eyelets 1..per."""
-    disk = np.zeros(n_links)
-    for j, sec in enumerate(robot.sections):
-        if sec.disk_mass > 0:
-            ks = np.arange(j * per, (j + 1) * per)
-            disk[ks] += sec.disk_mass * sec.n_disks / per
-    return disk
+def _disk_loads(robot: Robot, joints: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Disks as point masses at their own stations (``robot.disk_stations()``).
+
+    A disk at station ``s`` sits on the link whose span ``[s_k, s_{k+1})`` contains it (the last
+    link up to the tip), at ``s - s_k`` past that link's joint; a disk below the first joint sits
+    on the base plate and loads nothing.  Returns per link the disk mass, its first and its second
+    moment about the joint, so each disk's weight and inertia act at its own station (the
+    point-load beam of ``tests/physics/test_spring_link_crossexam.py``).
+    """
+    n_links = joints.size
+    mass, first, second = np.zeros(n_links), np.zeros(n_links), np.zeros(n_links)
+    st = robot.disk_stations()
+    m = np.concatenate([np.full(sec.n_disks, sec.disk_mass) for sec in robot.sections])
+    k = np.searchsorted(joints, st, side="right") - 1
+    on = (k >= 0) & (m > 0)
+    z = st[on] - joints[k[on]]
+    np.add.at(mass, k[on], m[on])
+    np.add.at(first, k[on], m[on] * z)
+    np.add.at(second, k[on], m[on] * z**2)
+    return mass, first, second
 
 
 def chain_geometry_from_robot(robot: Robot, n_links: int, n_quad: int = 8) -> ChainGeometry:
@@ -187,16 +200,15 @@ def chain_geometry_from_robot(robot: Robot, n_links: int, n_quad: int = 8) -> Ch
     link_lengths = ends - joints
     pj = _section_properties(robot, joints)
     mass, first, second, radial = _rod_moments(robot, joints, ends, n_quad)
-    disk = _disk_masses(robot, per, n_links)
-    disk_pos = eyelets[1:] - joints
+    disk, disk_first, disk_second = _disk_loads(robot, joints)
     m_tot = mass + disk
     if np.any(m_tot <= 0):
         # massless chain: keep a tiny mass so that the rigid bodies are well defined in dynamics;
         # statics does not depend on it.
         m_tot = np.where(m_tot > 0, m_tot, 1e-9)
-    com = (first + disk * disk_pos) / np.where(mass + disk > 0, mass + disk, 1.0)
+    com = (first + disk_first) / np.where(mass + disk > 0, mass + disk, 1.0)
     com = np.where(mass + disk > 0, com, 0.5 * link_lengths)
-    I_about_joint = second + disk * disk_pos**2 + radial / 16.0
+    I_about_joint = second + disk_second + radial / 16.0
     return ChainGeometry(
         eyelets=eyelets,
         joints=joints,

@@ -13,7 +13,7 @@ import numpy as np
 
 from ...robot import LoadCase, Robot
 
-__all__ = ["SpringLinkParams", "is_planar"]
+__all__ = ["SpringLinkParams", "inextensible_length_warning", "is_planar", "resolve_axial"]
 
 _PLANE_TOL = 1e-12
 
@@ -37,13 +37,17 @@ class SpringLinkParams:
         relative rotation about the link axis in the joint's x-y-z Tait-Bryan sequence is
         constrained (Hannan & Walker's 2-DOF joints; an oblique bend then carries the Cardan
         twist, reported as ``tip_twist``).
-    axial : bool
-        ``False`` (default): inextensible pin (2-D) / spherical or Cardan (3-D) joints.  ``True``:
+    axial : bool or None
+        ``None`` (default): ``True`` for constant-offset continuum tendons in static length mode on the planar chain (the
+        backbone's compression under the tendon forces changes the tendon length, so the
+        inextensible chain overestimates the tensions), ``False`` otherwise (:func:`resolve_axial`).
+        ``False``: inextensible pin (2-D) / spherical or Cardan (3-D) joints.  ``True``:
         every joint becomes a rigid-body spring (``RigidBodySpringDamper``, intrinsic) with axial
         stiffness ``EA/ds`` and shear stiffness ``GA/ds`` (``CrossSection.GA``, or ``EA`` when it
         is ``None``) besides the bending (and torsion) springs, so the backbone can compress
         (wire-delay compression, continuum-tendon compression ``T``) and ``length_change`` is
-        reported.  Not combined with ``torsion="locked"`` or with continuum tendons in length mode.
+        reported.  Not combined with ``torsion="locked"``.  The study key is
+        ``[solver] spring_link_axial`` (``SolverOptions.model_settings``).
     backend : {"auto", "bodies", "tree"}
         Exudyn representation of an inextensible chain.  ``"tree"``: one ``ObjectKinematicTree``
         (minimal coordinates, no joint constraints; planar, or in 3-D a chain of Cardan joints
@@ -59,7 +63,7 @@ class SpringLinkParams:
     dimension: Literal["auto", "2d", "3d"] = "auto"
     max_active_set_iterations: int = 20
     torsion: Literal["spring", "locked"] = "spring"
-    axial: bool = False
+    axial: bool | None = None
     backend: Literal["auto", "bodies", "tree"] = "auto"
 
     def __post_init__(self) -> None:
@@ -67,12 +71,54 @@ class SpringLinkParams:
             raise ValueError(f"SpringLinkParams.dimension must be 'auto', '2d' or '3d', got {self.dimension!r}")
         if self.backend not in ("auto", "bodies", "tree"):
             raise ValueError(f"SpringLinkParams.backend must be 'auto', 'bodies' or 'tree', got {self.backend!r}")
+        if self.axial not in (None, True, False):
+            raise ValueError(f"SpringLinkParams.axial must be None, True or False, got {self.axial!r}")
         if self.axial and self.torsion == "locked":
             raise ValueError("SpringLinkParams: axial=True needs torsion='spring'")
         if self.torsion not in ("spring", "locked"):
             raise ValueError(f"SpringLinkParams.torsion must be 'spring' or 'locked', got {self.torsion!r}")
         if int(self.max_active_set_iterations) < 1:
             raise ValueError("SpringLinkParams.max_active_set_iterations must be >= 1")
+
+
+def resolve_axial(params: SpringLinkParams, robot: Robot, load: LoadCase, tendon_model: str, use_2d: bool) -> bool:
+    """The chain's axial springs: ``params.axial``, or for ``None`` whether the case is planar
+    continuum tendons in length mode (where the inextensible chain's tensions are wrong:
+    ``tests/physics/test_spring_link_crossexam.py``)."""
+    if params.axial is not None:
+        return bool(params.axial)
+    if params.backend == "tree":  # the tree is inextensible
+        return False
+    act = load.actuation
+    if not (use_2d and tendon_model == "continuum" and act is not None and act.mode == "length"
+            and load.analysis == "static"):
+        return False
+    return not any(grp.offset_tip is not None for _, _, grp in robot.tendon_table())
+
+
+def inextensible_length_warning(robot: Robot, load: LoadCase, tendon_model: str,
+                                params: SpringLinkParams) -> str | None:
+    """The ``validate`` warning text for length-controlled tendons on the inextensible chain, or ``None``.
+
+    With joints that cannot shorten, a length command is taken up by bending and tendon stretch
+    alone, so the tensions come out too high wherever the real backbone's compression is not
+    negligible against the tendons' stretch (a continuous rod: ``EA_t / L_t`` not << ``EA / L``;
+    measured in ``tests/physics/test_spring_link_crossexam.py``).  A jointed robot (Hannan & Walker's
+    trunk) is inextensible by construction and may ignore it.  Called by
+    :func:`workbench.study.checks.case_rules` for the spring-link models.
+    """
+    act = load.actuation
+    if act is None or act.mode != "length":
+        return None
+    planar, _ = is_planar(robot, load)
+    use_2d = params.dimension == "2d" or (params.dimension == "auto" and planar)
+    if resolve_axial(params, robot, load, tendon_model, use_2d):
+        return None
+    return ("solves these length-controlled tendons on an inextensible "
+            "chain (the backbone cannot shorten: the command is taken up by bending and tendon stretch alone, "
+            "so the tensions are too high for a continuous rod whose compression is not negligible); "
+            "spring_link_axial = true adds axial springs EA/ds (2-D, or 3-D on rigid bodies), "
+            "a jointed robot is inextensible by construction")
 
 
 def is_planar(robot: Robot, load: LoadCase) -> tuple[bool, str]:

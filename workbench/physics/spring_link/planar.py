@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...models.result import ModelFailure, SolverOptions
+from ...models.result import SolverOptions
 from ...robot import LoadCase, Payload, Robot
 from .chain import Chain
 from .geometry import ChainGeometry
@@ -49,12 +49,6 @@ class PlanarChain(Chain):
                  axial: bool = False) -> None:
         self.axial = bool(axial)
         super().__init__(robot, load, options, geo)
-
-    def _check(self) -> None:
-        if self.axial and self.mode == "length" and self.model == "continuum":
-            raise ModelFailure("spring_link: axial=True with continuum tendons in length mode is not supported; "
-                               "use tendon_model='eyelets'")
-        self._reject_tapered_length()
 
     def _build(self, mbs) -> None:  # noqa: ANN001
         eii, geo = self.eii, self.geo
@@ -143,10 +137,10 @@ class PlanarChain(Chain):
                 continue
             d, c, L0 = t.offsets[-1], self.sign[i], float(self._L0[i])
             K = t.axial_stiffness * d * d / L0
-            phi_star = (L0 - t.reference_length) / (d * c)
+            phi_star = (L0 - self.lag_gaps[i] - t.reference_length) / (d * c)
             mbs.SetObjectParameter(items[0], "stiffness", K if self.tendon_active[i] else 0.0)
             mbs.SetObjectParameter(items[0], "offset", float(phi_star))
-        if self.axial and self.mode == "tension":
+        if self.axial:
             self._set_compression(axis=1)
 
     def _continuum_torques(self, i: int, v: float) -> list[list[float]]:

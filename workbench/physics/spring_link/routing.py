@@ -13,7 +13,6 @@ segment, exactly a frictionless rope with uniform tension ``T``.  Length control
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -107,10 +106,3 @@ def route_tendons(robot: Robot, geo: ChainGeometry, tendon_model: str = "continu
         out.append(TendonRoute(j, float(sigma), m, d, grp.axial_stiffness, L_ref, grp.offset_tip is not None, arm,
                            cos_a, link, z, dd))
     return out
-
-
-def end_link_torque(tendon: TendonRoute, tension: float) -> list[float]:
-    """Body-fixed torque ``T d (-sin sigma, cos sigma, 0)`` of a constant-offset continuum tendon
-    on its terminating link (3-D chains; the reaction acts on the base)."""
-    d = float(tendon.moment_arm[-1])
-    return [-tension * d * math.sin(tendon.sigma), tension * d * math.cos(tendon.sigma), 0.0]

@@ -15,6 +15,8 @@ Static length or tension commands only (no dynamics).  Checked by
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import time
 
 import numpy as np
@@ -24,7 +26,7 @@ from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOpti
 from ...robot import LoadCase, Robot
 from .driver import build_chain, ramp_to, static_ramp
 from .geometry import chain_geometry_from_robot
-from .params import SpringLinkParams, is_planar
+from .params import SpringLinkParams, is_planar, resolve_axial
 
 __all__ = ["StaticSession"]
 
@@ -58,12 +60,17 @@ class StaticSession:
         if params.dimension == "2d" and not planar:
             raise ModelFailure(f"spring_link: dimension='2d' requested but the case is not planar: {why}")
         use_2d = params.dimension == "2d" or (params.dimension == "auto" and planar)
+        params = replace(params, axial=resolve_axial(params, robot, load, options.tendon_model, use_2d))
         self.params, self.solves = params, 0
         self.values = np.asarray(load.actuation.values, dtype=float)
         t0 = time.perf_counter()
         with quiet_exudyn():
             self.chain = build_chain(robot, load, options, chain_geometry_from_robot(robot, options.n_elements),
                                       params, use_2d)
+            if self.chain.lagged_length:
+                raise ModelFailure("spring_link StaticSession: planar continuum tendons in length mode with axial "
+                                   "springs are not warm-started; use tendon_model='eyelets' or "
+                                   "SpringLinkParams(axial=False)")
             steps, its = ramp_to(self.chain, params, self.values)
         self._last = self._result(steps, its, t0)
 

@@ -4,7 +4,7 @@ One Euler-parameter rigid body per link (``NodeRigidBodyEP``: Lie-group nodes fa
 Each joint: a ``GenericJoint`` with the translations constrained (spherical joint, or Cardan joint
 with ``torsion="locked"``) and an intrinsic ``RigidBodySpringDamper`` carrying ``diag(k, k, GJ/ds)``
 (``axial=True``: no joint constraint, shear ``GA/ds`` and axial ``EA/ds`` springs too).  Continuum
-tendons (tension mode, constant offset) act as a body-fixed torque on their terminating link.
+tendons are ropes through an eyelet at every link (:meth:`.chain.Chain._continuum_ropes`).
 Checked by ``tests/physics/test_spring_link.py`` (2-D = 3-D, oblique and rotated bends, torsion,
 Cardan twist, axial compression) and ``test_hannan_walker.py`` (spatial preset).
 """
@@ -15,11 +15,11 @@ import math
 
 import numpy as np
 
-from ...models.result import ModelFailure, SolverOptions
+from ...models.result import SolverOptions
 from ...robot import LoadCase, Payload, Robot
 from .chain import Chain
 from .geometry import ChainGeometry
-from .routing import end_link_torque, TendonRoute
+from .routing import TendonRoute
 
 __all__: list[str] = []
 
@@ -53,18 +53,6 @@ class SpatialChain(Chain):
         self.torsion = torsion
         self.axial = bool(axial)
         super().__init__(robot, load, options, geo)
-
-    def _check(self) -> None:
-        if self.mode == "length" and self.model == "continuum":
-            raise ModelFailure(
-                "spring_link: continuum tendons in length mode are only implemented for the planar chain; "
-                "use tendon_model='eyelets' (or a planar case)"
-            )
-        if self.model == "continuum" and self.mode is not None and any(t.tapered for t in self.tendons):
-            raise ModelFailure(
-                "spring_link: continuum tendons with tapered offsets are only implemented for the planar "
-                "chain; use tendon_model='eyelets'"
-            )
 
     def _build(self, mbs) -> None:  # noqa: ANN001
         eii, geo = self.eii, self.geo
@@ -118,18 +106,6 @@ class SpatialChain(Chain):
         x, y = (d * u).tolist()
         body = self.ground if link < 0 else self.bodies[link]
         return mbs.AddMarker(self._eyelet_marker_type()(bodyNumber=body, localPosition=[x, y, float(z)]))
-
-    def _continuum_items(self, mbs, i: int, tendon: TendonRoute) -> list:  # noqa: ANN001
-        # tension only (length mode is rejected): body-fixed torque on the terminating link
-        eii = self.eii
-        mt = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=self.bodies[tendon.end_eyelet - 1]))
-        return [mbs.AddLoad(eii.LoadTorqueVector(markerNumber=mt, loadVector=[0.0, 0.0, 0.0], bodyFixed=True))]
-
-    def _set_continuum(self) -> None:
-        for i, (t, items) in enumerate(zip(self.tendons, self.tendon_items)):
-            self.mbs.SetLoadParameter(items[0], "loadVector", end_link_torque(t, float(self._values[i])))
-        if self.axial:
-            self._set_compression(axis=2)
 
     def link_frames(self) -> tuple[np.ndarray, np.ndarray]:
         """Joint positions (N, 3) and link rotation matrices (N, 3, 3), base frame."""

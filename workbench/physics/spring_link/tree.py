@@ -6,8 +6,9 @@ per link (rotation about base +y, bending towards +x).  3-D (``spatial``): ``Rev
 ``RevoluteY`` at each joint (a Cardan joint, torsion locked, springs on both Cardan angles), the
 intermediate link massless.  No joint constraints, so eyelet ropes (``MarkerKinematicTreeRigid``
 eyelets) keep Newton quadratic; :mod:`.driver` uses it for every eyelet rope it can.  Planar
-continuum tendons act as generalised joint forces (``jointForceVector``); 3-D ones as a body-fixed
-torque on the terminating link; length mode (planar only) as a rotational spring to ground.
+continuum tendons act as generalised joint forces (``jointForceVector``), in length mode as a
+rotational spring to ground; 3-D ones (and planar tapered ones in length mode) are ropes through an
+eyelet at every link (:meth:`.chain.Chain._continuum_ropes`).
 
 :func:`tree_tip_position` is a stripped variant (continuum tendons at sigma in {0, pi}, tip moment
 about base y and gravity, all as joint forces or the tree's own gravity) timed by
@@ -25,7 +26,8 @@ from ...models.result import ModelFailure, SolverOptions
 from ...robot import LoadCase, Payload, Robot
 from .chain import Chain
 from .geometry import ChainGeometry, chain_geometry_from_robot
-from .routing import end_link_torque, TendonRoute
+from .linkrope import generalised_forces
+from .routing import TendonRoute
 from .._stepping import PathPoint, RampExhausted, RampPolicy, load_ramp
 
 __all__ = ["tree_tip_position"]
@@ -124,14 +126,26 @@ class TreeChain(Chain):
         self.planar = not self.spatial
         self.torsion = torsion if self.spatial else "locked"
         self.per = (3 if torsion == "spring" else 2) if self.spatial else 1
+        self.link_ropes = self.spatial and options.tendon_model == "continuum" and load.actuation is not None
         super().__init__(robot, load, options, geo)
 
-    def _check(self) -> None:
-        if self.spatial and self.model == "continuum" and self.mode == "length":
-            raise ModelFailure("spring_link: continuum tendons in length mode are only implemented for the planar chain")
-        if self.spatial and self.model == "continuum" and self.mode is not None and any(t.tapered for t in self.tendons):
-            raise ModelFailure("spring_link: continuum tendons with tapered offsets are only implemented for the planar chain")
-        self._reject_tapered_length()
+    def _continuum_ropes(self) -> bool:
+        """3-D continuum tendons: rope forces through every link eyelet as the tree's
+        ``forceUserFunction`` (:mod:`.linkrope`), not rope connectors; otherwise as the base."""
+        return False if self.link_ropes else super()._continuum_ropes()
+
+    def _rope_tension(self, i: int, length: float) -> float:
+        """Tension of link rope ``i`` at polygon ``length``: the command (tension mode) or
+        ``EA_t (L - L_0) / L_0`` while taut (length mode)."""
+        if self.mode == "tension":
+            return float(self._values[i])
+        if not self.tendon_active[i]:
+            return 0.0
+        L0 = float(self._L0[i])
+        return self.tendons[i].axial_stiffness * (length - L0) / L0
+
+    def _rope_user_force(self, mbs, t, itemNumber, q, q_t):  # noqa: ANN001, ARG002 - Exudyn signature
+        return generalised_forces(self.geo, self._axes, np.asarray(q), self.tendons, self._rope_tension).tolist()
 
     def _build(self, mbs) -> None:  # noqa: ANN001
         exu, eii, geo = self.exu, self.eii, self.geo
@@ -141,6 +155,10 @@ class TreeChain(Chain):
         links = _tree_links(exu, geo, mass, coms, inertias, self.per)
         self.n_coords = n
         self.node, self.tree = _add_kinematic_tree(mbs, exu, eii, links, self.options.damping)
+        if self.link_ropes:
+            self._axes = [joint_axes(self.per, k) for k in range(geo.n_links)]
+            self._values = np.zeros(len(self.tendons))
+            mbs.SetObjectParameter(self.tree, "forceUserFunction", self._rope_user_force)
         self.ground = mbs.AddObject(eii.ObjectGround(referencePosition=[0.0, 0.0, 0.0]))
         m_tip = mbs.AddMarker(eii.MarkerKinematicTreeRigid(objectNumber=self.tree, linkNumber=n - 1,
                                                            localPosition=[0.0, 0.0, float(geo.link_lengths[-1])]))
@@ -160,14 +178,13 @@ class TreeChain(Chain):
 
     def _continuum_items(self, mbs, i: int, tendon: TendonRoute) -> list:  # noqa: ANN001
         eii = self.eii
+        if self.link_ropes:  # forces from the tree's user function
+            return []
         if self.mode == "length":  # planar: rotational spring on the terminating link's angle
             mg = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=self.ground, localPosition=[0.0, 0.0, 0.0]))
             mt = self._tree_marker(mbs, tendon.end_eyelet - 1, [0.0, 0.0, 0.0])
             return [mbs.AddObject(eii.ObjectConnectorRigidBodySpringDamper(markerNumbers=[mg, mt],
                                                                            useIntrinsicFormulation=True))]
-        if self.spatial:  # tension: body-fixed torque on the terminating link
-            mt = self._tree_marker(mbs, tendon.end_eyelet * self.per - 1, [0.0, 0.0, 0.0])
-            return [mbs.AddLoad(eii.LoadTorqueVector(markerNumber=mt, loadVector=[0.0, 0.0, 0.0], bodyFixed=True))]
         return []  # planar tension: generalised joint forces (jointForceVector), no items
 
     def _set_gravity(self, lam: float) -> None:
@@ -175,9 +192,7 @@ class TreeChain(Chain):
 
     def _set_continuum(self) -> None:
         mbs = self.mbs
-        if self.mode == "tension" and self.spatial:
-            for t, items, v in zip(self.tendons, self.tendon_items, self._values):
-                mbs.SetLoadParameter(items[0], "loadVector", end_link_torque(t, v))
+        if self.link_ropes:  # the user function reads self._values / self._L0
             return
         if self.mode == "tension":
             Q = np.zeros(self.geo.n_links)
