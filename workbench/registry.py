@@ -223,7 +223,7 @@ MODELS: Mapping[str, ModelInfo] = {
              "static only; accuracy from newton_tolerance, n_elements unused")),
     "spring_link_cardan": ModelInfo("workbench.physics.spring_link.cardan:run", "spring-link, 2-DOF joints",
                                     "#17becf", order=2.0, capabilities=Capabilities(
-        disk_weights="at the disk", extensibility=(),
+        torsion=False, disk_weights="at the disk", extensibility=(),
         note="3-D chain of Cardan (two-DOF, torsion-locked) joints, Hannan & Walker's robot, also for planar cases; "
              "refuses states with cable strain > 2 % (folded branches)")),
     # planar ANCF with a rigid circle (without an object: equal to ancf with continuum tendons, order 4);
@@ -232,7 +232,6 @@ MODELS: Mapping[str, ModelInfo] = {
     "contact": ModelInfo("workbench.physics.contact:run", "ANCF + contact", "#ff7f0e", order=1.5, capabilities=Capabilities(
         dimensions=("planar",), actuation=("tension",), tendon_models=("continuum",),
         spatial_length_tendon_models=(), loads=(), analyses=("static",), torsion=False, gravity="in_plane",
-        disk_weights="smeared over the section",
         extensibility=("axial",),
         note="planar ANCF cable in contact with a rigid circle; continuum tendons of constant offset in "
              "tension mode, static only, no tip force or torque")),

@@ -1,4 +1,4 @@
-"""Disk weights at the disks in the ANCF models, ``ancf`` and ``ancf3d`` (issue 28, finding 3).
+"""Disk weights at the disks in the ANCF models, ``ancf``, ``ancf3d`` and ``contact`` (issue 28, finding 3).
 
 The case of the issue: Rao et al.'s NiTi robot, planar (2 sections of 0.2 m, d = 1.4 mm, E = 54 GPa,
 density 6450, tendons at sigma = 0, pi with offset 10 mm and EA_t = 1e7 N), horizontal base, 10 disks of
@@ -8,7 +8,8 @@ weight and the disks' point weights); at full g the answer agrees with the Cosse
 disk weights at the disks as well.  Before the fix ``ancf`` smeared each section's disk mass along the
 section (1.076786e-3 m against 1.1288e-3 m at g / 100; 1.09e-2 L from ``cosserat`` at g); ``ancf3d``
 lumped each disk's weight onto its element's two nodes (3.4e-3 relative off the theory at 8 elements,
-1.4e-2 at 4, order 2 in place of the element's 4).
+1.4e-2 at 4, order 2 in place of the element's 4); ``contact`` (without an object: the planar ANCF cable)
+smeared them as ``ancf`` did.
 """
 
 import math
@@ -56,7 +57,7 @@ def lateral_tip(res) -> float:
     return float(-res.tip_position[0])  # horizontal mount: gravity along base -x
 
 
-@pytest.mark.parametrize("model", ["ancf", "ancf3d"])
+@pytest.mark.parametrize("model", ["ancf", "ancf3d", "contact"])
 @pytest.mark.parametrize("n_elements", [20, 8])
 def test_disk_weights_are_point_loads_at_their_stations(model, n_elements):
     """g / 100: tip = point-load theory to 5e-5 (geometric nonlinearity ~ (delta / L)^2 = 8e-6); the smeared
@@ -70,7 +71,7 @@ def test_disk_weights_are_point_loads_at_their_stations(model, n_elements):
     assert abs(tip - theory) < 5e-5 * theory, (tip, theory, smeared_theory(robot, g))
 
 
-@pytest.mark.parametrize("model", ["ancf", "ancf3d"])
+@pytest.mark.parametrize("model", ["ancf", "ancf3d", "contact"])
 def test_full_gravity_agrees_with_cosserat(model):
     """Full g (tip sag 0.28 L, nonlinear): against the Cosserat rod (ancf 1.1e-2 L apart before the fix)."""
     robot = rao_planar(9.81)

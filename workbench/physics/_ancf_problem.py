@@ -8,9 +8,8 @@ fit; tip forces must lie in the x-z plane and tip torques along base y; payload 
 supported -- anything else raises :class:`PlanarModelError`.  Gravity: the in-plane components
 ``(g_z, g_x)``; a component along base y raises :class:`ModelFailure` (``g_out`` stays 0).  Mesh: elements per section in
 proportion to its length (at least one each), so every section end is a node; per element EI,
-EA and mass per length at the element midpoint: ``mu_rod`` the backbone's own, ``mu`` with the disk masses
-smeared over their section (the contact model's load); the disks themselves as stations and masses
-(``disk_s``, ``disk_m``: ``ancf`` puts each disk's weight at its station).  A
+EA and the backbone's own mass per length ``mu_rod`` at the element midpoint; the disks as stations and masses
+(``disk_s``, ``disk_m``: ``ancf`` and ``contact`` put each disk's weight at its station).  A
 tendon's offset varies linearly along its routed length ``[0, end]`` from ``TendonGroup.offset``
 (base plate) to ``TendonGroup.offset_tip`` (terminating disk): for a single section this is
 ``TendonGroup.offset_at``; for tendons of later sections it is this model's reading of the
@@ -63,7 +62,6 @@ class AncfProblem:
     s_nodes: np.ndarray  # (n+1,)
     EI: np.ndarray  # (n,)
     EA: np.ndarray
-    mu: np.ndarray  # backbone + disk masses smeared over their section (contact model)
     gravity: np.ndarray  # (2,) Exudyn plane
     tip_force: np.ndarray  # (2,)
     tip_torque: float
@@ -114,7 +112,7 @@ def build_problem(robot: Robot, load: LoadCase, options: SolverOptions) -> AncfP
         k = np.argmax(np.where(counts > 1, counts - raw, -np.inf))
         counts[k] -= 1
     s_nodes = [0.0]
-    EI, EA, mu, mu_rod, sections = [], [], [], [], []
+    EI, EA, mu_rod, sections = [], [], [], []
     s0 = 0.0
     for sec, n in zip(robot.sections, counts):
         for k in range(n):
@@ -123,7 +121,6 @@ def build_problem(robot: Robot, load: LoadCase, options: SolverOptions) -> AncfP
             sections.append(cs)
             EI.append(cs.EI)
             EA.append(cs.EA)
-            mu.append(cs.mass_per_length + sec.n_disks * sec.disk_mass / sec.length)
             mu_rod.append(cs.mass_per_length)
             s_nodes.append(s0 + sec.length * (k + 1) / n)
         s0 += sec.length
@@ -146,7 +143,7 @@ def build_problem(robot: Robot, load: LoadCase, options: SolverOptions) -> AncfP
         eyes = tuple(float(x) for x in disks[disks <= ends[j] * (1 + 1e-12)])
         tendons.append(_Tendon(sign, end, grp.offset, d1, grp.axial_stiffness, eyes))
     return AncfProblem(
-        L=L, s_nodes=s_nodes, EI=np.array(EI), EA=np.array(EA), mu=np.array(mu),
+        L=L, s_nodes=s_nodes, EI=np.array(EI), EA=np.array(EA),
         gravity=np.array([g[2], g[0]]), tip_force=np.array([F[2], F[0]]), tip_torque=float(M[1]),
         payload=robot.payload.mass, tendons=tuple(tendons), g_out=float(g[1]), cross_sections=tuple(sections),
         mu_rod=np.array(mu_rod), disk_s=disks[disk_m > 0], disk_m=disk_m[disk_m > 0],

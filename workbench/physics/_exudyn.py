@@ -28,6 +28,7 @@ __all__ = [
     "add_gravity_loads",
     "add_point_masses",
     "lumped_disk_masses",
+    "add_cable2d_disks",
     "set_load_factor",
 ]
 
@@ -212,6 +213,54 @@ def lumped_disk_masses(robot, node_s: np.ndarray, *, midpoint_weights: bool = Fa
                 lumped[e] += sec.disk_mass * (1.0 - w1)
                 lumped[e + 1] += sec.disk_mass * w1
     return lumped
+
+
+def add_cable2d_disks(mbs, s_nodes: np.ndarray, nodes: Sequence[int], elements: Sequence[int],
+                      disk_s: np.ndarray, disk_m: np.ndarray, with_weight: bool) -> list[int]:
+    """Disks on a planar ANCF cable (``ObjectANCFCable2D``): each weight a force at its station, each
+    mass lumped linearly onto the two nodes of the element that holds it.
+
+    The weight acts through a position marker on the element at the disk's station (Exudyn's
+    consistent Hermite load), so it is a point load where the disk is; the cable has no mass at an
+    arbitrary station, so the inertia is exact only when disks sit on nodes (node 0's share sits on
+    the clamp and is dropped).  Used by the planar ANCF model and the contact system; checked by
+    ``tests/physics/test_ancf_disks.py``.
+
+    Parameters
+    ----------
+    s_nodes : (n + 1,) ndarray
+        Reference arc length of the nodes [m].
+    nodes, elements : sequence of int
+        The cable's node and element indices.
+    disk_s, disk_m : (k,) ndarray
+        Disk stations [m] and masses [kg].
+    with_weight : bool
+        Add the weight loads (gravity is not zero).
+
+    Returns
+    -------
+    list of int
+        One ``LoadForceVector`` per disk (vector zero until set: ``m g`` in Exudyn's plane), or
+        ``[]`` without weight.
+    """
+    from exudyn.itemInterface import LoadForceVector, MarkerBodyPosition, ObjectMassPoint2D
+
+    from ._ancf_geometry import locate
+
+    if disk_m.size == 0:
+        return []
+    elem, x = locate(s_nodes, disk_s)
+    w1 = x / np.diff(s_nodes)[elem]
+    lumped = np.zeros(s_nodes.size)
+    np.add.at(lumped, elem, disk_m * (1.0 - w1))
+    np.add.at(lumped, elem + 1, disk_m * w1)
+    for i in np.flatnonzero(lumped[1:] > 0) + 1:
+        mbs.AddObject(ObjectMassPoint2D(nodeNumber=nodes[int(i)], mass=float(lumped[i])))
+    if not with_weight:
+        return []
+    return [mbs.AddLoad(LoadForceVector(markerNumber=mbs.AddMarker(MarkerBodyPosition(
+                bodyNumber=elements[int(e)], localPosition=[float(xi), 0.0, 0.0])), loadVector=[0, 0, 0]))
+            for e, xi in zip(elem, x)]
 
 
 def set_load_factor(mbs, loads: Sequence[tuple[int, np.ndarray]], lam: float) -> None:

@@ -10,7 +10,7 @@ and :func:`_dynamic`.
   offset (else :class:`PlanarModelError`); gravity out of that plane raises :class:`ModelFailure`.
 * Backbone: ``options.n_elements`` ``ObjectANCFCable2D`` elements (extensible Euler-Bernoulli,
   ``useReducedOrderIntegration=2``), every section end a node; clamp = node 0's x, y and y-slope
-  (the x-slope stays free); payload = tip point mass; disks: :meth:`_System._add_disks`.
+  (the x-slope stays free); payload = tip point mass; disks: :func:`~workbench.physics._exudyn.add_cable2d_disks`.
 * Tendons, ``"continuum"``: the exact load of a frictionless tendon at offset ``y(s)`` (moment
   ``T y cos(alpha)``, compression ``T cos(alpha)``, ``tan alpha = y'``) as per-element reference
   curvature ``sum T y cos(alpha) / EI`` and reference axial strain ``-sum T cos(alpha) / EA``;
@@ -122,13 +122,13 @@ class _System:
             LoadForceVector, LoadTorqueVector, MarkerBodyRigid, MarkerNodePosition, ObjectMassPoint2D,
         )
 
-        from ._exudyn import add_gravity_loads
+        from ._exudyn import add_cable2d_disks, add_gravity_loads
 
         pb, mbs = self.pb, self.mbs
         has_g = bool(np.any(pb.gravity != 0))
         self.grav_loads = add_gravity_loads(mbs, self.elements) if has_g else []
         tipm = mbs.AddMarker(MarkerNodePosition(nodeNumber=self.nodes[-1]))
-        self.disk_loads = self._add_disks(has_g)
+        self.disk_loads = add_cable2d_disks(mbs, pb.s_nodes, self.nodes, self.elements, pb.disk_s, pb.disk_m, has_g)
         self.payload_load = None
         if pb.payload > 0:
             mbs.AddObject(ObjectMassPoint2D(nodeNumber=self.nodes[-1], mass=pb.payload))
@@ -142,30 +142,6 @@ class _System:
             tip_x = float(pb.s_nodes[-1] - pb.s_nodes[-2])
             mr = mbs.AddMarker(MarkerBodyRigid(bodyNumber=self.elements[-1], localPosition=[tip_x, 0, 0]))
             self.torque_load = mbs.AddLoad(LoadTorqueVector(markerNumber=mr, loadVector=[0, 0, 0]))
-
-    def _add_disks(self, has_g: bool) -> list[int]:
-        """Disks: each weight a force at its station (a position marker on the element that holds it,
-        Exudyn's consistent Hermite load), each mass a point mass lumped linearly onto that element's two
-        nodes (the formulation has no mass at an arbitrary station: exact inertia when disks sit on nodes;
-        node 0's share sits on the clamp).  Returns the weight loads (set by :meth:`set_external`).
-        Checked by ``tests/physics/test_ancf_disks.py``."""
-        from exudyn.itemInterface import LoadForceVector, MarkerBodyPosition, ObjectMassPoint2D
-
-        pb, mbs, sn = self.pb, self.mbs, self.pb.s_nodes
-        if pb.disk_m.size == 0:
-            return []
-        elem, x = locate(sn, pb.disk_s)
-        w1 = x / np.diff(sn)[elem]
-        lumped = np.zeros(sn.size)
-        np.add.at(lumped, elem, pb.disk_m * (1.0 - w1))
-        np.add.at(lumped, elem + 1, pb.disk_m * w1)
-        for i in np.flatnonzero(lumped[1:] > 0) + 1:
-            mbs.AddObject(ObjectMassPoint2D(nodeNumber=self.nodes[int(i)], mass=float(lumped[i])))
-        if not has_g:
-            return []
-        return [mbs.AddLoad(LoadForceVector(markerNumber=mbs.AddMarker(MarkerBodyPosition(
-                    bodyNumber=self.elements[int(e)], localPosition=[float(xi), 0.0, 0.0])), loadVector=[0, 0, 0]))
-                for e, xi in zip(elem, x)]
 
     def _add_tendons(self, ground: int) -> None:
         """Per-unit-tension reference curvature / axial strain (continuum) or the eyelet rope segments."""

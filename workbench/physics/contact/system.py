@@ -8,7 +8,8 @@ mass per length, gravity and payload in Exudyn's plane, base (z, x) = Exudyn (X,
 * actuation as **prescribed strains** per element: ``referenceCurvature`` (bending per reference
   length; > 0 bends towards base +x) and ``referenceAxialStrain`` -- a continuum tendon and a
   fluidic chamber line are both exactly this (``model.py``, :mod:`workbench.robot.fluidic`);
-* gravity (mass-proportional loads), payload (tip point mass and its weight), a dead tip force;
+* gravity (mass-proportional loads on the rod's own mass), disks (each weight a point load at its station,
+  :func:`~workbench.physics._exudyn.add_cable2d_disks`), payload (tip point mass and its weight), a dead tip force;
 * optionally the object: a ``NodeRigidBody2D`` body, a fixture (coordinate constraints on x, z and
   rotation, each switchable, with offsets), release springs, its weight and an external force,
   and per element one ``ObjectContactFrictionCircleCable2D`` (circle radius = object radius + the
@@ -114,17 +115,19 @@ class PlanarContactSystem:
         self.nodes = [mbs.AddNode(NodePoint2DSlope1(referenceCoordinates=[float(s), 0.0, 1.0, 0.0])) for s in pb.s_nodes]
         self.elements = [mbs.AddObject(ObjectANCFCable2D(
             nodeNumbers=[self.nodes[e], self.nodes[e + 1]], length=float(le[e]), bendingStiffness=float(pb.EI[e]),
-            axialStiffness=float(pb.EA[e]), massPerLength=float(pb.mu[e]), useReducedOrderIntegration=2))
+            axialStiffness=float(pb.EA[e]), massPerLength=float(pb.mu_rod[e]), useReducedOrderIntegration=2))
             for e in range(le.size)]
         clamp_coordinates(mbs, self.nodes[0], (0, 1, 3))
 
     def _add_loads(self) -> None:
         from exudyn.itemInterface import LoadForceVector, MarkerNodePosition, ObjectMassPoint2D
 
-        from .._exudyn import add_gravity_loads
+        from .._exudyn import add_cable2d_disks, add_gravity_loads
 
         pb, mbs = self.pb, self.mbs
-        self.grav_loads = add_gravity_loads(mbs, self.elements) if np.any(pb.gravity != 0) else []
+        has_g = bool(np.any(pb.gravity != 0))
+        self.grav_loads = add_gravity_loads(mbs, self.elements) if has_g else []
+        self.disk_loads = add_cable2d_disks(mbs, pb.s_nodes, self.nodes, self.elements, pb.disk_s, pb.disk_m, has_g)
         tip = mbs.AddMarker(MarkerNodePosition(nodeNumber=self.nodes[-1]))
         self.tip_load = mbs.AddLoad(LoadForceVector(markerNumber=tip, loadVector=[0, 0, 0]))
         self.payload_load = None
@@ -207,6 +210,8 @@ class PlanarContactSystem:
         g = lam * pb.gravity
         for ld in self.grav_loads:
             mbs.SetLoadParameter(ld, "loadVector", [float(g[0]), float(g[1]), 0.0])
+        for ld, m in zip(self.disk_loads, pb.disk_m):
+            mbs.SetLoadParameter(ld, "loadVector", [float(m * g[0]), float(m * g[1]), 0.0])
         if self.payload_load is not None:
             mbs.SetLoadParameter(self.payload_load, "loadVector", [float(pb.payload * g[0]), float(pb.payload * g[1]), 0.0])
         self._gravity = float(lam)
