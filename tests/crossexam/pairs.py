@@ -99,12 +99,6 @@ def pairs_for(case: XCase, slow: bool = False) -> list[str]:
 
 #: Case classes that fail on main, with the finding of issue 28 and the branch that fixes it.
 KNOWN: dict[str, str] = {
-    "spring_link 3-D continuum tendons + lateral load": "issue 28 finding 2 (spring-link continuous tendons in 3-D "
-                                                         "under external loads), fixed on branch spring28",
-    "spring_link heavy disks": "issue 28 finding 3 (spring-link disk weights), fixed on branch spring28",
-    "spring_link length mode under load": "issue 28 finding 4 (spring-link length mode; with a tip force 2.6-3.2 x "
-                                          "the tolerance, without one within the strain floor), fixed on branch "
-                                          "spring28",
     "length mode under load / 3 sections": "issue 28 diagnostics 'Dropped silently' (Cosserat > 600 s on a spatial "
                                            "length-mode case): Cosserat, and beam3d at 20 disks, length-mode solves "
                                            "exceed sides.TIMEOUT under loads or with 3 sections; no fix branch named",
@@ -119,14 +113,6 @@ def known_class(case: XCase, pair: str) -> str | None:
     """The :data:`KNOWN` class of ``(case, pair)``, or ``None``."""
     models = pair.split("~")[0], pair.split("~")[1].split()[0]
     external = case.has("force") or case.has("torque") or "gravity" in dict(case.robot)
-    if "spring_link" in models:
-        if case.has("length") and _planar(case) and external:  # spatial: refused by the capability check
-            return "spring_link length mode under load"
-        if case.has("disks"):
-            return "spring_link heavy disks"
-        lateral = case.has("force") or case.has("torque") or case.has("g_horizontal") or case.has("g_tilted")
-        if not _planar(case) and _loaded_tendons(case) and lateral and pair == "spring_link~cosserat":
-            return "spring_link 3-D continuum tendons + lateral load"
     if "cosserat" in models and case.has("length") and (external or dict(case.robot)["n_sections"] == 3):
         return "length mode under load / 3 sections"
     return None
