@@ -60,6 +60,8 @@ class Chain:
         check_model_inputs(robot, load, options)
         self.exu, self.eii = exu, eii
         self.robot, self.load, self.options, self.geo = robot, load, options, geo
+        #: the LoadRampInfo of every static ramp of the current solve (``driver.static_ramp`` appends)
+        self.ramps: list = []
         self.tendons: list[TendonRoute] = route_tendons(robot, geo, options.tendon_model)
         self.mode = None if load.actuation is None else load.actuation.mode
         self.model = options.tendon_model

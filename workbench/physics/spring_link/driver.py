@@ -21,7 +21,7 @@ from ...models.inputs import check_model_inputs
 from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ...robot import LoadCase, Robot
 from ...models.backbone_frames import backbone_series, frame_stride
-from .._stepping import PathPoint, RampExhausted, RampPolicy, RampStalled, load_ramp
+from .._stepping import path_fields, PathPoint, RampExhausted, RampPolicy, RampStalled, load_ramp
 from .chain import Chain
 from .geometry import ChainGeometry, chain_geometry_from_robot
 from .lengthmode import settle_lagged
@@ -74,7 +74,8 @@ def static_ramp(model: Chain, options: SolverOptions, params: SpringLinkParams,
     the ramp checks the load path on :func:`_path_point` (:func:`~workbench.physics._stepping.load_ramp`:
     a jump of the last link is refined).  A failed attempt (Exudyn ``SolverError``, non-finite state,
     an unsettled active set) restores the chain's state (:meth:`Chain.save_state`) and halves the
-    increment (:data:`_STATIC_RAMP`);
+    increment (:data:`_STATIC_RAMP`); the ramp's :class:`~workbench.physics._stepping.LoadRampInfo` is
+    appended to ``model.ramps`` (the result's path fields, :func:`~workbench.physics._stepping.path_fields`);
     a non-positive rope rest length is not a solver failure and propagates.  Newton iterations
     of every attempt are counted.  Checked by ``test_max_load_steps_is_a_failure``,
     ``test_rigid_body_ramp_failure_names_the_numerical_cause`` and ``test_spring_link_layout.py``.
@@ -131,6 +132,7 @@ def static_ramp(model: Chain, options: SolverOptions, params: SpringLinkParams,
         ) from None
     except RampStalled as err:
         raise ModelFailure(f"spring_link: static solve failed near load factor {err.lam:.4g}") from None
+    model.ramps.append(info)
     return info.attempts, newton_its
 
 
@@ -179,7 +181,8 @@ def _solve_static(model: Chain, params: SpringLinkParams, t0: float) -> PhysicsR
 
         repeats = settle_lagged(model, resolve)
     info = SolverInfo(converged=True, iterations=its, wall_time=time.perf_counter() - t0,
-                      message=f"{steps} load steps" + (f" ({repeats} lagged-coupling equilibria)" if repeats else ""))
+                      message=f"{steps} load steps" + (f" ({repeats} lagged-coupling equilibria)" if repeats else ""),
+                      **path_fields(*model.ramps))
     return model.result(info)
 
 

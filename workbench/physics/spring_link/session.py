@@ -76,8 +76,9 @@ class StaticSession:
 
     def _result(self, steps: int, its: int, t0: float) -> PhysicsResult:
         self.solves += 1
-        return self.chain.result(SolverInfo(converged=True, iterations=its, wall_time=time.perf_counter() - t0,
-                                            message=f"{steps} load steps (warm start)"))
+        info = SolverInfo(converged=True, iterations=its, wall_time=time.perf_counter() - t0,
+                          message=f"{steps} load steps (warm start)", **path_fields(self.chain.ramps[-1]))
+        return self.chain.result(info)
 
     @property
     def result(self) -> PhysicsResult:
