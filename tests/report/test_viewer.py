@@ -100,3 +100,21 @@ def test_disk_model_is_the_first_physics_model():
     assert disk_model(["cc", "beam3d", "ancf"]) == "beam3d"
     assert disk_model(["target", "cc_fit", "spring_link"]) == "spring_link"
     assert disk_model(["cc"]) == "cc" and disk_model([]) is None
+
+
+def test_scene_rebuild_errors(monkeypatch):
+    """Expected rebuild errors draw in the base frame (known = False); a bug in the rebuild is not hidden
+    (issue 28: on main any exception silently gave the identity pose)."""
+    from workbench.report import scene
+
+    assert not case_scene({"p.robot.preset": "no_such_preset"}).known
+    assert not case_scene({"p.robot.preset": "steel_rod", "p.robot.n_sections": 0}).known
+
+    def broken(params, derived=None):
+        raise RuntimeError("bug in build_robot")
+
+    monkeypatch.setattr(scene, "build_robot", broken)
+    scene._scene_from_json.cache_clear()
+    with pytest.raises(RuntimeError, match="bug in build_robot"):
+        case_scene({"p.robot.preset": "steel_rod", "p.robot.length": 0.123456})
+    scene._scene_from_json.cache_clear()
