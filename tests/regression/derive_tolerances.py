@@ -187,6 +187,29 @@ def _entry(c: str, t: ColumnTolerance) -> str:
     return f'"{c}" = {{ {", ".join(parts)} }}{note}'
 
 
+#: A result column whose noise exceeds this fraction of its largest value marks the study as limited by its
+#: solver tolerance (noted in the file: the tier cannot see changes smaller than that).
+LIMITED = 1e-6
+
+
+def tolerance_limited(stem: str, cols: dict[str, ColumnTolerance]) -> str:
+    """A note when a result column (tip, length change, ...) moves by more than :data:`LIMITED` of its
+    largest golden value under the perturbations, else ``""``."""
+    from .golden import RESULT_COLUMNS
+
+    golden = read_golden(GOLDEN_DIR / f"{stem}.csv")
+    ok = golden[golden["status"] == "ok"]
+    worst = []
+    for c in RESULT_COLUMNS:
+        scale = float(np.nanmax(np.abs(ok[c].to_numpy(float)))) if c in ok and ok[c].notna().any() else 0.0
+        if c in cols and scale > 0 and cols[c].noise > max(LIMITED * scale, 1e-9):  # 1e-9: not a round-off zero
+            worst.append(f"{c} by {cols[c].noise:.2g} ({cols[c].noise / scale:.1g} of its largest value)")
+    if not worst:
+        return ""
+    return (f"limited by the solver tolerance: under the perturbations {', '.join(worst)} move; tighten the "
+            f"study's solver tolerance to make the tier see smaller changes")
+
+
 def perturbed_runs(stem: str, folder: Path) -> int:
     """How many perturbed runs of ``stem`` the folder holds (0: only the rerun against the golden)."""
     return len(_changes(stem, folder)[1])
@@ -212,8 +235,13 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     folder = Path(args.folder)
     tables = {p.stem: study_tolerances(p.stem, folder) for p in small_study_paths()}
-    notes = {s: "not perturbed (measure_noise did not finish): noise = the rerun's change against the golden only"
-             for s in tables if perturbed_runs(s, folder) == 0}
+    notes = {s: f"{perturbed_runs(s, folder)} of the 2 perturbed runs measured (measure_noise did not finish the "
+                f"others); noise also includes the rerun's change against the golden"
+             for s in tables if perturbed_runs(s, folder) < 2}
+    for stem, cols in tables.items():
+        loose = tolerance_limited(stem, cols)
+        if loose:
+            notes[stem] = "; ".join(filter(None, [notes.get(stem), loose]))
     problems = [f"{s} {c}: {t.problem}" for s, cols in tables.items() for c, t in cols.items() if t.problem]
     print("\n".join(problems) or "every tolerance below the golden values it guards")
     if not args.check:
