@@ -110,6 +110,11 @@ class ModelInfo:
         (measured by its validation tests, ``docs/models.md``); the discretisation-error estimate
         of the study pipeline uses it (:mod:`workbench.models.discretization`).  ``None``: no
         discretisation (CC) or not declared.
+    accuracy : {"mesh", "tolerance"}
+        What limits the model's accuracy, i.e. how the study pipeline estimates its error
+        (:mod:`workbench.study.estimate`): ``"mesh"`` (coarser re-solves, Richardson with
+        ``order``) or ``"tolerance"`` (no mesh: a re-solve at a 100x tighter
+        ``newton_tolerance``).
     """
 
     target: str
@@ -117,6 +122,7 @@ class ModelInfo:
     color: str | None = None
     capabilities: Capabilities | None = None
     order: float | None = None
+    accuracy: str = "mesh"
 
 
 @dataclass(frozen=True)
@@ -216,8 +222,9 @@ MODELS: Mapping[str, ModelInfo] = {
         disk_weights="at the disk", extensibility=(),
         note="rigid links and joint springs; continuum tendons as ropes through every link eyelet in 3-D; axial and "
              "shear springs by default only in planar continuum length mode ([solver] spring_link_axial)")),
-    # no mesh (shooting to newton_tolerance): no declared order, so its rows carry no estimate
-    "cosserat": ModelInfo("workbench.physics.cosserat:run", "Cosserat rod", "#8c564b", capabilities=Capabilities(
+    # no mesh (shooting to newton_tolerance): no order; its error is estimated by a tighter solve
+    "cosserat": ModelInfo("workbench.physics.cosserat:run", "Cosserat rod", "#8c564b", accuracy="tolerance",
+                          capabilities=Capabilities(
         tendon_models=("continuum",), spatial_length_tendon_models=("continuum",), analyses=("static",),
         note="Cosserat rod with continuously routed tendons (Rucker & Webster 2011), shooting with scipy; "
              "static only; accuracy from newton_tolerance, n_elements unused")),

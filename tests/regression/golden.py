@@ -110,7 +110,11 @@ def read_golden(path: str | Path) -> pd.DataFrame:
 
 
 def load_tolerances(path: str | Path = TOLERANCES_FILE) -> dict[str, dict[str, dict[str, float]]]:
-    """``{table: {column: {"abs": a, "rel": r}}}``; every entry checked (finite, >= 0)."""
+    """``{table: {column: {"abs": a, "rel": r, ...}}}``; every entry checked (finite, >= 0).
+
+    An entry may also carry the measured ``noise`` / ``rel_noise`` it was derived from
+    (``derive_tolerances.py``); they are kept and do not enter the comparison.
+    """
     with open(path, "rb") as f:
         raw = tomllib.load(f)
     if "default" not in raw:
@@ -121,9 +125,10 @@ def load_tolerances(path: str | Path = TOLERANCES_FILE) -> dict[str, dict[str, d
             raise ValueError(f"{path}: [{table}] must be a table of column = {{ abs = ..., rel = ... }}")
         out[table] = {}
         for col, tol in cols.items():
-            if not isinstance(tol, dict) or set(tol) - {"abs", "rel"} or not tol:
-                raise ValueError(f"{path}: [{table}].{col} must be {{ abs = ..., rel = ... }}, got {tol!r}")
-            t = {"abs": float(tol.get("abs", 0.0)), "rel": float(tol.get("rel", 0.0))}
+            if not isinstance(tol, dict) or set(tol) - {"abs", "rel", "noise", "rel_noise"} or not set(tol) & {"abs", "rel"}:
+                raise ValueError(f"{path}: [{table}].{col} must be {{ abs = ..., rel = ..., noise = ... }}, got {tol!r}")
+            t = {"abs": float(tol.get("abs", 0.0)), "rel": float(tol.get("rel", 0.0)),
+                 **{k: float(tol[k]) for k in ("noise", "rel_noise") if k in tol}}
             if not all(math.isfinite(v) and v >= 0 for v in t.values()):
                 raise ValueError(f"{path}: [{table}].{col}: tolerances must be finite and >= 0, got {tol!r}")
             out[table][col] = t

@@ -96,3 +96,19 @@ def test_assumptions_and_sensitivity_from_data(page):
     s = _section(html, "sensitivity")
     assert "sensitivity_robot_diameter" in s and "(baseline)" in s
     assert "error bar" in s
+
+
+# issue 28: on main the cosserat rows had no error bar, so the findings said "no error estimate" and
+# "NOT CONVERGED" for every CC-vs-cosserat comparison; now the bar is its solver-tolerance estimate.
+def test_cosserat_headline_has_a_tolerance_error_bar(tmp_path):
+    study = STUDY.replace('models = ["cc", "ancf"]', 'models = ["cc", "cosserat"]').replace(
+        '{ "solver.n_elements" = 4, "robot.diameter" = 0.006 },\n', '')
+    (tmp_path / "s.toml").write_text(study)
+    run_study(load_study(tmp_path / "s.toml"), tmp_path / "out", SerialExecutor(), RunConfig(progress=False))
+    html = build_report(tmp_path / "out", tmp_path / "rep").read_text(encoding="utf-8")
+    findings = html[html.index('<section id="findings"'):html.index('<section id="assumptions"')]
+    sentence = re.search(r"CC[^<]*Cosserat rod[^<]*largest tip error[^<]*", findings)
+    assert sentence, findings[:2000]
+    text = sentence.group(0)
+    assert "no error estimate" not in text and "NOT CONVERGED" not in text
+    assert re.search(r"± \S+ % L \(Cosserat rod: solver-tolerance estimate\)", text), text

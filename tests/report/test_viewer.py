@@ -71,3 +71,50 @@ def test_a_study_kinds_lines_hook_adds_polylines_in_model_colours(quickstart, mo
     np.testing.assert_allclose(case["lines"][0][1][0], case["base"], atol=1e-6)  # the base point in world
     monkeypatch.undo()
     assert all(c["lines"] == [] for c in viewer_scenes(quickstart)["cases"])  # a sweep study: no hook
+
+
+# issue 28 ("The report says what is true"): with a physics reference the viewer put the disks and
+# tendons on the first non-reference model's backbone -- CC's -- while the caption said "the first
+# physics model's backbone".  Now both name the same model.
+def test_disks_sit_on_the_backbone_the_caption_names(quickstart):
+    from dataclasses import replace
+
+    import pandas as pd
+
+    from workbench.report.context import PageContext
+    from workbench.report.sections import viewer_section
+
+    for study in (quickstart, replace(quickstart, baseline="ancf")):
+        sc = viewer_scenes(study)
+        assert {c["main"] for c in sc["cases"]} == {"ancf"}, study.baseline
+        empty = pd.DataFrame()
+        ctx = PageContext(study, empty, empty, empty, (), (), (), viewer_cases=len(sc["cases"]))
+        caption = viewer_section(ctx).html
+        label = sc["cases"][0]["models"]["ancf"]["label"]
+        assert f"tendons (brown) on the {label} backbone (the first physics model" in caption
+
+
+def test_disk_model_is_the_first_physics_model():
+    from workbench.report.viewer import disk_model
+
+    assert disk_model(["cc", "beam3d", "ancf"]) == "beam3d"
+    assert disk_model(["target", "cc_fit", "spring_link"]) == "spring_link"
+    assert disk_model(["cc"]) == "cc" and disk_model([]) is None
+
+
+def test_scene_rebuild_errors(monkeypatch):
+    """Expected rebuild errors draw in the base frame (known = False); a bug in the rebuild is not hidden
+    (issue 28: on main any exception silently gave the identity pose)."""
+    from workbench.report import scene
+
+    assert not case_scene({"p.robot.preset": "no_such_preset"}).known
+    assert not case_scene({"p.robot.preset": "steel_rod", "p.robot.n_sections": 0}).known
+
+    def broken(params, derived=None):
+        raise RuntimeError("bug in build_robot")
+
+    monkeypatch.setattr(scene, "build_robot", broken)
+    scene._scene_from_json.cache_clear()
+    with pytest.raises(RuntimeError, match="bug in build_robot"):
+        case_scene({"p.robot.preset": "steel_rod", "p.robot.length": 0.123456})
+    scene._scene_from_json.cache_clear()

@@ -53,6 +53,7 @@ __all__ = [
     "add_derived_columns",
     "compare_table",
     "section_ends_from_row",
+    "section_ends_with_reason",
 ]
 
 REQUIRED_COLUMNS = ("case_id", "model", "status")
@@ -188,25 +189,44 @@ def add_derived_columns(df: pd.DataFrame, derived: Mapping[str, str] | None = No
 def section_ends_from_row(row: Mapping[str, Any]) -> np.ndarray | None:
     """Reference section ends [m] of a result row, or ``None`` when unknown.
 
+    The ends of :func:`section_ends_with_reason` without the reason.  Checked by
+    ``tests/compare/test_section_ends.py``.
+    """
+    return section_ends_with_reason(row)[0]
+
+
+def section_ends_with_reason(row: Mapping[str, Any]) -> tuple[np.ndarray | None, str]:
+    """Reference section ends [m] of a result row and where they come from (or why they are unknown).
+
     From a ``section_ends`` list column if present; else by rebuilding the robot preset named
     in ``p.robot.preset`` with the row's ``p.robot.*`` parameters (un-flattened by
     :func:`workbench.study.params.section_params`; parameters the preset does not take are
-    ignored).  Any failure gives ``None``.
+    ignored).  Only the errors a rebuild is documented to raise (``KeyError``: unknown preset;
+    ``TypeError``: a parameter the preset does not take; ``ValueError``: an invalid value, e.g.
+    :class:`~workbench.robot.description.RobotDescriptionError`) give ``None`` with the error as
+    the reason; anything else is a bug and propagates.  Checked by
+    ``tests/compare/test_section_ends.py``.
+
+    Returns
+    -------
+    (ndarray or None, str)
+        The ends and ``"section_ends column"`` / ``"preset <name>"``, or ``None`` and the reason.
     """
     ends = array_cell(row.get("section_ends"))
     if ends is not None:
-        return ends
+        return ends, "section_ends column"
     name = row.get("p.robot.preset")
     if not isinstance(name, str) or not name:
-        return None
-    try:
-        from ..robot.presets import build_preset, preset_parameters
+        return None, "no section_ends column and no p.robot.preset"
+    from ..robot.presets import build_preset, preset_parameters
 
+    try:
         known = preset_parameters(name)
         params = {k: v for k, v in section_params(row, "robot").items() if k in known}
-        return np.asarray(build_preset(name, **params).section_ends, dtype=float)
-    except Exception:  # unknown preset, changed signature, invalid values: fall back
-        return None
+        return np.asarray(build_preset(name, **params).section_ends, dtype=float), f"preset {name}"
+    except (KeyError, TypeError, ValueError) as exc:
+        msg = str(exc.args[0]) if isinstance(exc, KeyError) and exc.args else str(exc)
+        return None, f"preset {name!r} not rebuilt ({type(exc).__name__}: {msg})"
 
 
 def _pair_metrics(ref: Mapping[str, Any], row: Mapping[str, Any], section_ends, cc_baseline: bool) -> dict[str, float]:
@@ -224,11 +244,8 @@ def _pair_metrics(ref: Mapping[str, Any], row: Mapping[str, Any], section_ends, 
         mx, rms = shape_error(ba[1], bb[1], ba[0], bb[0])
         m["shape_error_max"], m["shape_error_rms"] = mx, rms
         m["shape_error_max_pct"], m["shape_error_rms_pct"] = 100 * mx / L, 100 * rms / L
-        ends = section_ends
-        if ends is None:
-            ends = section_ends_from_row(ref)
-        if ends is None or abs(ends[-1] - ba[0][-1]) > 1e-6 * max(ba[0][-1], 1e-12):
-            ends = np.array([ba[0][-1]])
+        ends, source = _curvature_sections(ref, section_ends, float(ba[0][-1]))
+        m["kappa_sections"] = source
         ka = section_curvatures(ba[0], ba[1], ends)
         kb = section_curvatures(bb[0], bb[1], ends)
         for j, (x, y) in enumerate(zip(ka, kb)):
@@ -261,6 +278,27 @@ def _pair_metrics(ref: Mapping[str, Any], row: Mapping[str, Any], section_ends, 
     # dynamic analyses: tip error over time when both rows carry a tip-position series
     m["tip_error_max_over_time"] = _max_tip_error_over_time(ref, row)
     return m
+
+
+def _curvature_sections(ref: Mapping[str, Any], section_ends: Sequence[float] | None,
+                        length: float) -> tuple[np.ndarray, str]:
+    """Section ends for the per-section curvature fit and the ``kappa_sections`` note saying where they come from.
+
+    The given ``section_ends``, else those of :func:`section_ends_with_reason`; when neither is
+    known, or they do not end at the backbone's arc ``length``, one section spans the robot and the
+    note says why (the ``kappa_*`` values are then whole-robot curvatures).  Checked by
+    ``tests/compare/test_section_ends.py``.
+    """
+    if section_ends is not None:
+        ends, source = np.asarray(section_ends, dtype=float), "given section_ends"
+    else:
+        ends, source = section_ends_with_reason(ref)
+    if ends is None:
+        return np.array([length]), f"whole robot: {source}"
+    if abs(ends[-1] - length) > 1e-6 * max(length, 1e-12):
+        return (np.array([length]),
+                f"whole robot: {source} ends at {ends[-1]:.6g} m, the backbone at {length:.6g} m")
+    return ends, source
 
 
 def _mean_tendon_stretch(row: Mapping[str, Any]) -> float:
@@ -338,7 +376,8 @@ def compare_table(
         ``robot_length``, derived dimensionless columns, and the metrics:
         ``tip_error`` [m], ``tip_error_pct`` [% L], ``orientation_error_deg``,
         ``shape_error_max``/``_rms`` [m] and ``_pct`` [% L], ``kappa_ref_j``, ``kappa_j``,
-        ``kappa_error_j`` [1/m] per section ``j``, ``out_of_plane`` [m] / ``_pct``,
+        ``kappa_error_j`` [1/m] per section ``j``, ``kappa_sections`` (where the section ends
+        come from, or ``"whole robot: <reason>"`` when one section spans the robot), ``out_of_plane`` [m] / ``_pct``,
         ``length_change_ref``/``length_change`` [m], ``length_change_pct`` [% L],
         ``tip_twist_deg``, ``compression_virtual``/``_backbone``/``_tendon_stretch``/``_shape``
         [m] (see :func:`~workbench.compare.metrics.compression_split`; only for pairs against

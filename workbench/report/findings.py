@@ -48,8 +48,16 @@ def _pm(h: Headline) -> str:
     elif h.exempt_only:
         bar = "(exempt from the error estimate: the model's discretisation is the robot's own structure)"
     else:
-        bar = f"± {fmt(h.disc_pct)} % L" + (" (one side exempt)" if h.disc_exempt else "")
+        bar = f"± {fmt(h.disc_pct)} % L" + (" (one side exempt)" if h.disc_exempt else "") + _tolerance_note(h)
     return f"{fmt(h.error_pct)} % L ({fmt(1e3 * h.error)} mm) {bar}"
+
+
+def _tolerance_note(h: Headline) -> str:
+    """Which side's bar is a solver-tolerance estimate (``registry.MODELS[m].accuracy == "tolerance"``:
+    a tighter re-solve, :func:`workbench.study.estimate.tolerance_estimate`), not a mesh estimate."""
+    sides = [m for m in (h.baseline, h.model)
+             if m in registry.MODELS and registry.MODELS[m].accuracy == "tolerance"]
+    return f" ({', '.join(model_label(m) for m in sides)}: solver-tolerance estimate)" if sides else ""
 
 
 def _case_text(study: ResultSet, case_id: str, model: str | None = None) -> str:

@@ -4,7 +4,8 @@
 parameters rebuild the robot that ran, ``docs/architecture.md``) and keeps what drawing needs:
 the base pose (world <- base), gravity in the world frame, disk stations and tendon routing.
 A row without a rebuildable robot (e.g. a series-parallel stack, whose module base *is* the
-world frame, z up) gets the identity pose and ``known = False``.  :func:`to_frame` maps base-frame
+world frame, z up; or a preset rebuild that raises ``KeyError`` / ``TypeError`` / ``ValueError``)
+gets the identity pose and ``known = False``; other errors of the rebuild propagate.  :func:`to_frame` maps base-frame
 points into the figure's frame (the 3-D viewer places disks and tendons on the drawn backbone
 itself, ``assets/viewer.js``).  Checked by ``tests/report/test_viewer.py`` (world frame, gravity
 along world -z, base frame on request) and ``tests/robot/test_frames.py``.
@@ -47,7 +48,9 @@ _IDENTITY = CaseScene(np.eye(3), np.zeros(3), np.zeros(3), np.zeros(0), np.zeros
 def _scene_from_json(robot_json: str) -> CaseScene:
     try:
         robot = build_robot(json.loads(robot_json))
-    except Exception:  # noqa: BLE001 - any rebuild failure: draw in the base frame, say so
+    except (KeyError, TypeError, ValueError):
+        # the rebuild's documented errors (unknown preset, a parameter it does not take, an invalid
+        # value): draw in the base frame with known = False; anything else is a bug and propagates
         return _IDENTITY
     tendons = []
     ends = robot.section_ends

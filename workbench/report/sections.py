@@ -21,6 +21,7 @@ import pandas as pd
 from .load import ResultSet, numeric
 from .context import PageContext, Section
 from .style import fmt, model_label, short_label
+from .viewer import NOT_PHYSICS, disk_model
 
 __all__ = ["esc", "html_table", "provenance_section", "failed_section", "summary_section", "cases_section",
            "viewer_section", "figures_section", "spec_section"]
@@ -173,6 +174,17 @@ def cases_section(ctx: PageContext) -> Section:
     return Section("cases", "Cases", body)
 
 
+def _disk_backbone(ctx: PageContext) -> str:
+    """Whose backbone the 3-D view draws disks and tendons on (:func:`.viewer.disk_model`), in words."""
+    main = disk_model(ctx.study.models)
+    if main is None:
+        return "the first model's backbone"
+    if main in NOT_PHYSICS:
+        return f"the {esc(model_label(main))} backbone (no physics model)"
+    return (f"the {esc(model_label(main))} backbone (the first physics model; in a case without its result, the "
+            "next physics model's)")
+
+
 def viewer_section(ctx: PageContext) -> Section | None:
     if not ctx.viewer_cases:
         return None
@@ -182,7 +194,7 @@ def viewer_section(ctx: PageContext) -> Section | None:
     body = (
         f"<p class='note'>Backbones of one case, every model overlaid, in the {esc(frame)} frame"
         + (" (z up, gravity as the blue arrow)" if frame == "world" else " (backbone along base +z)")
-        + "; disks (grey) and tendons (brown) on the first physics model's backbone, drawn with a rotation-minimising "
+        + f"; disks (grey) and tendons (brown) on {_disk_backbone(ctx)}, drawn with a rotation-minimising "
         "frame (the backbone's twist is not stored). Drag to rotate, wheel to zoom, double click to reset. "
         f"Dynamic cases: the time slider steps through the stored backbone frames.{left}</p>"
         "<div id='wb-viewer'><div class='controls'><label>case <select class='wb-case'></select></label>"

@@ -3,7 +3,8 @@
 :func:`viewer_scenes` turns the ok rows into the JSON that ``assets/viewer.js`` draws: per case
 the models' backbones in the report's frame (world by default), over time for dynamic cases
 (the stored ``series.backbone`` frames; the final shape otherwise), the disks and tendon
-routing of the case's robot (:func:`.scene.case_scene`), gravity, and the extra polylines a
+routing of the case's robot (:func:`.scene.case_scene`, drawn on the backbone of the case's
+:func:`disk_model`: the first physics model, whatever the report's reference is), gravity, and the extra polylines a
 study kind registers (its ``lines`` hook, :mod:`.kind_hooks`).  Coordinates are rounded to 1 µm to
 keep the page small.  The viewer is a small vendored canvas script (no library, no network):
 an orthographic view of a few polylines needs nothing more, and it keeps every report one
@@ -23,10 +24,28 @@ from .scene import base_vectors_in, case_scene, gravity_in, to_frame
 from .shapes import backbone_frames
 from .style import case_title, model_color, model_label
 
-__all__ = ["MAX_VIEWER_CASES", "viewer_scenes"]
+__all__ = ["MAX_VIEWER_CASES", "NOT_PHYSICS", "disk_model", "viewer_scenes"]
 
 #: cases the viewer carries at most (in canonical order); more are left out with a note
 MAX_VIEWER_CASES = 400
+
+
+#: Row models that are not a physics backbone (CC predictions, commanded targets, controller plans).
+NOT_PHYSICS = ("cc", "cc_fit", "target", "plan", "cc_closed_loop")
+
+
+def disk_model(models) -> str | None:
+    """The model whose backbone carries the disks and tendons in the 3-D view: the first physics model.
+
+    ``models`` in the report's model order; the first not in :data:`NOT_PHYSICS`, else the first
+    model (a study of CC models only), ``None`` for none.  The report's reference model plays no
+    part: with a physics reference (e.g. ``beam3d``) and ``cc`` listed first, the disks still sit
+    on the first physics model's backbone, as the caption (:func:`.sections.viewer_section`) says.
+    Checked by ``tests/report/test_viewer.py``.
+    """
+    models = [str(m) for m in models]
+    physics = [m for m in models if m not in NOT_PHYSICS]
+    return physics[0] if physics else (models[0] if models else None)
 
 
 def _r(a) -> list:
@@ -67,8 +86,7 @@ def _case(study: ResultSet, cid: str, rows: dict[str, dict], lines=None) -> dict
     lo, hi = allp.min(axis=0), allp.max(axis=0)
     base = to_frame(np.zeros(3), scene, study.frame)
     L = float(row0.get("robot_length") or 0.0) or float(np.linalg.norm(hi - lo)) or 1.0
-    physics = [m for m in models if m != study.baseline]
-    main = physics[0] if physics else next(iter(models))
+    main = disk_model([m for m in study.models if m in models] + [m for m in models if m not in study.models])
     extra = _extra_lines(lines(rows) if lines is not None else [], scene, study.frame)
     return {
         "id": str(cid), "title": case_title(row0, study.axes, study.labels) + f"  [{str(cid)[:8]}]",
