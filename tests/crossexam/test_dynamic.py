@@ -20,9 +20,7 @@ PAIRS = {"ancf~spring_link": (("ancf", "continuum", 8, 1e-3), ("spring_link", "c
          "ancf~beam3d eyelets": (("ancf", "eyelets", 10, 1e-3), ("beam3d", "eyelets", 10, 1e-3))}
 DEFAULT = {("niti swing under gravity", "ancf~spring_link")}
 #: Known disagreements (case, pair) -> reason (xfail, strict).
-KNOWN = {("niti swing under gravity", "ancf~beam3d eyelets"):
-         "new finding of tests/crossexam: eyelet tip trajectories 6.3e-4 m apart against a tolerance of 5.3e-4 m "
-         "(1.2 x; measured 2026-12-03), not diagnosed; no fix branch"}
+KNOWN: dict[tuple[str, str], str] = {}
 
 
 def _params():
