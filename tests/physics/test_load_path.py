@@ -209,3 +209,22 @@ def test_cosserat_ramp_doubles_capped_at_the_remaining_load(monkeypatch):
     res = run(steel_rod(), LoadCase(tip_force=(1.0, 0.0, 0.0)), SolverOptions())
     assert trials == [1.0, 0.5, 1.0, 0.75, 1.0, 0.875, 1.0]
     assert (res.solver.path_steps, res.solver.path_event) == (4, "")
+
+
+def test_spring_link_results_carry_their_path_fields():
+    """The registered run and the warm-started session report the steps of their load paths
+    (spring_link collects each static ramp's info; a session solve reports its own ramp)."""
+    from workbench.models import SolverOptions, get_model
+    from workbench.physics.spring_link.session import StaticSession
+    from workbench.robot import LoadCase, TendonActuation
+    from workbench.robot.presets import build_preset
+
+    robot = build_preset("steel_rod")
+    load = LoadCase(actuation=TendonActuation("tension", (5.0,) + (0.0,) * (robot.n_tendons - 1)))
+    opts = SolverOptions(n_elements=16)
+    res = get_model("spring_link")(robot, load, opts)
+    assert res.solver.path_steps >= 1 and res.solver.path_event == ""
+    session = StaticSession(robot, load, opts)
+    assert session.result.solver.path_steps >= 1
+    again = session.solve((10.0,) + (0.0,) * (robot.n_tendons - 1))
+    assert again.solver.path_steps >= 1 and again.solver.path_event == ""

@@ -24,6 +24,7 @@ import numpy as np
 from ...models.inputs import check_model_inputs
 from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 from ...robot import LoadCase, Robot
+from .._stepping import path_fields
 from .driver import build_chain, ramp_to, static_ramp
 from .geometry import chain_geometry_from_robot
 from .params import SpringLinkParams, is_planar, resolve_axial
