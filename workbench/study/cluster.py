@@ -28,6 +28,7 @@ import logging
 import os
 import shlex
 import shutil
+import signal
 import subprocess
 import sys
 import time
@@ -59,10 +60,31 @@ class ClusterRefused(ExecutorStartError):
 
 
 def cluster_class(scheduler: str):
-    """The dask-jobqueue cluster class of ``scheduler`` (``SLURMCluster``, ...)."""
-    import dask_jobqueue
+    """The dask-jobqueue cluster class of ``scheduler`` (``SLURMCluster``, ...).
 
-    return getattr(dask_jobqueue, _CLASSES[scheduler])
+    The only place dask-jobqueue is imported (by the job script of a dry run or a SLURM preflight, and
+    by :class:`JobQueueExecutor` when it starts the cluster), through :func:`_import_jobqueue`, so the
+    process's Ctrl-C behaviour stays as it was.
+    """
+    return getattr(_import_jobqueue(), _CLASSES[scheduler])
+
+
+def _import_jobqueue():
+    """The ``dask_jobqueue`` package, imported with the process's SIGINT handler kept.
+
+    dask-jobqueue's ``runner`` module (imported by the package, 0.8-0.9) installs
+    ``signal.signal(SIGINT, lambda *_: sys.exit())`` at import: a Ctrl-C then raises ``SystemExit``
+    in whatever runs (under pytest it fails the running test and the suite carries on) instead of
+    ``KeyboardInterrupt``.  The handler found before the import is put back right after it.
+    Checked by ``tests/cluster/test_sigint.py``.
+    """
+    previous = signal.getsignal(signal.SIGINT)
+    try:
+        import dask_jobqueue
+    finally:
+        if previous is not None and signal.getsignal(signal.SIGINT) is not previous:
+            signal.signal(signal.SIGINT, previous)
+    return dask_jobqueue
 
 
 def job_kwargs(cfg: ClusterConfig) -> dict[str, Any]:
