@@ -22,12 +22,13 @@ import numpy as np
 from .geometry import ChainGeometry
 from .routing import TendonRoute
 
-__all__: list[str] = []
+__all__ = ["axis_rotation", "eyelet_points", "generalised_forces", "rope_forces", "tree_kinematics"]
 
 _UNIT = {"X": np.array([1.0, 0.0, 0.0]), "Y": np.array([0.0, 1.0, 0.0]), "Z": np.array([0.0, 0.0, 1.0])}
 
 
-def _rot(axis: str, angle: float) -> np.ndarray:
+def axis_rotation(axis: str, angle: float) -> np.ndarray:
+    """``(3, 3)`` rotation by ``angle`` [rad] about the body axis ``"X"``, ``"Y"`` or ``"Z"`` (a tree joint's)."""
     c, s = math.cos(angle), math.sin(angle)
     if axis == "X":
         return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
@@ -47,7 +48,7 @@ def tree_kinematics(q: np.ndarray, geo: ChainGeometry, axes: list[tuple[str, ...
             pk = pk + geo.link_lengths[k - 1] * Rk[:, 2]
         for ax in axes[k]:
             A.append(Rk @ _UNIT[ax])
-            Rk = Rk @ _rot(ax, float(q[i]))
+            Rk = Rk @ axis_rotation(ax, float(q[i]))
             i += 1
         P[k], R[k] = pk, Rk
     return P, R, np.asarray(A)

@@ -26,7 +26,7 @@ from ...models.result import ModelFailure, SolverOptions
 from ...robot import LoadCase, Payload, Robot
 from .chain import Chain
 from .geometry import ChainGeometry, chain_geometry_from_robot
-from .linkrope import generalised_forces
+from .linkrope import axis_rotation, generalised_forces
 from .routing import TendonRoute
 from .._stepping import PathPoint, RampExhausted, RampPolicy, load_ramp
 
@@ -220,7 +220,7 @@ class TreeChain(Chain):
             if k > 0:
                 pk = pk + geo.link_lengths[k - 1] * Rk[:, 2]
             for ax, a in zip(joint_axes(self.per, k), q[k]):
-                Rk = Rk @ _axis_rotation(ax, a)
+                Rk = Rk @ axis_rotation(ax, a)
             P[k], R[k] = pk, Rk
         return P, R
 
@@ -234,16 +234,6 @@ class TreeChain(Chain):
         for k in range(1, geo.n_links):
             P[k] = P[k - 1] + geo.link_lengths[k - 1] * np.array([math.sin(beta[k - 1]), 0.0, math.cos(beta[k - 1])])
         return P, beta
-
-
-def _axis_rotation(axis: str, angle: float) -> np.ndarray:
-    """``(3, 3)`` rotation by ``angle`` about the body axis ``"X"``, ``"Y"`` or ``"Z"``."""
-    c, s = math.cos(angle), math.sin(angle)
-    if axis == "X":
-        return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
-    if axis == "Y":
-        return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
 def _tip_joint_forces(robot: Robot, load: LoadCase, geo: ChainGeometry) -> np.ndarray:
@@ -266,7 +256,7 @@ def _tip_by_forward_kinematics(q: np.ndarray, geo: ChainGeometry, per: int) -> n
     for k in range(geo.n_links):
         p = p + R @ np.array([0.0, 0.0, geo.joints[0] if k == 0 else geo.link_lengths[k - 1]])
         for ax, a in zip(joint_axes(per, k), q[k * per:(k + 1) * per]):
-            R = R @ _axis_rotation(ax, a)
+            R = R @ axis_rotation(ax, a)
     return p + R @ np.array([0.0, 0.0, geo.link_lengths[-1]])
 
 
