@@ -47,7 +47,7 @@ class XCase:
     """One cross-examination case: ``robot`` (steel_rod preset parameters), ``load`` (study
     ``[load]`` parameters) and the extras ``tilted`` (base orientation "tilted", see :data:`TILT`)
     and ``offset_tip`` (tapered tendon offset [m] at each section's end, ``None``: constant).
-    ``tags`` name the features drawn (for the known-failure classes and the table)."""
+    ``tags`` name the features drawn (in the case's name and the table)."""
 
     seed: int
     index: int

@@ -1,4 +1,4 @@
-"""The pairs of models that claim the same physics, the agreement rule and the known failures.
+"""The pairs of models that claim the same physics and the agreement rule.
 
 Two refined sides (:mod:`tests.crossexam.sides`) of one case agree when their tips are closer
 than ``bar_a + bar_b + floor``, or when one of them refuses the case (capability check or a
@@ -10,12 +10,9 @@ weight) and ``V`` the largest shear force (tip force plus weight), plus a numeri
 ``1e-6 L``.  For the Rao NiTi rod ``EA = 8.3e4 N``: a 1 N tendon load gives 1.2e-5 L, small
 against the differences that matter (diagnostics.md: 1e-2 to 8e-2 L).
 
-:data:`KNOWN` lists the case classes that fail on main for a reason diagnosed in issue 28 and
-fixed on another branch; the default tier marks them ``xfail(strict=True)`` (each one checked
-to fail), so that a fix shows up as an unexpected pass until the entry is removed; the slow
-tier marks them ``xfail(strict=False)``, because a class predicate (features of the case) also
-catches milder cases of the class that happen to agree (and :data:`TIMING`, timeouts, is never
-strict).  Checked by ``tests/crossexam/test_crossexam.py``.
+A pair is judged only when both sides answered: a side that runs longer than
+:data:`~tests.crossexam.sides.TIMEOUT` makes the verdict :attr:`Verdict.timed_out` (the test marks it
+an explicit xfail naming the timeout, never a pass).  Checked by ``tests/crossexam/test_crossexam.py``.
 """
 
 from __future__ import annotations
@@ -29,7 +26,7 @@ import numpy as np
 from tests.crossexam.cases import XCase, build, study_toml
 from tests.crossexam.sides import COSSERAT_TOL, Side, Spec, solve_side
 
-__all__ = ["KNOWN", "PAIRS", "TIMING", "Pair", "Verdict", "compare", "known_class", "pairs_for", "relative", "side_study"]
+__all__ = ["PAIRS", "Pair", "Verdict", "compare", "pairs_for", "relative", "side_study"]
 
 NUMERICAL_FLOOR = 1e-6  # [L]
 
@@ -97,27 +94,6 @@ def pairs_for(case: XCase, slow: bool = False) -> list[str]:
     return [n for n, p in PAIRS.items() if p.applies(case) and (slow or not p.slow_only)]
 
 
-#: Case classes that fail on main, with the finding of issue 28 and the branch that fixes it.
-KNOWN: dict[str, str] = {
-    "length mode under load / 3 sections": "issue 28 diagnostics 'Dropped silently' (Cosserat > 600 s on a spatial "
-                                           "length-mode case): Cosserat, and beam3d at 20 disks, length-mode solves "
-                                           "exceed sides.TIMEOUT under loads or with 3 sections; no fix branch named",
-}
-
-
-#: Known classes whose failure is a timeout, so depends on the machine's speed: never strict.
-TIMING = frozenset({"length mode under load / 3 sections"})
-
-
-def known_class(case: XCase, pair: str) -> str | None:
-    """The :data:`KNOWN` class of ``(case, pair)``, or ``None``."""
-    models = pair.split("~")[0], pair.split("~")[1].split()[0]
-    external = case.has("force") or case.has("torque") or "gravity" in dict(case.robot)
-    if "cosserat" in models and case.has("length") and (external or dict(case.robot)["n_sections"] == 3):
-        return "length mode under load / 3 sections"
-    return None
-
-
 @dataclass(frozen=True)
 class Verdict:
     """The outcome of one pair on one case: both sides, their distance and the tolerance [m]."""
@@ -136,6 +112,11 @@ class Verdict:
     @property
     def failed(self) -> str:
         return self.a.failed or self.b.failed
+
+    @property
+    def timed_out(self) -> bool:
+        """A side ran longer than :data:`~tests.crossexam.sides.TIMEOUT`: the pair was not judged."""
+        return self.failed.startswith("timeout")
 
     @property
     def distance(self) -> float:

@@ -19,16 +19,12 @@ from tests.crossexam.dynamic import DYNAMIC_CASES, amplitude, dynamic_pair, dyna
 PAIRS = {"ancf~spring_link": (("ancf", "continuum", 8, 1e-3), ("spring_link", "continuum", 16, 1e-3)),
          "ancf~beam3d eyelets": (("ancf", "eyelets", 10, 1e-3), ("beam3d", "eyelets", 10, 1e-3))}
 DEFAULT = {("niti swing under gravity", "ancf~spring_link")}
-#: Known disagreements (case, pair) -> reason (xfail, strict).
-KNOWN: dict[tuple[str, str], str] = {}
 
 
 def _params():
     for case in DYNAMIC_CASES:
         for pair in PAIRS:
             marks = [] if (case, pair) in DEFAULT else [pytest.mark.slow]
-            if (case, pair) in KNOWN:
-                marks.append(pytest.mark.xfail(strict=True, reason=KNOWN[(case, pair)]))
             yield pytest.param(case, pair, id=f"{case}-{pair}", marks=marks)
 
 
