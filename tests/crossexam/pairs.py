@@ -47,6 +47,17 @@ def _unloaded(case: XCase) -> bool:
         not dict(case.robot).get("gravity")
 
 
+def _inextensible_length(case: XCase, tendon_model: str) -> bool:
+    """Whether the spring-link chain solves the case's length-controlled tendons inextensibly, which
+    ``validate`` warns about (:func:`workbench.physics.spring_link.params.inextensible_length_warning`):
+    the chain then does not claim the rod's physics (its tensions, and with them the shape, miss the
+    backbone's compression by more than the strain floor), so it is not paired with the rods."""
+    from workbench.physics.spring_link.params import SpringLinkParams, inextensible_length_warning
+
+    robot, load = build(case)
+    return inextensible_length_warning(robot, load, tendon_model, SpringLinkParams()) is not None
+
+
 def _rod_eyelets(model: str, disks: int) -> Callable[[XCase], Spec]:
     """The continuum-routing side of an eyelet model: routing extrapolation when tendons are loaded."""
     return lambda c: Spec(model, "routing", disks=disks) if _loaded_tendons(c) else Spec(model, "mesh", n=8)
@@ -76,10 +87,11 @@ PAIRS: dict[str, Pair] = {p.name: p for p in (
     Pair("cosserat~ancf", COSSERAT, lambda c: Spec("ancf", "mesh", n=4), _planar),
     Pair("beam3d~ancf eyelets", lambda c: Spec("beam3d", "eyelets", disks=10), lambda c: Spec("ancf", "eyelets", disks=10),
          lambda c: _planar(c) and _loaded_tendons(c)),
-    Pair("spring_link~cosserat", lambda c: Spec("spring_link", "mesh", n=8), COSSERAT, lambda c: True),
+    Pair("spring_link~cosserat", lambda c: Spec("spring_link", "mesh", n=8), COSSERAT,
+         lambda c: not _inextensible_length(c, "continuum")),
     Pair("spring_link~beam3d eyelets", lambda c: Spec("spring_link", "eyelets", disks=5),
          lambda c: Spec("beam3d", "eyelets", disks=5), lambda c: _loaded_tendons(c) and
-         dict(c.robot)["n_sections"] == 1, slow_only=True),
+         dict(c.robot)["n_sections"] == 1 and not _inextensible_length(c, "eyelets"), slow_only=True),
     Pair("ancf3d~beam3d", lambda c: Spec("ancf3d", "mesh", n=4), lambda c: Spec("beam3d", "mesh", n=8),
          lambda c: not _loaded_tendons(c)),
     # CC in tension mode neglects only the strain (the floor); in length mode also the tendons' stretch, and

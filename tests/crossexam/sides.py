@@ -92,15 +92,26 @@ class _Timeout(BaseException):  # not Exception: the solvers' retry loops must n
     pass
 
 
+#: set by the alarm: raised inside an Exudyn user function, the timeout comes back as Exudyn's own
+#: error (``ModelError: Error in Python USER FUNCTION``), which must not read as a refusal
+_FIRED: list[bool] = [False]
+
+
 def _alarm(signum, frame):  # pragma: no cover - only on a hung solve
+    _FIRED[0] = True
     raise _Timeout()
 
 
 def _run(model: str, robot, load, opts: SolverOptions):
     old = signal.signal(signal.SIGALRM, _alarm)
+    _FIRED[0] = False
     signal.setitimer(signal.ITIMER_REAL, TIMEOUT)
     try:
         return get_model(model)(robot, load, opts)
+    except (ModelFailure, ValueError, RuntimeError):
+        if _FIRED[0]:
+            raise _Timeout() from None
+        raise
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0.0)
         signal.signal(signal.SIGALRM, old)
