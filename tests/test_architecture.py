@@ -7,6 +7,8 @@ Rules (``docs/architecture.md``, "Layers"):
 - no package imports another package's private names (a ``_name`` module or attribute);
 - no import cycle between modules, lazy (function-level) imports included;
 - ``workbench/registry.py`` imports nothing from the workbench, and every row resolves;
+- no other module reads the registry's built-in constants: rows are read through
+  ``registry.table(group)``, so a plug-in row is used wherever a built-in row is;
 - files <= 600 lines, functions <= 80 code lines (span minus docstring), module docstrings <= 40 lines.
 """
 
@@ -140,16 +142,47 @@ def test_registry_imports_nothing_from_the_workbench_and_every_row_resolves():
 
     p, tree = MODULES["workbench.registry"]
     assert _imports("workbench.registry", p, tree) == []
-    targets = [m.target for m in registry.MODELS.values() if m.target] + list(registry.PRESETS.values())
-    targets += list(registry.SCENARIOS.values()) + [k.target for k in registry.KINDS.values()]
-    targets += [t for f in registry.FIGURES.values() for t in (f.matches, f.figures)]
-    hooks = [t for r in (*registry.KINDS.values(), *registry.FIGURES.values())
+    kinds, figures = registry.table("kinds").values(), registry.table("figures").values()
+    targets = [m.target for m in registry.table("models").values() if m.target]
+    targets += [*registry.table("presets").values(), *registry.table("scenarios").values()]
+    targets += [k.target for k in kinds] + [t for f in figures for t in (f.matches, f.figures)]
+    hooks = [t for r in (*kinds, *figures)
              for t in (getattr(r, "units", None), getattr(r, "lines", None), getattr(r, "axes", None)) if t]
     assert all(registry.resolve(t) is not None for t in hooks)
     for t in targets:
         assert callable(registry.resolve(t)) or t.endswith(("SWEEP", "KIND")), t
     with pytest.raises(ValueError):
         registry.resolve("no_colon")
+
+
+_CONSTANTS = {"MODELS", "PRESETS", "SCENARIOS", "KINDS", "FIGURES"}
+
+
+def _constant_reads(tree: ast.Module) -> list[int]:
+    """Lines that read a built-in table of the registry (``registry.MODELS`` or ``from ..registry import MODELS``)."""
+    out = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Attribute) and node.attr in _CONSTANTS and isinstance(node.value, ast.Name) \
+                and node.value.id == "registry":
+            out.append(node.lineno)
+        elif isinstance(node, ast.ImportFrom) and (node.module or "").endswith("registry") \
+                and _CONSTANTS & {a.name for a in node.names}:
+            out.append(node.lineno)
+    return out
+
+
+def test_rows_are_read_through_the_registry_table():
+    """Every module but the registry reads rows through ``registry.table`` (built-in + plug-ins), never the
+    constants (which hold only the built-in rows)."""
+    bad = [f"{m}:{line}" for m, (_, tree) in MODULES.items() if m != "workbench.registry"
+           for line in _constant_reads(tree)]
+    assert bad == []
+
+
+def test_the_constant_read_detector_finds_both_forms():
+    assert _constant_reads(ast.parse("from .. import registry\nx = registry.MODELS.get('cc')")) == [2]
+    assert _constant_reads(ast.parse("from ..registry import KINDS as k")) == [1]
+    assert _constant_reads(ast.parse("x = registry.table('models')\nfrom ..registry import table")) == []
 
 
 def test_sizes():

@@ -5,8 +5,8 @@ Every place that assumes something declares it next to what it describes, as a t
 
 * a robot preset module (``workbench/robot/presets/*.py``; keys are the preset's parameters,
   e.g. ``"joint_stiffness"``, shown as ``robot.joint_stiffness``);
-* a scenario module (``registry.SCENARIOS``; keys ``"move_time"`` -> ``scenario.move_time``);
-* a study kind module (``registry.KINDS``; dotted keys, e.g. ``"geometry.height"``).
+* a scenario module (``registry.table("scenarios")``; keys ``"move_time"`` -> ``scenario.move_time``);
+* a study kind module (``registry.table("kinds")``; dotted keys, e.g. ``"geometry.height"``).
 
 The report's Assumptions table reads them all through :func:`declared_assumptions` and fills
 in the value the cases ran with (:func:`workbench.report.assumptions.assumption_rows`).  An

@@ -28,7 +28,7 @@ cases are stored and ``--resume`` retries the rest), 130 interrupted (Ctrl-C), 1
 (SIGTERM); after 130/143 finished cases are stored and ``--resume`` continues.
 
 ``run`` and ``validate`` choose the study kind once (:func:`workbench.study.kinds.kind_of` reads
-``[study] kind``, :func:`~workbench.study.kinds.get_kind` finds it in ``workbench.registry.KINDS``)
+``[study] kind``, :func:`~workbench.study.kinds.get_kind` finds it in ``workbench.registry.table("kinds")``)
 and then use only that kind's ``load`` / ``expand`` / ``models`` and the one runner
 :func:`workbench.study.run_cases`.  Checked by ``tests/study/test_cli.py``,
 ``tests/study/test_cli_errors.py``, ``tests/study/test_spec.py`` and ``tests/study/test_kinds.py``.
@@ -43,6 +43,8 @@ import sys
 from pathlib import Path
 from typing import Sequence
 
+from . import registry
+from .cli_list import TOPICS, list_command
 from .report.command import add_report_arguments, report_command
 from .study.cluster_command import add_cluster_arguments
 
@@ -157,8 +159,9 @@ def _parser() -> argparse.ArgumentParser:
     rp = sub.add_parser("report", help="write the HTML comparison report of a study result folder")
     add_report_arguments(rp)
 
-    ls = sub.add_parser("list", help="what the registry offers: models (with capabilities), presets, scenarios, kinds")
-    ls.add_argument("topic", choices=("models", "presets", "scenarios", "kinds", "represents"))
+    ls = sub.add_parser("list", help="what the registry offers, built-in and plug-ins (with each row's package): "
+                                     "models (with capabilities), presets, scenarios, kinds, figures")
+    ls.add_argument("topic", choices=TOPICS)
 
     v = sub.add_parser("validate", help="check a study file without running it")
     v.add_argument("study", help="study file or bare name (studies/<name>.toml)")
@@ -562,13 +565,15 @@ def main(argv: Sequence[str] | None = None) -> int:
         args = _parser().parse_args(argv)
     except SystemExit as e:  # --help, --version (0) or a usage error (2, one line on stderr)
         return e.code if isinstance(e.code, int) else 2
-    from .cli_list import list_command
-
     commands = {"run": _cmd_run, "show": _cmd_show, "validate": _cmd_validate, "report": _cmd_report,
                 "list": list_command}
+    _err([f"warning: {line}" for line in registry.discover().problems])  # broken plug-ins, one line each
     try:
         code = commands[args.command](args)
         sys.stdout.flush()
+    except registry.PluginError as e:  # two packages register one name: nothing can be trusted to run
+        _err([str(e)])
+        code = 2
     except BrokenPipeError:  # `workbench show data/x | head`: the reader left; no traceback
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         code = 0

@@ -1,52 +1,66 @@
-"""``workbench list models|presets|scenarios|kinds|represents``: what the registry offers, with each model's
-capabilities (``represents``: the markdown table "What each model represents" of ``docs/models.md``).
+"""``workbench list models|presets|scenarios|kinds|figures|represents``: what the registry offers -- the
+built-in rows and those of installed plug-ins, each with its package in brackets (``[built-in]`` or
+``[<distribution> <version>]``) -- with each model's capabilities (``represents``: the markdown table
+"What each model represents" of ``docs/models.md``).
 
-Reads ``workbench.registry`` (data only) and, for presets and scenarios, their keyword
+Reads ``workbench.registry.table`` (data only) and, for presets and scenarios, their keyword
 parameters with defaults; imports no model code (no Exudyn).  Checked by
-``tests/study/test_cli_errors.py``.
+``tests/study/test_cli_errors.py`` and, for plug-in rows, ``tests/test_plugins.py``.
 """
 
 from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["TOPICS", "list_command"]
+__all__ = ["TOPICS", "list_command", "list_lines"]
 
-TOPICS = ("models", "presets", "scenarios", "kinds", "represents")
+TOPICS = ("models", "presets", "scenarios", "kinds", "figures", "represents")
 
 
 def _params(params: dict[str, Any]) -> str:
     return ", ".join(f"{k}={v!r}" for k, v in params.items())
 
 
+def _models() -> list[str]:
+    from . import registry
+    from .study.capabilities import describe
+
+    rows = registry.table("models")
+    w = max(len(n) for n in [*rows, *registry.LABELS])
+    out = []
+    for name, info in rows.items():
+        out.append(f"{name:<{w}}  {info.label}: {describe(info.capabilities)} [{registry.package('models', name)}]")
+        if info.capabilities is not None and info.capabilities.note:
+            out.append(f"{'':<{w}}  ({info.capabilities.note})")
+    out += [f"{name:<{w}}  {row.label}: {describe(None)} [{registry.BUILT_IN}]" for name, row in registry.LABELS.items()]
+    return out
+
+
 def list_lines(topic: str) -> list[str]:
-    """The lines ``workbench list <topic>`` prints."""
+    """The lines ``workbench list <topic>`` prints (one of :data:`TOPICS`)."""
     from . import registry
 
     if topic == "models":
-        from .study.capabilities import describe
-
-        w = max(len(n) for n in [*registry.MODELS, *registry.LABELS])
-        out = []
-        for name, info in registry.MODELS.items():
-            out.append(f"{name:<{w}}  {info.label}: {describe(info.capabilities)}")
-            if info.capabilities is not None and info.capabilities.note:
-                out.append(f"{'':<{w}}  ({info.capabilities.note})")
-        out += [f"{name:<{w}}  {row.label}: {describe(None)}" for name, row in registry.LABELS.items()]
-        return out
+        return _models()
     if topic == "represents":
         from .study.capabilities import represents_table
 
         return represents_table().splitlines()
+    return [f"{name}: {_what(topic, name, row)} [{registry.package(topic, name)}]"
+            for name, row in registry.table(topic).items()]
+
+
+def _what(topic: str, name: str, row: Any) -> str:
+    """What a row of ``topic`` offers: a preset's or scenario's parameters, a kind's or figure set's code."""
     if topic == "presets":
         from .robot.presets import preset_parameters
 
-        return [f"{name}: {_params(preset_parameters(name))}" for name in registry.PRESETS]
+        return _params(preset_parameters(name))
     if topic == "scenarios":
         from .study.scenarios import scenario_parameters
 
-        return [f"{name}: {_params(scenario_parameters(name))}" for name in registry.SCENARIOS]
-    return [f"{name}: {row.target}" for name, row in registry.KINDS.items()]
+        return _params(scenario_parameters(name))
+    return row.target if topic == "kinds" else row.figures
 
 
 def list_command(args) -> int:

@@ -6,17 +6,29 @@ Exudyn nor any experiment).  Generic layers find experiment code only through th
 new study is a folder under ``workbench/experiments/`` plus its rows here
 (``docs/architecture.md``, "Where to add things").
 
-Checked by ``tests/test_architecture.py`` (every row resolves; nothing here imports workbench).
+The constants below are the built-in rows.  Installed packages add rows of the same types
+through entry points in the groups ``trunk_workbench.<group>`` (:data:`GROUPS`; the walk-through
+is ``docs/plugins.md``); :func:`table` returns the merged table of a group and is how every other
+module reads rows, so a plug-in row does exactly what a built-in row does, in every process that
+sees the same installed packages (the isolated child, process pools, Dask workers).
+
+Checked by ``tests/test_architecture.py`` (every row resolves; nothing here imports workbench;
+no other module reads the constants) and ``tests/test_plugins.py`` (discovery, clashes, broken
+plug-ins; the example plug-in end to end).
 """
 
 from __future__ import annotations
 
+import functools
 import importlib
 from dataclasses import dataclass
+from importlib import metadata
+from types import MappingProxyType
 from typing import Any, Mapping
 
-__all__ = ["Capabilities", "FIGURES", "FigureSet", "KINDS", "KindInfo", "LABELS", "MODELS", "ModelInfo", "PRESETS",
-           "RowLabel", "SCENARIOS", "resolve", "row_info"]
+__all__ = ["BUILT_IN", "Capabilities", "Discovery", "ENTRY_POINT_PREFIX", "FIGURES", "FigureSet", "GROUPS", "KINDS",
+           "KindInfo", "LABELS", "MODELS", "ModelInfo", "PRESETS", "PluginError", "PluginRow", "ROW_TYPES",
+           "RowLabel", "SCENARIOS", "discover", "package", "resolve", "row_info", "table"]
 
 
 @dataclass(frozen=True)
@@ -261,7 +273,7 @@ def row_info(name: str) -> ModelInfo | RowLabel | None:
     """The registry row of the ``model`` value ``name``: a run model (:data:`MODELS`) or another
     kind's row (:data:`LABELS`); ``None`` when neither knows it.  Every reader of labels, colours
     and orders uses this (checked by ``tests/report/test_report_registry.py``)."""
-    return MODELS.get(name) or LABELS.get(name)
+    return table("models").get(name) or LABELS.get(name)
 
 PRESETS: Mapping[str, str] = {
     "steel_rod": "workbench.robot.presets.steel_rod:steel_rod",
@@ -341,3 +353,162 @@ def resolve(target: str) -> Any:
     for part in attr.split("."):
         obj = getattr(obj, part)
     return obj
+
+
+# -- plug-ins: rows of installed packages, found through entry points --------------------------------------------
+
+#: The groups of rows a plug-in may add; the entry point group of ``g`` is ``ENTRY_POINT_PREFIX + g``.
+GROUPS: tuple[str, ...] = ("presets", "models", "scenarios", "kinds", "figures")
+
+#: Prefix of the entry point groups (``trunk_workbench.models`` ...).
+ENTRY_POINT_PREFIX = "trunk_workbench."
+
+#: The package :func:`package` names for a built-in row.
+BUILT_IN = "built-in"
+
+#: The type of a row of each group: an entry point loads to exactly this type (a preset or
+#: scenario row is its ``"module:function"`` target, as in :data:`PRESETS` and :data:`SCENARIOS`).
+ROW_TYPES: Mapping[str, type] = MappingProxyType(
+    {"presets": str, "models": ModelInfo, "scenarios": str, "kinds": KindInfo, "figures": FigureSet})
+
+
+class PluginError(ValueError):
+    """Two packages register the same row name in one group (the message, one line, names both)."""
+
+
+@dataclass(frozen=True)
+class PluginRow:
+    """One row an installed package registers.
+
+    Attributes
+    ----------
+    group : str
+        One of :data:`GROUPS`.
+    name : str
+        The row's name (the entry point's name).
+    row : object
+        The row, of type ``ROW_TYPES[group]``.
+    package : str
+        The registering distribution as ``"name version"``.
+    entry_point : str
+        ``"group:name"`` of the entry point.
+    """
+
+    group: str
+    name: str
+    row: Any
+    package: str
+    entry_point: str
+
+
+@dataclass(frozen=True)
+class Discovery:
+    """What :func:`discover` found: the valid plug-in rows and one line per broken entry point.
+
+    Attributes
+    ----------
+    rows : tuple of PluginRow
+        Rows in entry point order, all groups.
+    problems : tuple of str
+        One line per entry point that was ignored (it fails to load, or loads to something other
+        than its group's row type), naming the package and the entry point.
+    """
+
+    rows: tuple[PluginRow, ...]
+    problems: tuple[str, ...]
+
+
+def _first_line(e: BaseException) -> str:
+    text = str(e).strip().splitlines()
+    return f"{type(e).__name__}: {text[0]}" if text else type(e).__name__
+
+
+def _load(group: str, ep: metadata.EntryPoint) -> tuple[PluginRow | None, str | None]:
+    """``ep`` loaded as a row of ``group``, or ``None`` and the one line saying why not."""
+    dist = getattr(ep, "dist", None)
+    pkg = f"{dist.name} {dist.version}" if dist is not None else "an unknown package"
+    where = f"plug-in {pkg}: entry point {ep.group}:{ep.name} = {ep.value!r}"
+    try:
+        row = ep.load()
+    except Exception as e:  # noqa: BLE001 - any failure of a third-party import is reported, not raised
+        return None, f"{where} cannot be loaded ({_first_line(e)}); ignored"
+    want = ROW_TYPES[group]
+    if type(row) is not want:
+        return None, (f"{where} is a {type(row).__name__}, not a {want.__name__} (the row type of "
+                      f"{ENTRY_POINT_PREFIX}{group}); ignored")
+    return PluginRow(group, ep.name, row, pkg, f"{ep.group}:{ep.name}"), None
+
+
+@functools.lru_cache(maxsize=1)
+def discover() -> Discovery:
+    """The rows installed packages register, from the entry points of this process's environment.
+
+    Loads every entry point of the groups ``trunk_workbench.<group>`` (:data:`GROUPS`) once per
+    process (cached; ``discover.cache_clear()`` looks again).  An entry point that fails to load
+    or loads to the wrong type is left out with one line in :attr:`Discovery.problems` (the
+    built-in rows and the other plug-ins keep working).  Because the entry points are those of
+    the installed packages, every process started with the same ``sys.path`` (the isolated
+    executor's child, process pools, Dask workers) finds the same rows: checked by
+    ``tests/test_plugins.py``.
+    """
+    rows: list[PluginRow] = []
+    problems: list[str] = []
+    for group in GROUPS:
+        for ep in metadata.entry_points(group=ENTRY_POINT_PREFIX + group):
+            row, problem = _load(group, ep)
+            if row is not None:
+                rows.append(row)
+            if problem is not None:
+                problems.append(problem)
+    return Discovery(tuple(rows), tuple(problems))
+
+
+def _built_ins(group: str) -> Mapping[str, Any]:
+    try:
+        return {"presets": PRESETS, "models": MODELS, "scenarios": SCENARIOS, "kinds": KINDS,
+                "figures": FIGURES}[group]
+    except KeyError:
+        raise KeyError(f"unknown registry group {group!r}; groups: {', '.join(GROUPS)}") from None
+
+
+def _owners(group: str) -> dict[str, tuple[Any, str]]:
+    """name -> (row, package) of ``group``: the built-in rows, then the plug-ins' (clash: PluginError)."""
+    out = {name: (row, BUILT_IN) for name, row in _built_ins(group).items()}
+    for r in discover().rows:
+        if r.group != group:
+            continue
+        if r.name in out:
+            first = out[r.name][1]
+            first = "the workbench (built-in)" if first == BUILT_IN else f"plug-in {first}"
+            raise PluginError(f"{ENTRY_POINT_PREFIX}{group}: {r.name!r} is registered twice, by {first} and by "
+                              f"plug-in {r.package} (entry point {r.entry_point}); uninstall or rename one")
+        out[r.name] = (r.row, r.package)
+    return out
+
+
+def table(group: str) -> Mapping[str, Any]:
+    """The rows of ``group`` (one of :data:`GROUPS`): the built-in rows, then those of installed plug-ins.
+
+    Every module other than this one reads rows through this function (never the constants),
+    so a plug-in row is used wherever a built-in row is.  Read-only; built on each call from the
+    constants and the cached :func:`discover`.
+
+    Raises
+    ------
+    PluginError
+        Two packages (the workbench or plug-ins) register the same name in ``group``.
+    KeyError
+        ``group`` is not one of :data:`GROUPS`.
+    """
+    return MappingProxyType({name: row for name, (row, _) in _owners(group).items()})
+
+
+def package(group: str, name: str) -> str:
+    """Who registers row ``name`` of ``group``: :data:`BUILT_IN` or the plug-in's ``"distribution version"``.
+
+    Raises
+    ------
+    KeyError
+        No such row.
+    """
+    return _owners(group)[name][1]

@@ -98,11 +98,11 @@ UNITS: dict[str, tuple[str | None, str | UnitBy | None]] = {
 
 @lru_cache(maxsize=1)
 def _registered() -> dict[str, tuple[str | None, str | UnitBy | None]]:
-    """The keys the registry rows add (``units`` of :data:`~workbench.registry.KINDS` and ``FIGURES``)."""
+    """The keys the registry rows add (``units`` of ``workbench.registry.table("kinds")`` and ``FIGURES``)."""
     from . import registry
 
     out: dict[str, tuple[str | None, str | UnitBy | None]] = {}
-    rows = [*registry.KINDS.values(), *registry.FIGURES.values()]
+    rows = [*registry.table("kinds").values(), *registry.table("figures").values()]
     for target in dict.fromkeys(r.units for r in rows if r.units):
         for key, entry in registry.resolve(target).items():
             if key in UNITS or out.get(key, entry) != entry:

@@ -16,7 +16,7 @@ from workbench.robot import (
     TendonGroup,
     base_rotation_for,
 )
-from workbench.robot.presets import PRESET_NAMES, build_preset, get_preset
+from workbench.robot.presets import build_preset, get_preset, preset_names
 
 
 def test_circular_section_matches_closed_form():
@@ -107,7 +107,7 @@ def test_unknown_orientation_and_preset_parameter_are_named():
         build_preset("steel_rod", lenght=1.0)
     with pytest.raises(KeyError, match="known presets"):
         get_preset("octopus")
-    assert "steel_rod" in PRESET_NAMES
+    assert "steel_rod" in preset_names()
 
 
 def test_actuation_ramps_at_constant_speed_with_delays():

@@ -2,10 +2,10 @@
 
 import pytest
 
-from workbench.robot.presets import PRESET_NAMES, build_preset, preset_parameters, preset_sources
+from workbench.robot.presets import build_preset, preset_names, preset_parameters, preset_sources
 
 
-@pytest.mark.parametrize("name", PRESET_NAMES)
+@pytest.mark.parametrize("name", preset_names())
 def test_every_parameter_has_exactly_one_source(name):
     src = preset_sources(name)
     params = set(preset_parameters(name))

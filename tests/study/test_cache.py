@@ -57,8 +57,8 @@ def test_only_results_are_cached_and_a_code_change_invalidates(tmp_path, monkeyp
     c.put({**base, "case_id": "ok1", "status": "ok", "failure": ""})
     assert c.writes == 2 and c.get("ok1", "cc")["status"] == "ok" and c.get("abc", "cc")["failure"] == "model"
     assert code_version("cc") != code_version("ancf")
-    assert any(p.name == "ancf.py" and p.parent.name == "physics" for p in cache_mod._sources("ancf"))
-    assert any(p.name == "cc.py" and p.parent.name == "models" for p in cache_mod._sources("cc"))
+    assert any(p.name == "ancf.py" and p.parent.name == "physics" for _, p in cache_mod._sources("ancf"))
+    assert any(p.name == "cc.py" and p.parent.name == "models" for _, p in cache_mod._sources("cc"))
     monkeypatch.setattr(cache_mod, "code_version", lambda model: "0" * 16)  # as after an edit of the model
     assert c.get("ok1", "cc") is None
 

@@ -1,6 +1,6 @@
 """Model registry: every model is ``run(robot, load, options) -> PhysicsResult``.
 
-Models are looked up by name and imported lazily, so using the CC model never imports
+Models (the rows of ``workbench.registry.table("models")``, built-in and plug-in) are looked up by name and imported lazily, so using the CC model never imports
 Exudyn.  A model signals an untrustworthy solve by raising
 :class:`~workbench.models.result.ModelFailure` (or ``exudyn.SolverError``).
 """
@@ -15,13 +15,13 @@ from ._console import quiet_if_loaded
 from .result import ModelFailure, PhysicsResult, SolverInfo, SolverOptions
 
 __all__ = [
-    "MODEL_NAMES",
     "Model",
     "ModelFailure",
     "PhysicsResult",
     "SolverInfo",
     "SolverOptions",
     "get_model",
+    "model_names",
     "quiet_if_loaded",
 ]
 
@@ -30,11 +30,9 @@ class Model(Protocol):
     def __call__(self, robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult: ...
 
 
-# name -> "module:function" (the rows of workbench.registry.MODELS); resolved on demand by get_model
-# (no import work here).
-_MODEL_PATHS: dict[str, str] = {n: m.target for n, m in registry.MODELS.items()}
-
-MODEL_NAMES: tuple[str, ...] = tuple(_MODEL_PATHS)
+def model_names() -> tuple[str, ...]:
+    """The registered model names: built-in and plug-in rows of ``registry.table("models")``."""
+    return tuple(registry.table("models"))
 
 
 def get_model(name: str) -> Callable[[Robot, LoadCase, SolverOptions], PhysicsResult]:
@@ -45,8 +43,7 @@ def get_model(name: str) -> Callable[[Robot, LoadCase, SolverOptions], PhysicsRe
     KeyError
         Unknown name (the message lists the known ones).
     """
-    try:
-        path = _MODEL_PATHS[name]
-    except KeyError:
-        raise KeyError(f"unknown model {name!r}; known models: {', '.join(MODEL_NAMES)}") from None
-    return registry.resolve(path)
+    rows = registry.table("models")
+    if name not in rows:
+        raise KeyError(f"unknown model {name!r}; known models: {', '.join(rows)}")
+    return registry.resolve(rows[name].target)

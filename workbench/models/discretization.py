@@ -2,7 +2,7 @@
 
 A result at resolution ``N`` (elements / links, time step ``h`` for dynamics) is re-solved at
 ``N/2`` (``2 h``) and ``N/4`` (``4 h``).  With the model's known convergence order ``p``
-(``workbench.registry.MODELS[name].order``; at most 2 in dynamics, the order of generalised-alpha)
+(``workbench.registry.table("models")[name].order``; at most 2 in dynamics, the order of generalised-alpha)
 the error of the fine result is estimated as ``|q_N - q_N/2| / (r^p - 1)`` (Richardson,
 refinement ratio ``r = N / N'``).  The three resolutions also give the observed order
 ``log(|q_N/4 - q_N/2| / |q_N/2 - q_N|) / log 2``; when it is lower than ``p`` (not yet in the

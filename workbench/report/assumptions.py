@@ -3,10 +3,10 @@
 Gathered from data, never from docstrings: the ``ASSUMED`` tuples of
 :class:`workbench.assumptions.Assumption` (read by :func:`workbench.assumptions.declared_assumptions`) of
 
-* the robot preset's module (``workbench.registry.PRESETS``), values from the rows' ``p.robot.*``
+* the robot preset's module (``workbench.registry.table("presets")``), values from the rows' ``p.robot.*``
   when the study sets them, else the preset's default;
-* the scenario module (``workbench.registry.SCENARIOS``), values from ``p.scenario.*``;
-* the study kind module (``workbench.registry.KINDS``; keys ``"section.key"``, e.g. the
+* the scenario module (``workbench.registry.table("scenarios")``), values from ``p.scenario.*``;
+* the study kind module (``workbench.registry.table("kinds")``; keys ``"section.key"``, e.g. the
   series-parallel module geometry), values from the rows;
 
 then the study's own ``[report] assumptions`` (``"section.key"`` -> text), values from the rows,
@@ -94,12 +94,13 @@ def _declared_rows(study: ResultSet, section: str, target: str | None,
 def _preset_rows(study: ResultSet) -> list[Assumption]:
     robot = study.spec.get("robot") if isinstance(study.spec.get("robot"), Mapping) else {}
     name = robot.get("preset")
-    if not name or name not in registry.PRESETS:
+    presets = registry.table("presets")
+    if not name or name not in presets:
         return []
     from ..robot.presets import preset_parameters
 
     defaults = preset_parameters(name)
-    return _declared_rows(study, "robot", registry.PRESETS[name], {k: robot.get(k, defaults.get(k)) for k in defaults})
+    return _declared_rows(study, "robot", presets[name], {k: robot.get(k, defaults.get(k)) for k in defaults})
 
 
 def _estimate_row(study: ResultSet) -> list[Assumption]:
@@ -121,8 +122,9 @@ def assumption_rows(study: ResultSet) -> list[Assumption]:
     scen = spec.get("scenario") if isinstance(spec.get("scenario"), Mapping) else {}
     kind = (spec.get("study") or {}).get("kind") if isinstance(spec.get("study"), Mapping) else None
     rows = _preset_rows(study)
-    rows += _declared_rows(study, "scenario", registry.SCENARIOS.get(scen.get("name", "")))
-    rows += _declared_rows(study, "", registry.KINDS[kind].target if kind in registry.KINDS else None)
+    kinds = registry.table("kinds")
+    rows += _declared_rows(study, "scenario", registry.table("scenarios").get(scen.get("name", "")))
+    rows += _declared_rows(study, "", kinds[kind].target if kind in kinds else None)
     rep = spec.get("report") if isinstance(spec.get("report"), Mapping) else {}
     seen = {r.key for r in rows}
     for key, text in (rep.get("assumptions") or {}).items():

@@ -2,7 +2,7 @@
 
 :func:`build_report` loads the folder (:func:`.load.load_results`), compares the models
 (:func:`workbench.compare.compare_table`) and draws, inside one ``matplotlib.rc_context(STYLE)``,
-first the study-specific figure sets of ``workbench.registry.FIGURES`` whose ``matches(results)``
+first the study-specific figure sets of ``workbench.registry.table("figures")`` whose ``matches(results)``
 is true (in registry order; the report names no study), then the generic builders of
 :data:`.figures.GENERIC_FIGURES`; then the per-case table (:mod:`.casetable`), the 3-D view's
 data (:mod:`.viewer`) and the page (:mod:`.page`, sections in :mod:`.sections`).  The report is
@@ -54,15 +54,15 @@ def _scalar_columns(df: pd.DataFrame) -> list[str]:
 
 
 def study_figure_sets(results: ResultSet) -> list[str]:
-    """Names of the ``registry.FIGURES`` sets whose ``matches(results)`` is true, in registry order."""
-    return [name for name, fs in registry.FIGURES.items() if registry.resolve(fs.matches)(results)]
+    """Names of the ``registry.table("figures")`` sets whose ``matches(results)`` is true, in registry order."""
+    return [name for name, fs in registry.table("figures").items() if registry.resolve(fs.matches)(results)]
 
 
 def _all_figures(results: ResultSet, cmp: pd.DataFrame) -> list[ReportFigure]:
     """The study-specific figure sets that match, then the generic figures (call inside ``rc_context(STYLE)``)."""
     figs: list[ReportFigure] = []
     for name in study_figure_sets(results):
-        figs += registry.resolve(registry.FIGURES[name].figures)(results, cmp)
+        figs += registry.resolve(registry.table("figures")[name].figures)(results, cmp)
     for builder in GENERIC_FIGURES:
         figs += builder(results, cmp)
     return figs

@@ -4,7 +4,7 @@ Each builder ``builder(results, cmp) -> [ReportFigure]`` (name, title, figure, g
 summary) takes a :class:`~.load.ResultSet` and the comparison table of
 :func:`workbench.compare.compare_table`; failed rows never reach a figure.
 :data:`GENERIC_FIGURES` lists them in report order (after the study-specific figure sets of
-``workbench.registry.FIGURES``).  A new generic figure: a builder in its own module here plus
+``workbench.registry.table("figures")``).  A new generic figure: a builder in its own module here plus
 its entry in :data:`GENERIC_FIGURES`.  The shared style and label helpers are in :mod:`.style`.
 """
 

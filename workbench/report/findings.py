@@ -8,7 +8,7 @@
   (:mod:`.headline`; dynamics: the peak over time and the final value), marked **not converged**
   where the error bar exceeds 10 % of the error (:mod:`workbench.compare.convergence`); stresses
   against the declared strengths (inadmissible hardware is said to make the result an elastic
-  idealisation); load-path events (:mod:`.path_events`); the study's own sentences (``registry.FIGURES[...].findings``); failed runs;
+  idealisation); load-path events (:mod:`.path_events`); the study's own sentences (``registry.table("figures")[...].findings``); failed runs;
 * Assumptions: :func:`.assumptions.assumption_rows`;
 * Sensitivity: per ``[report] sensitivity`` key the headline against the assumed value with
   error bars (:mod:`.errorbars`), and whether it moves by more than its error bar.
@@ -53,10 +53,11 @@ def _pm(h: Headline) -> str:
 
 
 def _tolerance_note(h: Headline) -> str:
-    """Which side's bar is a solver-tolerance estimate (``registry.MODELS[m].accuracy == "tolerance"``:
+    """Which side's bar is a solver-tolerance estimate (``registry.table("models")[m].accuracy == "tolerance"``:
     a tighter re-solve, :func:`workbench.study.estimate.tolerance_estimate`), not a mesh estimate."""
+    models = registry.table("models")
     sides = [m for m in (h.baseline, h.model)
-             if m in registry.MODELS and registry.MODELS[m].accuracy == "tolerance"]
+             if m in models and models[m].accuracy == "tolerance"]
     return f" ({', '.join(model_label(m) for m in sides)}: solver-tolerance estimate)" if sides else ""
 
 
@@ -129,7 +130,7 @@ def findings_list(study: ResultSet, cmp: pd.DataFrame) -> list[str]:
         items.append("Nothing to compare (one model, or no case with two successful models).")
     items += stress_findings(study)
     items += path_event_findings(study)  # static solves whose load path jumped (may be on another branch)
-    for name, fs in registry.FIGURES.items():
+    for name, fs in registry.table("figures").items():
         if fs.findings and registry.resolve(fs.matches)(study):
             items += list(registry.resolve(fs.findings)(study, cmp))
     n_failed = len(study.failed)

@@ -18,6 +18,6 @@ __all__ = ["kind_hook"]
 def kind_hook(spec: Mapping[str, Any], name: str) -> Callable | None:
     """The hook ``name`` (``"lines"`` / ``"axes"``) of the study kind of resolved spec ``spec``, else ``None``."""
     inner = spec.get("study") if isinstance(spec.get("study"), Mapping) else {}
-    row = registry.KINDS.get(str(inner.get("kind", "sweep")))
+    row = registry.table("kinds").get(str(inner.get("kind", "sweep")))
     target = getattr(row, name, None) if row is not None else None
     return registry.resolve(target) if target else None

@@ -1,6 +1,6 @@
 """What every report figure shares: the style, model and axis labels, number formatting.
 
-Model labels and colours come from :data:`workbench.registry.MODELS` (a model without a colour
+Model labels and colours come from ``workbench.registry.table("models")`` (a model without a colour
 gets a fallback colour per report).  Pure presentation helpers, no figure builders (those are in
 :mod:`.shapes`, :mod:`.sweeps`, :mod:`.dynamics`, listed by :mod:`.figures`).  Checked by
 ``tests/report/test_report_build.py`` and the report tier of ``tests/regression``.

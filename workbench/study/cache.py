@@ -5,9 +5,10 @@ parameters as configured (robot, load, solver, derived, scenario: :mod:`workbenc
 so adding a sweep value or a model to a study -- a new config hash, a new folder -- recomputes only
 the new (case, model) pairs.  The *code version* of a model (:func:`code_version`) hashes the
 Python source its result depends on -- the package of its registry target (``workbench/physics/``
-for the Exudyn models, ``workbench/models/`` for CC), the robot, kinematics and model-interface
-packages, the case building and row code of ``workbench/study/`` -- and the versions of Python,
-numpy, scipy and Exudyn: editing any of them invalidates that model's entries.
+for the Exudyn models, ``workbench/models/`` for CC; for a plug-in model the whole top-level package
+of its target), the robot, kinematics and model-interface packages, the case building and row code
+of ``workbench/study/`` -- and the versions of Python, numpy, scipy and Exudyn: editing any of them
+invalidates that model's entries.
 
 Only rows that are results are cached: ``ok`` rows and model failures (``failure = "model"``:
 raised, not converged, non-finite); crashes, timeouts, memory, killed and lost rows are not; a
@@ -37,16 +38,34 @@ _SHARED = ("robot", "kinematics", "models", "study/build.py", "study/rows.py", "
 _VERSIONED = ("numpy", "scipy", "exudyn")
 
 
-def _sources(model: str) -> list[Path]:
+def _files(p: Path) -> list[Path]:
+    return sorted(p.rglob("*.py")) if p.is_dir() else ([p] if p.exists() else [])
+
+
+def _plugin_sources(top: str) -> list[tuple[str, Path]]:
+    """(name, path) of the ``.py`` files of the top-level package ``top`` of a plug-in model (not imported)."""
+    from importlib.util import find_spec
+
+    spec = find_spec(top)
+    if spec is None:
+        return []
+    dirs = [Path(d) for d in (spec.submodule_search_locations or [])]
+    paths = [f for d in dirs for f in _files(d)] or ([Path(spec.origin)] if spec.origin else [])
+    base = dirs[0].parent if dirs else Path(spec.origin or ".").parent
+    return sorted((str(p.relative_to(base)), p) for p in set(paths))
+
+
+def _sources(model: str) -> list[tuple[str, Path]]:
+    """(name, path) of the source files ``model``'s results depend on (module docstring)."""
     from .. import registry
 
-    info = registry.MODELS.get(model)
+    info = registry.table("models").get(model)
     # the package of the model's code; rows of another study kind (registry.LABELS): all of physics
-    parts = info.target.partition(":")[0].split(".")[1:2] if info is not None else ["physics"]
-    out: list[Path] = []
-    for rel in [*parts, *_SHARED]:
-        p = _ROOT / rel
-        out += sorted(p.rglob("*.py")) if p.is_dir() else ([p] if p.exists() else [])
+    module = info.target.partition(":")[0] if info is not None else "workbench.physics"
+    top, _, rest = module.partition(".")
+    out = _plugin_sources(top) if top != "workbench" else []
+    parts = [] if top != "workbench" else rest.split(".")[:1]
+    out += [(str(p.relative_to(_ROOT)), p) for rel in [*parts, *_SHARED] for p in _files(_ROOT / rel)]
     return sorted(set(out))
 
 
@@ -62,8 +81,8 @@ def code_version(model: str) -> str:
             h.update(f"{name} {metadata.version(name)}\n".encode())
         except metadata.PackageNotFoundError:
             h.update(f"{name} -\n".encode())
-    for p in _sources(model):
-        h.update(str(p.relative_to(_ROOT)).encode() + b"\0" + p.read_bytes() + b"\0")
+    for name, p in _sources(model):
+        h.update(name.encode() + b"\0" + p.read_bytes() + b"\0")
     return h.hexdigest()[:16]
 
 

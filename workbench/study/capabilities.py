@@ -1,6 +1,6 @@
 """Capability checks: does every model of a study support what each case asks of it?
 
-Each model row of ``workbench.registry.MODELS`` declares its :class:`~workbench.registry.Capabilities`
+Each model row of ``workbench.registry.table("models")`` declares its :class:`~workbench.registry.Capabilities`
 (dimensions, actuation modes, tendon models, loads, analyses, dynamic restrictions).
 :func:`case_features` reads what a built case needs (pure: the robot, the load case and the
 solver parameters); :func:`unsupported` compares that with one model's declaration and returns
@@ -193,13 +193,15 @@ def _tendon_path(caps: Any) -> str:
 def represents_table(models: Mapping[str, Any] | None = None) -> str:
     """The markdown table "What each model represents" from the models' capabilities.
 
-    One row per declared model of ``models`` (default ``workbench.registry.MODELS``): dimensions,
+    One row per declared model of ``models`` (default ``workbench.registry.table("models")``): dimensions,
     tendon path, where disk weights act, extensibility, torsion, tendon friction, gravity and
     analyses.  ``docs/models.md`` holds its output (``workbench list represents`` prints it;
     ``tests/study/test_capabilities.py`` checks the docs against it).
     """
     if models is None:
-        from ..registry import MODELS as models
+        from ..registry import table
+
+        models = table("models")
     head = ("model", "dimensions", "tendon path", "disk weights", "extensibility", "torsion", "tendon friction",
             "gravity", "analyses")
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]

@@ -162,7 +162,7 @@ def _capability_rules(robot, load_case, params, models, solvers) -> list[str]:
     for solver in solvers or [params.get("solver", {})]:
         f = case_features(robot, load_case, params, solver)
         for m in models:
-            info = registry.MODELS.get(m)
+            info = registry.table("models").get(m)
             for line in unsupported(m, info.capabilities if info else None, f):
                 if line not in out:
                     out.append(line)

@@ -1,7 +1,7 @@
 """The discretisation-error columns of a sweep-study row (the pipeline side of the estimator).
 
 :func:`discretization_columns` decides whether a model's row gets an estimate and computes it:
-every physics model with a declared order (``workbench.registry.MODELS[name].order``) by
+every physics model with a declared order (``workbench.registry.table("models")[name].order``) by
 :func:`workbench.models.discretization.estimate_discretization` (coarser meshes, Richardson), and
 every model whose accuracy is a solver tolerance (``MODELS[name].accuracy == "tolerance"``, e.g.
 ``cosserat``: no mesh, shooting to ``newton_tolerance``) by :func:`tolerance_estimate` (the same
@@ -52,14 +52,14 @@ class LazyCCResult:
 def _order(name: str) -> float | None:
     from .. import registry
 
-    info = registry.MODELS.get(name)
+    info = registry.table("models").get(name)
     return None if info is None else info.order
 
 
 def _tolerance_limited(name: str) -> bool:
     from .. import registry
 
-    info = registry.MODELS.get(name)
+    info = registry.table("models").get(name)
     return info is not None and info.accuracy == "tolerance"
 
 

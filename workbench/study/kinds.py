@@ -4,7 +4,7 @@ One pipeline runs every kind (:func:`workbench.study.runner.run_cases`); a kind 
 the parts that differ, as a subclass of :class:`StudyKind` (an abstract base class: a kind that
 leaves out a method cannot be instantiated).  ``[study] kind`` in a file names its kind
 (:func:`kind_of`; no key: ``"sweep"``), and :func:`get_kind` finds the object through
-``workbench.registry.KINDS`` -- so this generic package never imports an experiment.  The kinds
+``workbench.registry.table("kinds")`` -- so this generic package never imports an experiment.  The kinds
 today:
 
 ``"sweep"`` (:data:`SWEEP`)
@@ -14,7 +14,7 @@ today:
 ``"series_parallel"``, ``"grasp"``, ``"closed_loop"``
     In their experiment folders (``workbench/experiments/*/kind.py``).
 
-A new kind is a :class:`StudyKind` subclass in its experiment folder plus one ``registry.KINDS``
+A new kind is a :class:`StudyKind` subclass in its experiment folder plus one ``registry.table("kinds")``
 row; the run session, manifest, store, executors, CLI and report come with the pipeline.
 
 Checked by ``tests/study/test_kind_contract.py`` (every registered kind: load with and without
@@ -50,7 +50,7 @@ class StudyKind(ABC):
     Attributes
     ----------
     name : str
-        The ``[study] kind`` value (a key of ``workbench.registry.KINDS``).
+        The ``[study] kind`` value (a key of ``workbench.registry.table("kinds")``).
     flush_rows : int
         Default number of buffered rows per Parquet part.
     separable_models : bool
@@ -153,12 +153,12 @@ class SweepKind(StudyKind):
         return spec.limits
 
 
-#: The sweep study kind (``registry.KINDS["sweep"]``).
+#: The sweep study kind (``registry.table("kinds")["sweep"]``).
 SWEEP = SweepKind()
 
 
 def get_kind(name: str) -> StudyKind:
-    """The study kind registered as ``name`` in ``workbench.registry.KINDS`` (imported on first use).
+    """The study kind registered as ``name`` in ``workbench.registry.table("kinds")`` (imported on first use).
 
     Raises
     ------
@@ -167,13 +167,14 @@ def get_kind(name: str) -> StudyKind:
     TypeError
         The registered object is not a :class:`StudyKind`.
     """
-    try:
-        target = registry.KINDS[name].target
-    except KeyError:
-        raise KeyError(f"unknown study kind {name!r}; known kinds: {', '.join(registry.KINDS)}") from None
+    rows = registry.table("kinds")
+    if name not in rows:
+        raise KeyError(f"unknown study kind {name!r}; known kinds: {', '.join(rows)}")
+    target = rows[name].target
     kind = registry.resolve(target)
     if not isinstance(kind, StudyKind):
-        raise TypeError(f"registry.KINDS[{name!r}] = {target!r} is a {type(kind).__name__}, not a StudyKind")
+        raise TypeError(f"study kind {name!r} ({registry.package('kinds', name)}): {target!r} is a "
+                        f"{type(kind).__name__}, not a StudyKind")
     return kind
 
 
@@ -189,4 +190,4 @@ def kind_of(path: str | Path) -> str:
         return "sweep"
     st = data.get("study")
     kind = st.get("kind") if isinstance(st, dict) else None
-    return kind if isinstance(kind, str) and kind in registry.KINDS else "sweep"
+    return kind if isinstance(kind, str) and kind in registry.table("kinds") else "sweep"

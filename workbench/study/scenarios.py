@@ -24,7 +24,7 @@ The resolved scenario parameters are part of the case parameters and hence of ``
 Scenario functions are pure (numpy only, no Exudyn).
 
 This module is the mechanism only: the scenarios themselves live with their experiment
-(``workbench/experiments/<study>/scenario.py``) and are found through ``registry.SCENARIOS``.
+(``workbench/experiments/<study>/scenario.py``) and are found through ``registry.table("scenarios")``.
 Checked by ``tests/study/test_scenarios.py``.
 """
 
@@ -50,25 +50,25 @@ SCENARIO_LOAD_FIELDS = frozenset(
 
 
 class _Scenarios(Mapping[str, Callable[..., dict[str, Any]]]):
-    """Read-only view of ``registry.SCENARIOS``: name -> scenario function, imported on lookup."""
+    """Read-only view of ``registry.table("scenarios")``: name -> scenario function, imported on lookup."""
 
     def __getitem__(self, name: str) -> Callable[..., dict[str, Any]]:
-        return registry.resolve(registry.SCENARIOS[name])
+        return registry.resolve(registry.table("scenarios")[name])
 
     def __iter__(self) -> Iterator[str]:
-        return iter(registry.SCENARIOS)
+        return iter(registry.table("scenarios"))
 
     def __len__(self) -> int:
-        return len(registry.SCENARIOS)
+        return len(registry.table("scenarios"))
 
     def __contains__(self, name: object) -> bool:
-        return name in registry.SCENARIOS
+        return name in registry.table("scenarios")
 
     def __repr__(self) -> str:
-        return f"SCENARIOS({list(registry.SCENARIOS)})"
+        return f"SCENARIOS({list(registry.table('scenarios'))})"
 
 
-#: ``[scenario] name`` -> scenario function (resolved from ``registry.SCENARIOS`` when looked up).
+#: ``[scenario] name`` -> scenario function (resolved from ``registry.table("scenarios")`` when looked up).
 SCENARIOS: Mapping[str, Callable[..., dict[str, Any]]] = _Scenarios()
 
 def scenario_parameters(name: str) -> dict[str, Any]:

@@ -3,7 +3,7 @@
 The format reference (an annotated example of every section, the sweep semantics) is
 ``docs/study-format.md``; ``studies/example.toml`` is a runnable example.  In short::
 
-    [study]     name, description, seed, models (workbench.models.MODEL_NAMES), max_cases
+    [study]     name, description, seed, models (workbench.models.model_names()), max_cases
     [robot]     preset = "<name>" + overrides of that preset's parameters (typed by its defaults)
     [load]      mode, bend_angle | tensions | length_changes, bend_plane, pretension, tip loads,
                 analysis, duration, ramp_time, start_delays, ramp_durations
@@ -189,17 +189,18 @@ def _parse_sections(raw: Mapping[str, Any]) -> tuple[dict[str, BaseModel], list[
 
 def _check_models(sections: Mapping[str, BaseModel]) -> list[str]:
     """``study.models`` known and distinct; ``report.reference`` one of them."""
-    from ..models import MODEL_NAMES
+    from ..models import model_names
 
     st = sections.get("study")
     if st is None:
         return []
+    known_models = model_names()
     problems = []
     for i, m in enumerate(st.models):
-        if m not in MODEL_NAMES:
-            problems.append(f"study.models[{i}]: unknown model {m!r}{suggest(m, list(MODEL_NAMES))}"
+        if m not in known_models:
+            problems.append(f"study.models[{i}]: unknown model {m!r}{suggest(m, list(known_models))}"
                             .replace("; known keys:", "; known models:"))
-    known = [m for m in st.models if m in MODEL_NAMES]
+    known = [m for m in st.models if m in known_models]
     if len(set(known)) != len(known):
         problems.append("study.models: lists a model twice")
     rep = sections.get("report")
@@ -217,14 +218,15 @@ def _check_models(sections: Mapping[str, BaseModel]) -> list[str]:
 
 def _preset_defaults(preset: Any) -> tuple[dict[str, Any] | None, list[str]]:
     """The parameters (with defaults) of the preset named in ``robot.preset``, or the problem."""
-    from ..robot.presets import PRESET_NAMES, preset_parameters
+    from ..robot.presets import preset_names, preset_parameters
 
+    names = preset_names()
     if preset is None:
-        return None, ["robot.preset: missing required key (one of: " + ", ".join(PRESET_NAMES) + ")"]
+        return None, ["robot.preset: missing required key (one of: " + ", ".join(names) + ")"]
     if not isinstance(preset, str):
         return None, [f"robot.preset: must be a string, got {type(preset).__name__} {preset!r}"]
-    if preset not in PRESET_NAMES:
-        return None, [f"robot.preset: unknown preset {preset!r}{suggest(preset, list(PRESET_NAMES))}"
+    if preset not in names:
+        return None, [f"robot.preset: unknown preset {preset!r}{suggest(preset, list(names))}"
                       .replace("; known keys:", "; known presets:")]
     try:
         return preset_parameters(preset), []
@@ -311,7 +313,7 @@ def _drop_kind(raw: dict[str, Any], source: str) -> None:
         raw["study"] = {k: v for k, v in st.items() if k != "kind"}
         return
     raise StudyError([f"{source}: study.kind: unknown study kind {st['kind']!r}; known kinds: "
-                      f"{', '.join(registry.KINDS)}"])
+                      f"{', '.join(registry.table('kinds'))}"])
 
 
 def _whole_file_problem(raw: Mapping[str, Any], source: str) -> None:
@@ -349,7 +351,7 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
     tasks, not through the models' ``run(robot, load, options)``, so their declared capabilities
     are not checked.
     """
-    from ..models import MODEL_NAMES
+    from ..models import model_names
     from .onepass import knock_on, problem_keys, valid_sweep
 
     raw = dict(raw)
@@ -387,7 +389,7 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
     models = tuple(st.models) if st is not None else ()
     study = Study(
         path=source, name=st.name if st else "?", description=st.description if st else "",
-        seed=st.seed if st else 0, models=tuple(m for m in models if m in MODEL_NAMES),
+        seed=st.seed if st else 0, models=tuple(m for m in models if m in model_names()),
         max_cases=int(max_cases if max_cases is not None else (st.max_cases if st else DEFAULT_MAX_CASES)),
         base=base, sweep=sweep, report=report or {},
         limits=CaseLimits(solver.max_case_seconds, solver.max_case_memory),

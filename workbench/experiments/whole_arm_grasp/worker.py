@@ -92,7 +92,7 @@ def _tip_estimate(robot, plan, task, options, res, half) -> dict[str, Any]:
                 resolutions.append(quarter.n_elements)
             except Exception as e:  # noqa: BLE001 - a failed coarse solve limits the estimate only
                 status = f"ok (quarter-resolution solve failed: {_reason(e)[:200]})"
-    order = registry.MODELS["contact"].order
+    order = registry.table("models")["contact"].order
     est = estimate_from_values(values, resolutions, float("nan") if order is None else order,
                                10.0 * options.newton_tolerance * max(robot.length, 1e-3), status)
     return estimate_columns(est)

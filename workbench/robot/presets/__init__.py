@@ -1,8 +1,8 @@
 """Named robot presets: ``get_preset(name)(**params) -> Robot``.
 
 Each preset is a plain function of keyword parameters (SI units) with documented defaults,
-so a study file can name a preset and override any of its parameters.  Presets are
-imported lazily by name.
+so a study file can name a preset and override any of its parameters.  Presets (the rows of
+``workbench.registry.table("presets")``, built-in and plug-in) are imported lazily by name.
 
 Every preset module declares where each parameter comes from, as data (the report's
 "Assumptions" section reads it): ``GIVEN`` (parameters the source paper gives: name -> where),
@@ -21,20 +21,20 @@ from ... import registry
 from ...assumptions import declared_assumptions
 from ..description import Robot
 
-__all__ = ["PRESET_NAMES", "get_preset", "preset_parameters", "build_preset", "preset_sources"]
+__all__ = ["preset_names", "get_preset", "preset_parameters", "build_preset", "preset_sources"]
 
-_PRESET_PATHS: dict[str, str] = dict(registry.PRESETS)  # name -> "module:function"
 
-PRESET_NAMES: tuple[str, ...] = tuple(_PRESET_PATHS)
+def preset_names() -> tuple[str, ...]:
+    """The registered preset names: built-in and plug-in rows of ``registry.table("presets")``."""
+    return tuple(registry.table("presets"))
 
 
 def get_preset(name: str) -> Callable[..., Robot]:
     """Return the preset function registered as ``name`` (KeyError lists known names)."""
-    try:
-        path = _PRESET_PATHS[name]
-    except KeyError:
-        raise KeyError(f"unknown robot preset {name!r}; known presets: {', '.join(PRESET_NAMES)}") from None
-    return registry.resolve(path)
+    rows = registry.table("presets")
+    if name not in rows:
+        raise KeyError(f"unknown robot preset {name!r}; known presets: {', '.join(rows)}")
+    return registry.resolve(rows[name])
 
 
 def preset_parameters(name: str) -> dict[str, Any]:
