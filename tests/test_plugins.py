@@ -97,9 +97,9 @@ def test_a_name_registered_twice_is_one_error_naming_both_packages(plugins, caps
         registry.table("models")
     assert str(e.value) == ("trunk_workbench.models: 'cc' is registered twice, by the workbench (built-in) and by "
                             "plug-in fake-plug 1.2 (entry point trunk_workbench.models:cc); uninstall or rename one")
-    assert main(["list", "models"]) == 2
-    err = capsys.readouterr().err.splitlines()
-    assert err == [str(e.value)]
+    for args in (["list", "models"], ["validate", str(ROOT / "studies" / "quickstart.toml")]):
+        assert main(args) == 2
+        assert capsys.readouterr().err.splitlines() == [str(e.value)], args
     assert registry.table("presets") == registry.PRESETS  # other groups are not affected
 
 
