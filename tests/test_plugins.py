@@ -180,7 +180,7 @@ def test_the_example_plugins_own_tests_pass(installed):
     r = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", str(EXAMPLE / "tests")],
                        env=env, cwd=ROOT, capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stdout[-3000:] + r.stderr[-3000:]
-    assert "17 passed" in r.stdout, r.stdout[-500:]
+    assert "18 passed" in r.stdout, r.stdout[-500:]
 
 
 def test_workbench_list_names_the_plugins_package(installed):

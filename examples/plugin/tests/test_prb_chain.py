@@ -60,6 +60,19 @@ def test_tip_force_converges_at_order_2_to_the_elastica(alpha, tabulated):
     assert abs(tips[-1] - exact) < 1e-4
 
 
+def test_an_oblique_tip_force_and_a_tip_torque_converge_at_order_2_to_the_elastica():
+    """Signs and directions: base (x, z) is the elastica's (b, a); a torque about base +y turns z towards x."""
+    robot = _rod()
+    ei = robot.sections[0].cross_section.EI
+    force, torque = np.array([0.8, 0.0, -1.5]) * ei / L**2, 0.7 * ei / L
+    ref = clamped_elastica(L, ei, tip_force=(force[2], force[0]), tip_moment=torque, stations=2).tip
+    exact = np.array([ref[1], 0.0, ref[0]])
+    errors = [np.linalg.norm(chain.run(robot, LoadCase(tip_force=tuple(force), tip_torque=(0.0, torque, 0.0)),
+                                       SolverOptions(n_elements=n)).tip_position - exact) for n in (8, 16, 32, 64)]
+    assert np.all(np.abs(_orders(errors) - 2.0) < 0.1), errors
+    assert errors[-1] < 2e-4 * L
+
+
 def test_self_weight_converges_at_order_2_to_the_elastica():
     mu = _rod().sections[0].cross_section.mass_per_length
     ei = _rod().sections[0].cross_section.EI

@@ -29,8 +29,9 @@ steps when the full load does not converge at once.
 Properties checked by ``examples/plugin/tests/test_prb_chain.py``: under tendon moments alone every
 joint turns by exactly the arc's angle over its two half-links, so the tip frame's orientation equals the
 constant-curvature (CC) model's for any ``n`` and the tip converges to CC's at order 2 in ``1 / n`` (the
-links are as long as the arc they replace, not as its chord); under a tip force or self-weight the tip
-converges at order 2 to the elastica (:func:`workbench.reference.elastica.clamped_elastica`).
+links are as long as the arc they replace, not as its chord); under a tip force (with or without a tip
+torque) or self-weight the tip converges at order 2 to the elastica
+(:func:`workbench.reference.elastica.clamped_elastica`).
 
 What it does not do (declared in ``trunk_workbench_prb.rows.MODEL``, refused here too): spatial cases
 (tendons off the x-z plane, forces along y, torques not about y, gravity with a y component), length
