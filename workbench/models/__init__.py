@@ -1,8 +1,8 @@
 """Model registry: every model is ``run(robot, load, options) -> PhysicsResult``.
 
-Models (the rows of ``workbench.registry.table("models")``, built-in and plug-in) are looked up by name and imported lazily, so using the CC model never imports
-Exudyn.  A model signals an untrustworthy solve by raising
-:class:`~workbench.models.result.ModelFailure` (or ``exudyn.SolverError``).
+Models (the rows of ``workbench.registry.table("models")``, built-in and plug-in) are looked up
+by name and imported lazily, so using the CC model never imports Exudyn.  A model signals an
+untrustworthy solve by raising :class:`~workbench.models.result.ModelFailure` (or ``exudyn.SolverError``).
 """
 
 from __future__ import annotations

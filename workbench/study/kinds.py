@@ -14,8 +14,9 @@ today:
 ``"series_parallel"``, ``"grasp"``, ``"closed_loop"``
     In their experiment folders (``workbench/experiments/*/kind.py``).
 
-A new kind is a :class:`StudyKind` subclass in its experiment folder plus one ``registry.table("kinds")``
-row; the run session, manifest, store, executors, CLI and report come with the pipeline.
+A new kind is a :class:`StudyKind` subclass in its experiment folder plus one ``registry.KINDS`` row
+(or, outside the workbench, a plug-in's ``trunk_workbench.kinds`` entry point, ``docs/plugins.md``);
+the run session, manifest, store, executors, CLI and report come with the pipeline.
 
 Checked by ``tests/study/test_kind_contract.py`` (every registered kind: load with and without
 overrides, count, expand, one case at regression size, the rows' columns), ``tests/study/test_kinds.py``
