@@ -30,6 +30,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from . import kernel
 from .problem import RodProblem
 
 __all__ = ["cross", "hat", "strains", "N_BASE", "integrate_segments"]
@@ -122,8 +123,10 @@ def strains(nb: np.ndarray, mb: np.ndarray, kse: np.ndarray, kbt: np.ndarray, r:
     return v, u, v[:, None, :] + cross(u[:, None, :], r) + dr
 
 
-def _segment_rhs(pb: RodProblem, sec: int, active: np.ndarray, tau: np.ndarray, lam: float, B: int):
-    """Right-hand side ``(s, y) -> y'`` of one segment for a batch of ``B`` states."""
+def _segment_rhs(pb: RodProblem, sec: int, active: np.ndarray, tau: np.ndarray, lam: float, B: int,
+                 compiled: bool = False):
+    """Right-hand side ``(s, y) -> y'`` of one segment for a batch of ``B`` states (``compiled``: the
+    numba kernel of :mod:`.kernel`, else numpy)."""
     s0, ls = pb.section_starts[sec], pb.section_lengths[sec]
     k0, k1 = pb.stiffness0[sec], pb.stiffness1[sec]
     mu0, mu1 = pb.mass_per_length0[sec], pb.mass_per_length1[sec]
@@ -137,6 +140,18 @@ def _segment_rhs(pb: RodProblem, sec: int, active: np.ndarray, tau: np.ndarray, 
     nt = pb.n_tendons
     n_state = N_BASE + 2 + nt
     calls = [0]
+    if compiled:
+        args = (n_state, float(s0), float(ls), np.asarray(k0, dtype=float), np.asarray(k1, dtype=float), float(mu0),
+                float(mu1), np.asarray(g, dtype=float), np.ascontiguousarray(c, dtype=float), d0.astype(float),
+                d1.astype(float), se.astype(float), ta, np.ascontiguousarray(dr), idx.astype(np.int64))
+
+        def compiled_rhs(s, y):
+            calls[0] += 1
+            if calls[0] > MAX_EVALUATIONS:
+                raise RuntimeError(f"integration needs more than {MAX_EVALUATIONS} evaluations on one segment")
+            return kernel.segment_rhs(float(s), y, *args)
+
+        return compiled_rhs
 
     def rhs(s, y):
         calls[0] += 1
@@ -169,7 +184,8 @@ def _segment_rhs(pb: RodProblem, sec: int, active: np.ndarray, tau: np.ndarray, 
 
 
 def integrate_segments(pb: RodProblem, x0: np.ndarray, tau: np.ndarray, lam: float, rtol: float,
-                       stations: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray | None]:
+                       stations: np.ndarray | None = None,
+                       compiled: bool | None = None) -> tuple[np.ndarray, np.ndarray | None]:
     """Integrate ``B`` shots from the clamped base to the tip.
 
     Parameters
@@ -185,6 +201,9 @@ def integrate_segments(pb: RodProblem, x0: np.ndarray, tau: np.ndarray, lam: flo
         state group (length, 1, force and moment scales of ``x0``).
     stations : ndarray, shape (m,), optional
         Arc lengths at which to return the states.
+    compiled : bool, optional
+        Evaluate the right-hand side with the numba kernel (:mod:`.kernel`); default: where numba
+        is installed.  Both paths integrate the same equations.
 
     Returns
     -------
@@ -195,6 +214,7 @@ def integrate_segments(pb: RodProblem, x0: np.ndarray, tau: np.ndarray, lam: flo
     B = x0.shape[0]
     nt = pb.n_tendons
     n_state = N_BASE + 2 + nt
+    compiled = kernel.AVAILABLE if compiled is None else compiled
     y = np.zeros((B, n_state))
     y[:, 3:12] = np.eye(3).reshape(9)
     y[:, 12:18] = x0
@@ -210,7 +230,7 @@ def integrate_segments(pb: RodProblem, x0: np.ndarray, tau: np.ndarray, lam: flo
             y[:, 12:15] -= lam * F  # N(s+) = N(s-) - point force at s
         sec = pb.section_of(0.5 * (a + b))
         active = pb.tendon_ends >= b - 1e-12 * L
-        fun = _segment_rhs(pb, sec, active, tau, lam, B)
+        fun = _segment_rhs(pb, sec, active, tau, lam, B, compiled)
         t_eval, sel = None, None
         if stations is not None:
             sel = (stations >= a) & ((stations < b) | (b == L))

@@ -1,0 +1,211 @@
+"""The Cosserat rod's right-hand side as a compiled kernel (numba, optional).
+
+The same equations as the numpy right-hand side of :mod:`.rod` (the strain law with continuous
+tendons solved by Newton, then ``p' = R v``, ``R' = R u^``, ``N' = -f``, ``M' = -p' x N``, the
+centreline, twist and tendon lengths), written shot by shot with explicit loops so that numba
+compiles it; the 6 x 6 Newton system of the strain law is solved by Gaussian elimination with
+partial pivoting.  One difference in the iteration: each shot stops its strain Newton on its own
+step (the numpy path stops the batch on the largest step), with the same criterion
+``c delta^2 < 1e-16`` (see :func:`.rod.strains`), so both return the strains to round-off.
+
+numba is an optional dependency: :data:`AVAILABLE` says whether it imported; without it the
+model runs the numpy right-hand side (``tests/physics/test_cosserat_kernel.py`` checks that the two
+paths give the same right-hand side to round-off and the same solves to the tolerance).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+try:  # optional: the numpy right-hand side in rod.py is the fallback
+    from numba import njit
+    AVAILABLE = True
+except ImportError:  # pragma: no cover - depends on the environment
+    AVAILABLE = False
+
+    def njit(*args, **kwargs):  # noqa: ANN002, ANN003, D103 - identity decorator without numba
+        if args and callable(args[0]):
+            return args[0]
+        return lambda f: f
+
+__all__ = ["AVAILABLE", "segment_rhs"]
+
+
+@njit(cache=True)
+def _solve6(J, F):  # noqa: ANN001, ANN202
+    """``J x = F`` for a 6 x 6 system by Gaussian elimination with partial pivoting (J, F overwritten)."""
+    n = 6
+    for k in range(n):
+        p = k
+        big = abs(J[k, k])
+        for i in range(k + 1, n):
+            if abs(J[i, k]) > big:
+                big = abs(J[i, k])
+                p = i
+        if p != k:
+            for j in range(n):
+                J[k, j], J[p, j] = J[p, j], J[k, j]
+            F[k], F[p] = F[p], F[k]
+        piv = J[k, k]
+        for i in range(k + 1, n):
+            m = J[i, k] / piv
+            if m != 0.0:
+                for j in range(k + 1, n):
+                    J[i, j] -= m * J[k, j]
+                F[i] -= m * F[k]
+    x = np.empty(n)
+    for i in range(n - 1, -1, -1):
+        acc = F[i]
+        for j in range(i + 1, n):
+            acc -= J[i, j] * x[j]
+        x[i] = acc / J[i, i]
+    return x
+
+
+@njit(cache=True)
+def _strains(nb, mb, kse, kbt, r, dr, ta, v, u, w):  # noqa: ANN001, ANN202, PLR0912, PLR0915
+    """Strains ``v``, ``u`` and tendon tangents ``w`` (written in place) of one section; as
+    :func:`.rod.strains` for one shot."""
+    k = ta.shape[0]
+    tsum = 0.0
+    mx = 0.0
+    my = 0.0
+    loaded = False
+    for i in range(k):
+        tsum += ta[i]
+        mx += ta[i] * r[i, 1]
+        my -= ta[i] * r[i, 0]
+        if ta[i] > 0.0:
+            loaded = True
+    for a in range(3):
+        v[a] = nb[a] / kse[a]
+    v[2] = 1.0 + (nb[2] - tsum) / kse[2]
+    u[0] = (mb[0] - mx) / kbt[0]
+    u[1] = (mb[1] - my) / kbt[1]
+    u[2] = mb[2] / kbt[2]
+    if loaded:
+        arm = 1e-12
+        for i in range(k):
+            for a in range(3):
+                arm = max(arm, abs(r[i, a]))
+        contraction = tsum / min(min(kse[0], min(kse[1], kse[2])), min(kbt[0], kbt[1]) / arm**2, kbt[2] / arm**2)
+        J = np.empty((6, 6))
+        F = np.empty(6)
+        t = np.empty(3)
+        P = np.empty((3, 3))
+        PR = np.empty((3, 3))
+        RP = np.empty((3, 3))
+        for _ in range(8):
+            J[:, :] = 0.0
+            for a in range(3):
+                F[a] = kse[a] * (v[a] - (1.0 if a == 2 else 0.0)) - nb[a]
+                F[3 + a] = kbt[a] * u[a] - mb[a]
+                J[a, a] = kse[a]
+                J[3 + a, 3 + a] = kbt[a]
+            for i in range(k):
+                rx, ry, rz = r[i, 0], r[i, 1], r[i, 2]
+                w0 = v[0] + u[1] * rz - u[2] * ry + dr[i, 0]
+                w1 = v[1] + u[2] * rx - u[0] * rz + dr[i, 1]
+                w2 = v[2] + u[0] * ry - u[1] * rx + dr[i, 2]
+                nw = np.sqrt(w0 * w0 + w1 * w1 + w2 * w2)
+                t[0], t[1], t[2] = w0 / nw, w1 / nw, w2 / nw
+                ti = ta[i]
+                F[0] += ti * t[0]
+                F[1] += ti * t[1]
+                F[2] += ti * t[2]
+                F[3] += ti * (ry * t[2] - rz * t[1])
+                F[4] += ti * (rz * t[0] - rx * t[2])
+                F[5] += ti * (rx * t[1] - ry * t[0])
+                c = ti / nw
+                for a in range(3):
+                    for b in range(3):
+                        P[a, b] = c * ((1.0 if a == b else 0.0) - t[a] * t[b])
+                # P r^ (column b of r^ is r x e_b) and r^ P (row a of r^ P is (e_a x r)^T P... written out)
+                for a in range(3):
+                    PR[a, 0] = P[a, 1] * rz - P[a, 2] * ry
+                    PR[a, 1] = P[a, 2] * rx - P[a, 0] * rz
+                    PR[a, 2] = P[a, 0] * ry - P[a, 1] * rx
+                for b in range(3):
+                    RP[0, b] = ry * P[2, b] - rz * P[1, b]
+                    RP[1, b] = rz * P[0, b] - rx * P[2, b]
+                    RP[2, b] = rx * P[1, b] - ry * P[0, b]
+                for a in range(3):
+                    for b in range(3):
+                        J[a, b] += P[a, b]
+                        J[a, 3 + b] -= PR[a, b]
+                        J[3 + a, b] += RP[a, b]
+                # r^ P r^ = (r^ P) r^
+                for a in range(3):
+                    J[3 + a, 3] -= RP[a, 1] * rz - RP[a, 2] * ry
+                    J[3 + a, 4] -= RP[a, 2] * rx - RP[a, 0] * rz
+                    J[3 + a, 5] -= RP[a, 0] * ry - RP[a, 1] * rx
+            for a in range(6):
+                F[a] = -F[a]
+            dx = _solve6(J, F)
+            delta = 0.0
+            for a in range(3):
+                v[a] += dx[a]
+                u[a] += dx[3 + a]
+                delta = max(delta, abs(dx[a]), abs(dx[3 + a]) * arm)
+            if contraction * delta * delta < 1e-16:
+                break
+    for i in range(k):
+        w[i, 0] = v[0] + u[1] * r[i, 2] - u[2] * r[i, 1] + dr[i, 0]
+        w[i, 1] = v[1] + u[2] * r[i, 0] - u[0] * r[i, 2] + dr[i, 1]
+        w[i, 2] = v[2] + u[0] * r[i, 1] - u[1] * r[i, 0] + dr[i, 2]
+
+
+@njit(cache=True)
+def segment_rhs(s, y, n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr, idx):  # noqa: ANN001, ANN201, PLR0913
+    """``y'`` of a batch of shots (flat ``y``, ``n_state`` per shot) on one segment; the arguments
+    are those of :func:`.rod.segment_rhs` (``c``, ``d0``, ``d1``, ``se``, ``ta``, ``dr``, ``idx``:
+    the tendons present on the segment)."""
+    B = y.shape[0] // n_state
+    out = np.zeros_like(y)
+    f = (s - s0) / ls
+    kse = np.empty(3)
+    kbt = np.empty(3)
+    for a in range(3):
+        kse[a] = k0[a] + (k1[a] - k0[a]) * f
+        kbt[a] = k0[3 + a] + (k1[3 + a] - k0[3 + a]) * f
+    mu = mu0 + (mu1 - mu0) * f
+    k = ta.shape[0]
+    r = np.empty((k, 3))
+    for i in range(k):
+        d = d0[i] + (d1[i] - d0[i]) * s / se[i]
+        for a in range(3):
+            r[i, a] = d * c[i, a]
+    nb = np.empty(3)
+    mb = np.empty(3)
+    v = np.empty(3)
+    u = np.empty(3)
+    w = np.empty((k, 3))
+    dp = np.empty(3)
+    for b in range(B):
+        o = b * n_state
+        # R row-major at y[o+3 : o+12]: R[i, j] = y[o + 3 + 3 i + j]
+        for j in range(3):
+            nb[j] = 0.0
+            mb[j] = 0.0
+            for i in range(3):
+                nb[j] += y[o + 3 + 3 * i + j] * y[o + 12 + i]
+                mb[j] += y[o + 3 + 3 * i + j] * y[o + 15 + i]
+        _strains(nb, mb, kse, kbt, r, dr, ta, v, u, w)
+        for i in range(3):
+            Ri0, Ri1, Ri2 = y[o + 3 + 3 * i], y[o + 4 + 3 * i], y[o + 5 + 3 * i]
+            dp[i] = Ri0 * v[0] + Ri1 * v[1] + Ri2 * v[2]
+            out[o + i] = dp[i]
+            # R' = R u^: column j of R' is R (u x e_j)
+            out[o + 3 + 3 * i] = Ri1 * u[2] - Ri2 * u[1]
+            out[o + 4 + 3 * i] = Ri2 * u[0] - Ri0 * u[2]
+            out[o + 5 + 3 * i] = Ri0 * u[1] - Ri1 * u[0]
+            out[o + 12 + i] = -mu * g[i]
+        N0, N1, N2 = y[o + 12], y[o + 13], y[o + 14]
+        out[o + 15] = -(dp[1] * N2 - dp[2] * N1)
+        out[o + 16] = -(dp[2] * N0 - dp[0] * N2)
+        out[o + 17] = -(dp[0] * N1 - dp[1] * N0)
+        out[o + 18] = np.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+        out[o + 19] = u[2]
+        for i in range(k):
+            out[o + 20 + idx[i]] = np.sqrt(w[i, 0] ** 2 + w[i, 1] ** 2 + w[i, 2] ** 2)
+    return out
