@@ -33,7 +33,7 @@ from scipy.integrate import solve_ivp
 from . import kernel
 from .problem import RodProblem
 
-__all__ = ["cross", "hat", "strains", "N_BASE", "integrate_segments"]
+__all__ = ["cross", "hat", "strains", "N_BASE", "MAX_EVALUATIONS", "kernel_arguments", "segment_rhs", "integrate_segments"]
 
 _E3 = np.array([0.0, 0.0, 1.0])
 _I3 = np.eye(3)
@@ -123,10 +123,40 @@ def strains(nb: np.ndarray, mb: np.ndarray, kse: np.ndarray, kbt: np.ndarray, r:
     return v, u, v[:, None, :] + cross(u[:, None, :], r) + dr
 
 
-def _segment_rhs(pb: RodProblem, sec: int, active: np.ndarray, tau: np.ndarray, lam: float, B: int,
-                 compiled: bool = False):
-    """Right-hand side ``(s, y) -> y'`` of one segment for a batch of ``B`` states (``compiled``: the
-    numba kernel of :mod:`.kernel`, else numpy)."""
+def kernel_arguments(pb: RodProblem, sec: int, active: np.ndarray, tau: np.ndarray, lam: float) -> tuple:
+    """The constants of one segment in the order of :func:`.kernel.segment_rhs` (after ``s, y``):
+    ``n_state``, section start and length, stiffness at its ends, mass per length at its ends,
+    ``lam`` x gravity, and of the tendons present (``active``): directions, offsets at base and end,
+    end arc lengths, tensions, offset derivatives, global indices."""
+    idx = np.flatnonzero(active)
+    c = np.ascontiguousarray(pb.tendon_dirs[idx], dtype=float)
+    d0 = np.ascontiguousarray(pb.tendon_offsets[idx, 0], dtype=float)
+    d1 = np.ascontiguousarray(pb.tendon_offsets[idx, 1], dtype=float)
+    se = np.ascontiguousarray(pb.tendon_ends[idx], dtype=float)
+    ta = np.ascontiguousarray(np.asarray(tau, dtype=float)[idx])
+    dr = np.ascontiguousarray(((d1 - d0) / se)[:, None] * c)
+    return (N_BASE + 2 + pb.n_tendons, float(pb.section_starts[sec]), float(pb.section_lengths[sec]),
+            np.asarray(pb.stiffness0[sec], dtype=float), np.asarray(pb.stiffness1[sec], dtype=float),
+            float(pb.mass_per_length0[sec]), float(pb.mass_per_length1[sec]), np.asarray(lam * pb.gravity, dtype=float),
+            c, d0, d1, se, ta, dr, idx.astype(np.int64))
+
+
+def segment_rhs(pb: RodProblem, sec: int, active: np.ndarray, tau: np.ndarray, lam: float, B: int,
+                compiled: bool = False):
+    """Right-hand side ``(s, y) -> y'`` of one segment for a batch of ``B`` states (flat ``y``);
+    ``compiled``: the numba kernel of :mod:`.kernel`, else numpy.  Either raises ``RuntimeError``
+    after :data:`MAX_EVALUATIONS` calls (a diverging shot curls up and needs ever smaller steps)."""
+    calls = [0]
+    if compiled:
+        args = kernel_arguments(pb, sec, active, tau, lam)
+
+        def compiled_rhs(s, y):
+            calls[0] += 1
+            if calls[0] > MAX_EVALUATIONS:
+                raise RuntimeError(f"integration needs more than {MAX_EVALUATIONS} evaluations on one segment")
+            return kernel.segment_rhs(float(s), y, *args)
+
+        return compiled_rhs
     s0, ls = pb.section_starts[sec], pb.section_lengths[sec]
     k0, k1 = pb.stiffness0[sec], pb.stiffness1[sec]
     mu0, mu1 = pb.mass_per_length0[sec], pb.mass_per_length1[sec]
@@ -139,19 +169,6 @@ def _segment_rhs(pb: RodProblem, sec: int, active: np.ndarray, tau: np.ndarray, 
     g = lam * pb.gravity
     nt = pb.n_tendons
     n_state = N_BASE + 2 + nt
-    calls = [0]
-    if compiled:
-        args = (n_state, float(s0), float(ls), np.asarray(k0, dtype=float), np.asarray(k1, dtype=float), float(mu0),
-                float(mu1), np.asarray(g, dtype=float), np.ascontiguousarray(c, dtype=float), d0.astype(float),
-                d1.astype(float), se.astype(float), ta, np.ascontiguousarray(dr), idx.astype(np.int64))
-
-        def compiled_rhs(s, y):
-            calls[0] += 1
-            if calls[0] > MAX_EVALUATIONS:
-                raise RuntimeError(f"integration needs more than {MAX_EVALUATIONS} evaluations on one segment")
-            return kernel.segment_rhs(float(s), y, *args)
-
-        return compiled_rhs
 
     def rhs(s, y):
         calls[0] += 1
@@ -230,7 +247,7 @@ def integrate_segments(pb: RodProblem, x0: np.ndarray, tau: np.ndarray, lam: flo
             y[:, 12:15] -= lam * F  # N(s+) = N(s-) - point force at s
         sec = pb.section_of(0.5 * (a + b))
         active = pb.tendon_ends >= b - 1e-12 * L
-        fun = _segment_rhs(pb, sec, active, tau, lam, B, compiled)
+        fun = segment_rhs(pb, sec, active, tau, lam, B, compiled)
         t_eval, sel = None, None
         if stations is not None:
             sel = (stations >= a) & ((stations < b) | (b == L))

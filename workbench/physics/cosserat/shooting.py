@@ -74,10 +74,14 @@ class Shooter:
     tol : float
         Required max-norm of the scaled tip residual; DOP853 runs at ``rtol = tol / 10``
         (not below 1e-13).
+    compiled : bool, optional
+        Right-hand side by the numba kernel (default: where numba is installed) or numpy
+        (:func:`~workbench.physics.cosserat.rod.integrate_segments`).
     """
 
-    def __init__(self, pb: RodProblem, tol: float) -> None:
+    def __init__(self, pb: RodProblem, tol: float, compiled: bool | None = None) -> None:
         self.pb = pb
+        self.compiled = compiled
         self.tol = float(tol)
         self.rtol = max(1e-13, 0.1 * self.tol)
         self.point = _Point(0.0, np.zeros(pb.n_tendons), np.zeros(6))
@@ -99,10 +103,14 @@ class Shooter:
 
     def residual(self, X: np.ndarray, lam: float, tau: np.ndarray) -> np.ndarray:
         """Scaled tip residuals ``(B, 6)`` of base wrenches ``X`` ``(B, 6)`` at load ``(lam, tau)``."""
-        pb = self.pb
-        tip, _ = integrate_segments(pb, X, tau, lam, self.rtol)
+        tip, _ = integrate_segments(self.pb, X, tau, lam, self.rtol, compiled=self.compiled)
         self.shots += X.shape[0]
         self._tip = tip[0]
+        return self.tip_residual(tip, lam, tau)
+
+    def tip_residual(self, tip: np.ndarray, lam: float, tau: np.ndarray) -> np.ndarray:
+        """Scaled tip residuals ``(B, 6)`` of integrated tip states ``tip`` ``(B, n_state)``."""
+        pb = self.pb
         Wp = lam * pb.payload_mass * pb.gravity
         arm = np.einsum("bij,j->bi", tip[:, 3:12].reshape(-1, 3, 3), pb.payload_offset)
         F = lam * (pb.tip_force + pb.point_forces[-1]) + Wp
