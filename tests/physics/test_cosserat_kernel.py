@@ -90,3 +90,23 @@ def test_compiled_solve_equals_numpy_solve():
     assert s0 == s1 == 1
     assert np.linalg.norm(p1 - p0) / pb.length < 1e-8
     assert np.max(np.abs(x1 - x0)) < 1e-7 * np.max(np.abs(x0))
+
+
+def test_kernel_dop853_takes_scipys_steps():
+    """integrate_segments through the kernel's DOP853 (steps and dense output in numba) against
+    solve_ivp's DOP853 with the numpy right-hand side: tip and stations equal to round-off (1e-12),
+    so the kernel integrator is scipy's algorithm, not a new discretisation."""
+    if not kernel.AVAILABLE:
+        pytest.skip("numba is not installed")
+    pb = rod_problem(_robot(), _load())
+    tau = np.array(TENSIONS)
+    x = np.array([[0.05, -0.2, -0.1, 0.01, 0.02, -0.003]])
+    X = np.vstack([x, x + 1e-4 * np.eye(6)])
+    stations = np.linspace(0.0, pb.length, 17)
+    ref, ref_at = integrate_segments(pb, X, tau, 1.0, 1e-10, stations, compiled=False)
+    got, got_at = integrate_segments(pb, X, tau, 1.0, 1e-10, stations, compiled=True)
+    no_stations, _ = integrate_segments(pb, X, tau, 1.0, 1e-10, compiled=True)
+    np.testing.assert_allclose(got, ref, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(got_at, ref_at, rtol=0, atol=1e-12)
+    np.testing.assert_array_equal(no_stations, got)  # dense output does not move the steps
+    assert np.abs(ref_at[-1] - ref).max() < 1e-12 and np.abs(ref_at[0, :, 12:18] - X).max() == 0.0

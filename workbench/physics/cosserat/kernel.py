@@ -1,4 +1,4 @@
-"""The Cosserat rod's right-hand side as a compiled kernel (numba, optional).
+"""The Cosserat rod's right-hand side and its DOP853 integration as a compiled kernel (numba, optional).
 
 The same equations as the numpy right-hand side of :mod:`.rod` (the strain law with continuous
 tendons solved by Newton, then ``p' = R v``, ``R' = R u^``, ``N' = -f``, ``M' = -p' x N``, the
@@ -8,9 +8,14 @@ partial pivoting.  One difference in the iteration: each shot stops its strain N
 step (the numpy path stops the batch on the largest step), with the same criterion
 ``c delta^2 < 1e-16`` (see :func:`.rod.strains`), so both return the strains to round-off.
 
+:func:`dop853_segment` integrates a segment with scipy's DOP853 algorithm (the same step control
+and dense output as ``solve_ivp(method="DOP853")``, so the same steps to round-off) without a Python
+call per step or per evaluation.
+
 numba is an optional dependency: :data:`AVAILABLE` says whether it imported; without it the
 model runs the numpy right-hand side (``tests/physics/test_cosserat_kernel.py`` checks that the two
-paths give the same right-hand side to round-off and the same solves to the tolerance).
+paths give the same right-hand side and the same integration to round-off, and the same solves to
+the tolerance).
 """
 
 from __future__ import annotations
@@ -28,7 +33,7 @@ except ImportError:  # pragma: no cover - depends on the environment
             return args[0]
         return lambda f: f
 
-__all__ = ["AVAILABLE", "segment_rhs"]
+__all__ = ["AVAILABLE", "segment_rhs", "dop853_segment"]
 
 
 @njit(cache=True)
@@ -209,3 +214,157 @@ def segment_rhs(s, y, n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, d
         for i in range(k):
             out[o + 20 + idx[i]] = np.sqrt(w[i, 0] ** 2 + w[i, 1] ** 2 + w[i, 2] ** 2)
     return out
+
+
+@njit(cache=True)
+def _rms(x, scale):  # noqa: ANN001, ANN202
+    acc = 0.0
+    for i in range(x.shape[0]):
+        q = x[i] / scale[i]
+        acc += q * q
+    return np.sqrt(acc / x.shape[0])
+
+
+@njit(cache=True)
+def dop853_segment(y0, a, b, rtol, atol, max_evaluations, stations, A, Bw, C, E3, E5, A_extra, C_extra, D,  # noqa: ANN001, ANN201, PLR0912, PLR0913, PLR0915
+                   n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr, idx):
+    """Integrate ``y' = segment_rhs(s, y, ...)`` from ``s = a`` to ``b`` with DOP853: the step
+    control of scipy's :class:`scipy.integrate.DOP853` (Hairer, Norsett & Wanner, Sec. II.4 initial
+    step, II.10 error estimate; safety 0.9, factors 0.2 ... 10, exponent -1/8) and its 7th-order
+    dense output at the sorted ``stations`` in ``[a, b]``, the same steps and values as
+    ``solve_ivp(method="DOP853", t_eval=stations)`` up to round-off; ``A`` ... ``D`` are that class's
+    coefficients.  Returns ``(y(b), status, evaluations, y(stations))``: status 0 done, 1 more than
+    ``max_evaluations`` right-hand sides, 2 step size below 10 ulp of ``s``."""
+    n = y0.shape[0]
+    n_stages = C.shape[0]
+    K = np.empty((n_stages + 1 + C_extra.shape[0], n))
+    at = np.empty((stations.shape[0], n))
+    js = 0
+    y = y0.copy()
+    t = a
+    f = segment_rhs(t, y, n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr, idx)
+    nfev = 1
+    # initial step (scipy.integrate._ivp.common.select_initial_step, order 7)
+    interval = b - a
+    scale = atol + np.abs(y) * rtol
+    dd0 = _rms(y, scale)
+    dd1 = _rms(f, scale)
+    h0 = 1e-6 if (dd0 < 1e-5 or dd1 < 1e-5) else 0.01 * dd0 / dd1
+    h0 = min(h0, interval)
+    f1 = segment_rhs(t + h0, y + h0 * f, n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr, idx)
+    nfev += 1
+    dd2 = _rms(f1 - f, scale) / h0
+    if dd1 <= 1e-15 and dd2 <= 1e-15:
+        h1 = max(1e-6, h0 * 1e-3)
+    else:
+        h1 = (0.01 / max(dd1, dd2)) ** (1.0 / 8.0)
+    h_abs = min(100.0 * h0, h1, interval)
+    y_new = np.empty(n)
+    while t < b:
+        min_step = 10.0 * abs(np.nextafter(t, np.inf) - t)
+        if h_abs < min_step:
+            h_abs = min_step
+        rejected = False
+        while True:
+            if h_abs < min_step:
+                return y, 2, nfev, at
+            t_new = t + h_abs
+            if t_new - b > 0:
+                t_new = b
+            h = t_new - t
+            h_abs = abs(h)
+            if nfev + n_stages > max_evaluations:
+                return y, 1, nfev, at
+            K[0, :] = f
+            for s in range(1, n_stages):
+                ys = y.copy()
+                for j in range(s):
+                    aj = A[s, j] * h
+                    if aj != 0.0:
+                        for i in range(n):
+                            ys[i] += aj * K[j, i]
+                K[s, :] = segment_rhs(t + C[s] * h, ys, n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta,
+                                      dr, idx)
+            for i in range(n):
+                acc = 0.0
+                for j in range(n_stages):
+                    acc += K[j, i] * Bw[j]
+                y_new[i] = y[i] + h * acc
+            f_new = segment_rhs(t + h, y_new, n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr, idx)
+            K[n_stages, :] = f_new
+            nfev += n_stages
+            e5 = 0.0
+            e3 = 0.0
+            for i in range(n):
+                sc = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
+                q5 = 0.0
+                q3 = 0.0
+                for j in range(n_stages + 1):
+                    q5 += K[j, i] * E5[j]
+                    q3 += K[j, i] * E3[j]
+                e5 += (q5 / sc) ** 2
+                e3 += (q3 / sc) ** 2
+            if e5 == 0.0 and e3 == 0.0:
+                err = 0.0
+            else:
+                err = abs(h) * e5 / np.sqrt((e5 + 0.01 * e3) * n)
+            if err < 1.0:
+                factor = 10.0 if err == 0.0 else min(10.0, 0.9 * err ** (-1.0 / 8.0))
+                if rejected:
+                    factor = min(1.0, factor)
+                h_abs *= factor
+                break
+            # a non-finite error (a diverging shot) shrinks the step like scipy's max(0.2, nan) = 0.2
+            shrink = 0.9 * err ** (-1.0 / 8.0)
+            h_abs *= shrink if shrink > 0.2 else 0.2
+            rejected = True
+        if js < stations.shape[0] and stations[js] <= t_new:
+            _dense(K, y, y_new, f, f_new, t, h, stations, js, at, A_extra, C_extra, D, n_stages,
+                   n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr, idx)
+            nfev += C_extra.shape[0]
+            while js < stations.shape[0] and stations[js] <= t_new:
+                js += 1
+        t = t_new
+        y[:] = y_new
+        f = f_new
+    return y, 0, nfev, at
+
+
+@njit(cache=True)
+def _dense(K, y, y_new, f, f_new, t, h, stations, js, at, A_extra, C_extra, D, n_stages,  # noqa: ANN001, ANN202, PLR0913
+           n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr, idx):
+    """DOP853's dense output over the step ``[t, t + h]`` (scipy's ``Dop853DenseOutput``: three
+    extra stages, a degree-7 polynomial in Horner form), written into ``at`` from row ``js`` for
+    every station in the step."""
+    n = y.shape[0]
+    for e in range(C_extra.shape[0]):
+        s = n_stages + 1 + e
+        ys = y.copy()
+        for j in range(s):
+            aj = A_extra[e, j] * h
+            if aj != 0.0:
+                for i in range(n):
+                    ys[i] += aj * K[j, i]
+        K[s, :] = segment_rhs(t + C_extra[e] * h, ys, n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr,
+                              idx)
+    F = np.empty((3 + D.shape[0], n))
+    for i in range(n):
+        dy = y_new[i] - y[i]
+        F[0, i] = dy
+        F[1, i] = h * f[i] - dy
+        F[2, i] = 2.0 * dy - h * (f_new[i] + f[i])
+    for r in range(D.shape[0]):
+        for i in range(n):
+            acc = 0.0
+            for j in range(K.shape[0]):
+                acc += D[r, j] * K[j, i]
+            F[3 + r, i] = h * acc
+    while js < stations.shape[0] and stations[js] <= t + h:
+        x = (stations[js] - t) / h
+        for i in range(n):
+            acc = 0.0
+            for q in range(F.shape[0]):
+                acc += F[F.shape[0] - 1 - q, i]
+                acc *= x if q % 2 == 0 else 1.0 - x
+            at[js, i] = acc + y[i]
+        js += 1

@@ -28,7 +28,7 @@ shooting reference :mod:`workbench.reference.cosserat`, planar ANCF, beam3d eyel
 from __future__ import annotations
 
 import numpy as np
-from scipy.integrate import solve_ivp
+from scipy.integrate import DOP853, solve_ivp
 
 from . import kernel
 from .problem import RodProblem
@@ -200,6 +200,29 @@ def segment_rhs(pb: RodProblem, sec: int, active: np.ndarray, tau: np.ndarray, l
     return rhs
 
 
+_DOP853 = tuple(np.ascontiguousarray(getattr(DOP853, k), dtype=float)
+                for k in ("A", "B", "C", "E3", "E5", "A_EXTRA", "C_EXTRA", "D"))
+
+
+def _compiled_segment(pb: RodProblem, sec: int, active: np.ndarray, tau: np.ndarray, lam: float, y: np.ndarray,
+                      a: float, b: float, rtol: float, atol: np.ndarray,
+                      stations: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(B, n_state)`` states at ``b`` and ``(m, B, n_state)`` at the ``stations`` in ``[a, b]`` from
+    ``y`` at ``a`` by the kernel's DOP853 (scipy's steps and dense output)."""
+    B, n_state = y.shape
+    yb, status, _, at = kernel.dop853_segment(np.ascontiguousarray(y.reshape(-1)), float(a), float(b), float(rtol),
+                                              atol, MAX_EVALUATIONS, np.ascontiguousarray(stations, dtype=float),
+                                              *_DOP853, *kernel_arguments(pb, sec, active, tau, lam))
+    if status == 1:
+        raise RuntimeError(f"integration needs more than {MAX_EVALUATIONS} evaluations on one segment")
+    if status == 2:
+        raise RuntimeError(f"cosserat: integration failed on [{a:.4g}, {b:.4g}] m: the step size fell below "
+                           "10 ulp of s")
+    if not np.all(np.isfinite(yb)):
+        raise RuntimeError("cosserat: non-finite state in the integration")
+    return yb.reshape(B, n_state), at.reshape(-1, B, n_state)
+
+
 def integrate_segments(pb: RodProblem, x0: np.ndarray, tau: np.ndarray, lam: float, rtol: float,
                        stations: np.ndarray | None = None,
                        compiled: bool | None = None) -> tuple[np.ndarray, np.ndarray | None]:
@@ -220,7 +243,9 @@ def integrate_segments(pb: RodProblem, x0: np.ndarray, tau: np.ndarray, lam: flo
         Arc lengths at which to return the states.
     compiled : bool, optional
         Evaluate the right-hand side with the numba kernel (:mod:`.kernel`); default: where numba
-        is installed.  Both paths integrate the same equations.
+        is installed.  Both paths integrate the same equations with the same steps: numpy through
+        ``solve_ivp``, the kernel by :func:`.kernel.dop853_segment` (scipy's DOP853 step control and
+        dense output).
 
     Returns
     -------
@@ -247,11 +272,17 @@ def integrate_segments(pb: RodProblem, x0: np.ndarray, tau: np.ndarray, lam: flo
             y[:, 12:15] -= lam * F  # N(s+) = N(s-) - point force at s
         sec = pb.section_of(0.5 * (a + b))
         active = pb.tendon_ends >= b - 1e-12 * L
-        fun = segment_rhs(pb, sec, active, tau, lam, B, compiled)
         t_eval, sel = None, None
         if stations is not None:
             sel = (stations >= a) & ((stations < b) | (b == L))
             t_eval = np.append(stations[sel][stations[sel] < b], b)
+        if compiled:
+            y, at = _compiled_segment(pb, sec, active, tau, lam, y, a, b, rtol, atol,
+                                      np.zeros(0) if sel is None else stations[sel])
+            if sel is not None:
+                out[sel] = at
+            continue
+        fun = segment_rhs(pb, sec, active, tau, lam, B, compiled)
         sol = solve_ivp(fun, (a, b), y.reshape(-1), method="DOP853", rtol=rtol, atol=atol, t_eval=t_eval)
         if not sol.success:
             raise RuntimeError(f"cosserat: integration failed on [{a:.4g}, {b:.4g}] m: {sol.message}")
