@@ -68,6 +68,59 @@ def _solve6(J, F):  # noqa: ANN001, ANN202
 
 
 @njit(cache=True)
+def _strain_system(nb, mb, kse, kbt, r, dr, ta, v, u, J, F):  # noqa: ANN001, ANN202
+    """Residual ``F`` and Jacobian ``J`` of the strain law at ``(v, u)`` (written in place): R&W's
+    ``[K_se + A, G; B, K_bt + H]`` (as the numpy :func:`.rod.strains`)."""
+    J[:, :] = 0.0
+    for a in range(3):
+        F[a] = kse[a] * (v[a] - (1.0 if a == 2 else 0.0)) - nb[a]
+        F[3 + a] = kbt[a] * u[a] - mb[a]
+        J[a, a] = kse[a]
+        J[3 + a, 3 + a] = kbt[a]
+    t = np.empty(3)
+    P = np.empty((3, 3))
+    PR = np.empty((3, 3))
+    RP = np.empty((3, 3))
+    for i in range(ta.shape[0]):
+        rx, ry, rz = r[i, 0], r[i, 1], r[i, 2]
+        w0 = v[0] + u[1] * rz - u[2] * ry + dr[i, 0]
+        w1 = v[1] + u[2] * rx - u[0] * rz + dr[i, 1]
+        w2 = v[2] + u[0] * ry - u[1] * rx + dr[i, 2]
+        nw = np.sqrt(w0 * w0 + w1 * w1 + w2 * w2)
+        t[0], t[1], t[2] = w0 / nw, w1 / nw, w2 / nw
+        ti = ta[i]
+        F[0] += ti * t[0]
+        F[1] += ti * t[1]
+        F[2] += ti * t[2]
+        F[3] += ti * (ry * t[2] - rz * t[1])
+        F[4] += ti * (rz * t[0] - rx * t[2])
+        F[5] += ti * (rx * t[1] - ry * t[0])
+        c = ti / nw
+        for a in range(3):
+            for b in range(3):
+                P[a, b] = c * ((1.0 if a == b else 0.0) - t[a] * t[b])
+        # P r^ (column b of r^ is r x e_b) and r^ P (row a of r^ is (e_a x r)^T... written out)
+        for a in range(3):
+            PR[a, 0] = P[a, 1] * rz - P[a, 2] * ry
+            PR[a, 1] = P[a, 2] * rx - P[a, 0] * rz
+            PR[a, 2] = P[a, 0] * ry - P[a, 1] * rx
+        for b in range(3):
+            RP[0, b] = ry * P[2, b] - rz * P[1, b]
+            RP[1, b] = rz * P[0, b] - rx * P[2, b]
+            RP[2, b] = rx * P[1, b] - ry * P[0, b]
+        for a in range(3):
+            for b in range(3):
+                J[a, b] += P[a, b]
+                J[a, 3 + b] -= PR[a, b]
+                J[3 + a, b] += RP[a, b]
+        # r^ P r^ = (r^ P) r^
+        for a in range(3):
+            J[3 + a, 3] -= RP[a, 1] * rz - RP[a, 2] * ry
+            J[3 + a, 4] -= RP[a, 2] * rx - RP[a, 0] * rz
+            J[3 + a, 5] -= RP[a, 0] * ry - RP[a, 1] * rx
+
+
+@njit(cache=True)
 def _strains(nb, mb, kse, kbt, r, dr, ta, v, u, w):  # noqa: ANN001, ANN202, PLR0912, PLR0915
     """Strains ``v``, ``u`` and tendon tangents ``w`` (written in place) of one section; as
     :func:`.rod.strains` for one shot."""
@@ -96,54 +149,8 @@ def _strains(nb, mb, kse, kbt, r, dr, ta, v, u, w):  # noqa: ANN001, ANN202, PLR
         contraction = tsum / min(min(kse[0], min(kse[1], kse[2])), min(kbt[0], kbt[1]) / arm**2, kbt[2] / arm**2)
         J = np.empty((6, 6))
         F = np.empty(6)
-        t = np.empty(3)
-        P = np.empty((3, 3))
-        PR = np.empty((3, 3))
-        RP = np.empty((3, 3))
         for _ in range(8):
-            J[:, :] = 0.0
-            for a in range(3):
-                F[a] = kse[a] * (v[a] - (1.0 if a == 2 else 0.0)) - nb[a]
-                F[3 + a] = kbt[a] * u[a] - mb[a]
-                J[a, a] = kse[a]
-                J[3 + a, 3 + a] = kbt[a]
-            for i in range(k):
-                rx, ry, rz = r[i, 0], r[i, 1], r[i, 2]
-                w0 = v[0] + u[1] * rz - u[2] * ry + dr[i, 0]
-                w1 = v[1] + u[2] * rx - u[0] * rz + dr[i, 1]
-                w2 = v[2] + u[0] * ry - u[1] * rx + dr[i, 2]
-                nw = np.sqrt(w0 * w0 + w1 * w1 + w2 * w2)
-                t[0], t[1], t[2] = w0 / nw, w1 / nw, w2 / nw
-                ti = ta[i]
-                F[0] += ti * t[0]
-                F[1] += ti * t[1]
-                F[2] += ti * t[2]
-                F[3] += ti * (ry * t[2] - rz * t[1])
-                F[4] += ti * (rz * t[0] - rx * t[2])
-                F[5] += ti * (rx * t[1] - ry * t[0])
-                c = ti / nw
-                for a in range(3):
-                    for b in range(3):
-                        P[a, b] = c * ((1.0 if a == b else 0.0) - t[a] * t[b])
-                # P r^ (column b of r^ is r x e_b) and r^ P (row a of r^ P is (e_a x r)^T P... written out)
-                for a in range(3):
-                    PR[a, 0] = P[a, 1] * rz - P[a, 2] * ry
-                    PR[a, 1] = P[a, 2] * rx - P[a, 0] * rz
-                    PR[a, 2] = P[a, 0] * ry - P[a, 1] * rx
-                for b in range(3):
-                    RP[0, b] = ry * P[2, b] - rz * P[1, b]
-                    RP[1, b] = rz * P[0, b] - rx * P[2, b]
-                    RP[2, b] = rx * P[1, b] - ry * P[0, b]
-                for a in range(3):
-                    for b in range(3):
-                        J[a, b] += P[a, b]
-                        J[a, 3 + b] -= PR[a, b]
-                        J[3 + a, b] += RP[a, b]
-                # r^ P r^ = (r^ P) r^
-                for a in range(3):
-                    J[3 + a, 3] -= RP[a, 1] * rz - RP[a, 2] * ry
-                    J[3 + a, 4] -= RP[a, 2] * rx - RP[a, 0] * rz
-                    J[3 + a, 5] -= RP[a, 0] * ry - RP[a, 1] * rx
+            _strain_system(nb, mb, kse, kbt, r, dr, ta, v, u, J, F)
             for a in range(6):
                 F[a] = -F[a]
             dx = _solve6(J, F)
@@ -226,6 +233,69 @@ def _rms(x, scale):  # noqa: ANN001, ANN202
 
 
 @njit(cache=True)
+def _initial_step(y, f, t, interval, rtol, atol,  # noqa: ANN001, ANN202, PLR0913
+                  n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr, idx):
+    """scipy's ``select_initial_step`` for DOP853 (error order 7; Hairer, Norsett & Wanner II.4)."""
+    scale = atol + np.abs(y) * rtol
+    dd0 = _rms(y, scale)
+    dd1 = _rms(f, scale)
+    h0 = 1e-6 if (dd0 < 1e-5 or dd1 < 1e-5) else 0.01 * dd0 / dd1
+    h0 = min(h0, interval)
+    f1 = segment_rhs(t + h0, y + h0 * f, n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr, idx)
+    dd2 = _rms(f1 - f, scale) / h0
+    if dd1 <= 1e-15 and dd2 <= 1e-15:
+        h1 = max(1e-6, h0 * 1e-3)
+    else:
+        h1 = (0.01 / max(dd1, dd2)) ** (1.0 / 8.0)
+    return min(100.0 * h0, h1, interval)
+
+
+@njit(cache=True)
+def _rk_step(K, y, f, t, h, A, Bw, C, y_new,  # noqa: ANN001, ANN202, PLR0913
+             n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr, idx):
+    """One explicit Runge-Kutta step (scipy's ``rk_step``): stages into ``K``, ``y_new``; returns ``f(t+h, y_new)``."""
+    n = y.shape[0]
+    n_stages = C.shape[0]
+    K[0, :] = f
+    for s in range(1, n_stages):
+        ys = y.copy()
+        for j in range(s):
+            aj = A[s, j] * h
+            if aj != 0.0:
+                for i in range(n):
+                    ys[i] += aj * K[j, i]
+        K[s, :] = segment_rhs(t + C[s] * h, ys, n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr, idx)
+    for i in range(n):
+        acc = 0.0
+        for j in range(n_stages):
+            acc += K[j, i] * Bw[j]
+        y_new[i] = y[i] + h * acc
+    f_new = segment_rhs(t + h, y_new, n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr, idx)
+    K[n_stages, :] = f_new
+    return f_new
+
+
+@njit(cache=True)
+def _error_norm(K, y, y_new, h, rtol, atol, E3, E5):  # noqa: ANN001, ANN202
+    """DOP853's error norm (scipy's ``DOP853._estimate_error_norm``: the 5th- and 3rd-order estimates)."""
+    n = y.shape[0]
+    e5 = 0.0
+    e3 = 0.0
+    for i in range(n):
+        sc = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
+        q5 = 0.0
+        q3 = 0.0
+        for j in range(E5.shape[0]):
+            q5 += K[j, i] * E5[j]
+            q3 += K[j, i] * E3[j]
+        e5 += (q5 / sc) ** 2
+        e3 += (q3 / sc) ** 2
+    if e5 == 0.0 and e3 == 0.0:
+        return 0.0
+    return abs(h) * e5 / np.sqrt((e5 + 0.01 * e3) * n)
+
+
+@njit(cache=True)
 def dop853_segment(y0, a, b, rtol, atol, max_evaluations, stations, A, Bw, C, E3, E5, A_extra, C_extra, D,  # noqa: ANN001, ANN201, PLR0912, PLR0913, PLR0915
                    n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr, idx):
     """Integrate ``y' = segment_rhs(s, y, ...)`` from ``s = a`` to ``b`` with DOP853: the step
@@ -244,21 +314,9 @@ def dop853_segment(y0, a, b, rtol, atol, max_evaluations, stations, A, Bw, C, E3
     t = a
     f = segment_rhs(t, y, n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr, idx)
     nfev = 1
-    # initial step (scipy.integrate._ivp.common.select_initial_step, order 7)
-    interval = b - a
-    scale = atol + np.abs(y) * rtol
-    dd0 = _rms(y, scale)
-    dd1 = _rms(f, scale)
-    h0 = 1e-6 if (dd0 < 1e-5 or dd1 < 1e-5) else 0.01 * dd0 / dd1
-    h0 = min(h0, interval)
-    f1 = segment_rhs(t + h0, y + h0 * f, n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr, idx)
+    h_abs = _initial_step(y, f, t, b - a, rtol, atol, n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr,
+                          idx)
     nfev += 1
-    dd2 = _rms(f1 - f, scale) / h0
-    if dd1 <= 1e-15 and dd2 <= 1e-15:
-        h1 = max(1e-6, h0 * 1e-3)
-    else:
-        h1 = (0.01 / max(dd1, dd2)) ** (1.0 / 8.0)
-    h_abs = min(100.0 * h0, h1, interval)
     y_new = np.empty(n)
     while t < b:
         min_step = 10.0 * abs(np.nextafter(t, np.inf) - t)
@@ -275,39 +333,10 @@ def dop853_segment(y0, a, b, rtol, atol, max_evaluations, stations, A, Bw, C, E3
             h_abs = abs(h)
             if nfev + n_stages > max_evaluations:
                 return y, 1, nfev, at
-            K[0, :] = f
-            for s in range(1, n_stages):
-                ys = y.copy()
-                for j in range(s):
-                    aj = A[s, j] * h
-                    if aj != 0.0:
-                        for i in range(n):
-                            ys[i] += aj * K[j, i]
-                K[s, :] = segment_rhs(t + C[s] * h, ys, n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta,
-                                      dr, idx)
-            for i in range(n):
-                acc = 0.0
-                for j in range(n_stages):
-                    acc += K[j, i] * Bw[j]
-                y_new[i] = y[i] + h * acc
-            f_new = segment_rhs(t + h, y_new, n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr, idx)
-            K[n_stages, :] = f_new
+            f_new = _rk_step(K, y, f, t, h, A, Bw, C, y_new,
+                             n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr, idx)
             nfev += n_stages
-            e5 = 0.0
-            e3 = 0.0
-            for i in range(n):
-                sc = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
-                q5 = 0.0
-                q3 = 0.0
-                for j in range(n_stages + 1):
-                    q5 += K[j, i] * E5[j]
-                    q3 += K[j, i] * E3[j]
-                e5 += (q5 / sc) ** 2
-                e3 += (q3 / sc) ** 2
-            if e5 == 0.0 and e3 == 0.0:
-                err = 0.0
-            else:
-                err = abs(h) * e5 / np.sqrt((e5 + 0.01 * e3) * n)
+            err = _error_norm(K, y, y_new, h, rtol, atol, E3, E5)
             if err < 1.0:
                 factor = 10.0 if err == 0.0 else min(10.0, 0.9 * err ** (-1.0 / 8.0))
                 if rejected:
