@@ -35,7 +35,7 @@ CACHE_DIR = "_cache"
 _ROOT = Path(__file__).resolve().parents[1]  # the workbench package
 _SHARED = ("robot", "kinematics", "models", "study/build.py", "study/rows.py", "study/evaluate.py",
            "study/params.py", "study/scenarios.py", "experiments")
-_VERSIONED = ("numpy", "scipy", "exudyn")
+_VERSIONED = ("numpy", "scipy", "exudyn", "numba")  # numba: the cosserat kernel (last digits differ without)
 
 
 def _files(p: Path) -> list[Path]:

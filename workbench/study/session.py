@@ -52,7 +52,7 @@ from .store import MANIFEST, CorruptPart, ResultStore, SchemaMismatch, atomic_wr
 __all__ = ["RunSession", "Unit", "finish_run", "git_commit", "open_run_manifest", "package_versions",
            "presentation_changes", "read_manifest", "study_name"]
 
-_PACKAGES = ("trunk-workbench", "exudyn", "numpy", "scipy", "pandas", "pyarrow", "dask",
+_PACKAGES = ("trunk-workbench", "exudyn", "numpy", "scipy", "numba", "pandas", "pyarrow", "dask",
              "distributed", "dask-jobqueue", "pydantic", "tqdm")
 
 

@@ -5,12 +5,14 @@ The standard statics model of tendon-driven continuum robots: a geometrically ex
 with frictionless tendons routed continuously at given offsets (constant or tapered), any number
 of sections (a tendon terminates at the end of its section), self-weight, disk masses (point
 weights at the disks), a tip payload, tip force and torque; solved as a boundary-value problem by
-shooting with scipy (DOP853, Newton on the clamp wrench).  No Exudyn: the model is independent of
+shooting (DOP853, Newton on the clamp wrench; scipy's integrator, or the same algorithm compiled with the right-hand side by numba where installed).  No Exudyn: the model is independent of
 the Exudyn models it is compared with.
 
 * :mod:`.problem` -- :class:`RodProblem` from a robot and a load case (base frame, SI units).
 * :mod:`.rod` -- the strain law with tendons and the integration of the total force and moment.
 * :mod:`.shooting` -- :class:`Shooter`: batched-shot Newton, the load ramp.
+* :mod:`.kernel` -- the right-hand side and scipy's DOP853 steps compiled with numba (optional; numpy and
+  ``solve_ivp`` in :mod:`.rod` without it).
 * :mod:`.model` -- :func:`run`: tension or length control, results.
 
 Where it differs from the Exudyn models: the tendon is continuous (no eyelets; ``beam3d``,

@@ -80,7 +80,7 @@ def _tensions(pb: RodProblem, load: LoadCase, options: SolverOptions, shooter: S
                                   f"in {solves[0]} tension solves without converging")
         solves[0] += 1
         attempts[0] += shooter.go_to(T, left)
-        tip, _ = integrate_segments(pb, shooter.x[None], T, 1.0, shooter.rtol)
+        tip, _ = integrate_segments(pb, shooter.x[None], T, 1.0, shooter.rtol, compiled=shooter.compiled)
         return tip[0, N_BASE + 2:]
 
     info = solve_length_controlled(equilibrium, l0, pb.tendon_stiffness, straight_compliance(pb),
@@ -124,8 +124,8 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     except (ShootingFailure, RuntimeError) as err:
         raise ModelFailure(f"cosserat: {err}") from None
     stations = np.linspace(0.0, robot.length, options.n_stations)
-    tip, Y = integrate_segments(pb, shooter.x[None], T, 1.0, shooter.rtol, stations)
-    res = float(np.max(np.abs(shooter.residual(shooter.x[None], 1.0, T))))
+    tip, Y = integrate_segments(pb, shooter.x[None], T, 1.0, shooter.rtol, stations, compiled=shooter.compiled)
+    res = float(np.max(np.abs(shooter.tip_residual(tip, 1.0, T))))
     frame = np.eye(4)
     frame[:3, :3] = tip[0, 3:12].reshape(3, 3)
     frame[:3, 3] = tip[0, 0:3]

@@ -28,11 +28,12 @@ shooting reference :mod:`workbench.reference.cosserat`, planar ANCF, beam3d eyel
 from __future__ import annotations
 
 import numpy as np
-from scipy.integrate import solve_ivp
+from scipy.integrate import DOP853, solve_ivp
 
+from . import kernel
 from .problem import RodProblem
 
-__all__ = ["cross", "hat", "strains", "N_BASE", "integrate_segments"]
+__all__ = ["cross", "hat", "strains", "N_BASE", "MAX_EVALUATIONS", "kernel_arguments", "segment_rhs", "integrate_segments"]
 
 _E3 = np.array([0.0, 0.0, 1.0])
 _I3 = np.eye(3)
@@ -122,8 +123,40 @@ def strains(nb: np.ndarray, mb: np.ndarray, kse: np.ndarray, kbt: np.ndarray, r:
     return v, u, v[:, None, :] + cross(u[:, None, :], r) + dr
 
 
-def _segment_rhs(pb: RodProblem, sec: int, active: np.ndarray, tau: np.ndarray, lam: float, B: int):
-    """Right-hand side ``(s, y) -> y'`` of one segment for a batch of ``B`` states."""
+def kernel_arguments(pb: RodProblem, sec: int, active: np.ndarray, tau: np.ndarray, lam: float) -> tuple:
+    """The constants of one segment in the order of :func:`.kernel.segment_rhs` (after ``s, y``):
+    ``n_state``, section start and length, stiffness at its ends, mass per length at its ends,
+    ``lam`` x gravity, and of the tendons present (``active``): directions, offsets at base and end,
+    end arc lengths, tensions, offset derivatives, global indices."""
+    idx = np.flatnonzero(active)
+    c = np.ascontiguousarray(pb.tendon_dirs[idx], dtype=float)
+    d0 = np.ascontiguousarray(pb.tendon_offsets[idx, 0], dtype=float)
+    d1 = np.ascontiguousarray(pb.tendon_offsets[idx, 1], dtype=float)
+    se = np.ascontiguousarray(pb.tendon_ends[idx], dtype=float)
+    ta = np.ascontiguousarray(np.asarray(tau, dtype=float)[idx])
+    dr = np.ascontiguousarray(((d1 - d0) / se)[:, None] * c)
+    return (N_BASE + 2 + pb.n_tendons, float(pb.section_starts[sec]), float(pb.section_lengths[sec]),
+            np.asarray(pb.stiffness0[sec], dtype=float), np.asarray(pb.stiffness1[sec], dtype=float),
+            float(pb.mass_per_length0[sec]), float(pb.mass_per_length1[sec]), np.asarray(lam * pb.gravity, dtype=float),
+            c, d0, d1, se, ta, dr, idx.astype(np.int64))
+
+
+def segment_rhs(pb: RodProblem, sec: int, active: np.ndarray, tau: np.ndarray, lam: float, B: int,
+                compiled: bool = False):
+    """Right-hand side ``(s, y) -> y'`` of one segment for a batch of ``B`` states (flat ``y``);
+    ``compiled``: the numba kernel of :mod:`.kernel`, else numpy.  Either raises ``RuntimeError``
+    after :data:`MAX_EVALUATIONS` calls (a diverging shot curls up and needs ever smaller steps)."""
+    calls = [0]
+    if compiled:
+        args = kernel_arguments(pb, sec, active, tau, lam)
+
+        def compiled_rhs(s, y):
+            calls[0] += 1
+            if calls[0] > MAX_EVALUATIONS:
+                raise RuntimeError(f"integration needs more than {MAX_EVALUATIONS} evaluations on one segment")
+            return kernel.segment_rhs(float(s), y, *args)
+
+        return compiled_rhs
     s0, ls = pb.section_starts[sec], pb.section_lengths[sec]
     k0, k1 = pb.stiffness0[sec], pb.stiffness1[sec]
     mu0, mu1 = pb.mass_per_length0[sec], pb.mass_per_length1[sec]
@@ -136,7 +169,6 @@ def _segment_rhs(pb: RodProblem, sec: int, active: np.ndarray, tau: np.ndarray, 
     g = lam * pb.gravity
     nt = pb.n_tendons
     n_state = N_BASE + 2 + nt
-    calls = [0]
 
     def rhs(s, y):
         calls[0] += 1
@@ -168,8 +200,32 @@ def _segment_rhs(pb: RodProblem, sec: int, active: np.ndarray, tau: np.ndarray, 
     return rhs
 
 
+_DOP853 = tuple(np.ascontiguousarray(getattr(DOP853, k), dtype=float)
+                for k in ("A", "B", "C", "E3", "E5", "A_EXTRA", "C_EXTRA", "D"))
+
+
+def _compiled_segment(pb: RodProblem, sec: int, active: np.ndarray, tau: np.ndarray, lam: float, y: np.ndarray,
+                      a: float, b: float, rtol: float, atol: np.ndarray,
+                      stations: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(B, n_state)`` states at ``b`` and ``(m, B, n_state)`` at the ``stations`` in ``[a, b]`` from
+    ``y`` at ``a`` by the kernel's DOP853 (scipy's steps and dense output)."""
+    B, n_state = y.shape
+    yb, status, _, at = kernel.dop853_segment(np.ascontiguousarray(y.reshape(-1)), float(a), float(b), float(rtol),
+                                              atol, MAX_EVALUATIONS, np.ascontiguousarray(stations, dtype=float),
+                                              *_DOP853, *kernel_arguments(pb, sec, active, tau, lam))
+    if status == 1:
+        raise RuntimeError(f"integration needs more than {MAX_EVALUATIONS} evaluations on one segment")
+    if status == 2:
+        raise RuntimeError(f"cosserat: integration failed on [{a:.4g}, {b:.4g}] m: the step size fell below "
+                           "10 ulp of s")
+    if not np.all(np.isfinite(yb)):
+        raise RuntimeError("cosserat: non-finite state in the integration")
+    return yb.reshape(B, n_state), at.reshape(-1, B, n_state)
+
+
 def integrate_segments(pb: RodProblem, x0: np.ndarray, tau: np.ndarray, lam: float, rtol: float,
-                       stations: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray | None]:
+                       stations: np.ndarray | None = None,
+                       compiled: bool | None = None) -> tuple[np.ndarray, np.ndarray | None]:
     """Integrate ``B`` shots from the clamped base to the tip.
 
     Parameters
@@ -185,6 +241,11 @@ def integrate_segments(pb: RodProblem, x0: np.ndarray, tau: np.ndarray, lam: flo
         state group (length, 1, force and moment scales of ``x0``).
     stations : ndarray, shape (m,), optional
         Arc lengths at which to return the states.
+    compiled : bool, optional
+        Evaluate the right-hand side with the numba kernel (:mod:`.kernel`); default: where numba
+        is installed.  Both paths integrate the same equations with the same steps: numpy through
+        ``solve_ivp``, the kernel by :func:`.kernel.dop853_segment` (scipy's DOP853 step control and
+        dense output).
 
     Returns
     -------
@@ -195,6 +256,7 @@ def integrate_segments(pb: RodProblem, x0: np.ndarray, tau: np.ndarray, lam: flo
     B = x0.shape[0]
     nt = pb.n_tendons
     n_state = N_BASE + 2 + nt
+    compiled = kernel.AVAILABLE if compiled is None else compiled
     y = np.zeros((B, n_state))
     y[:, 3:12] = np.eye(3).reshape(9)
     y[:, 12:18] = x0
@@ -210,11 +272,17 @@ def integrate_segments(pb: RodProblem, x0: np.ndarray, tau: np.ndarray, lam: flo
             y[:, 12:15] -= lam * F  # N(s+) = N(s-) - point force at s
         sec = pb.section_of(0.5 * (a + b))
         active = pb.tendon_ends >= b - 1e-12 * L
-        fun = _segment_rhs(pb, sec, active, tau, lam, B)
         t_eval, sel = None, None
         if stations is not None:
             sel = (stations >= a) & ((stations < b) | (b == L))
             t_eval = np.append(stations[sel][stations[sel] < b], b)
+        if compiled:
+            y, at = _compiled_segment(pb, sec, active, tau, lam, y, a, b, rtol, atol,
+                                      np.zeros(0) if sel is None else stations[sel])
+            if sel is not None:
+                out[sel] = at
+            continue
+        fun = segment_rhs(pb, sec, active, tau, lam, B, compiled)
         sol = solve_ivp(fun, (a, b), y.reshape(-1), method="DOP853", rtol=rtol, atol=atol, t_eval=t_eval)
         if not sol.success:
             raise RuntimeError(f"cosserat: integration failed on [{a:.4g}, {b:.4g}] m: {sol.message}")

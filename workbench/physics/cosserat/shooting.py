@@ -27,7 +27,7 @@ import numpy as np
 
 from .._stepping import LoadRampInfo, PathPoint, RampExhausted, RampPolicy, RampStalled, load_ramp
 from .problem import RodProblem
-from .rod import integrate_segments
+from .rod import cross, integrate_segments
 
 __all__ = ["Shooter", "ShootingFailure", "straight_rod_base_wrench"]
 
@@ -55,13 +55,15 @@ def straight_rod_base_wrench(pb: RodProblem, lam: float) -> np.ndarray:
     e3 = np.array([0.0, 0.0, pb.length])
     Wp = pb.payload_mass * pb.gravity
     F = pb.tip_force + Wp + pb.point_forces.sum(0)
-    M = pb.tip_torque + np.cross(e3, pb.tip_force) + np.cross(e3 + pb.payload_offset, Wp)
-    M = M + sum((np.cross([0.0, 0.0, s], f) for s, f in zip(pb.breakpoints, pb.point_forces)), np.zeros(3))
+    M = pb.tip_torque + cross(e3, pb.tip_force) + cross(e3 + pb.payload_offset, Wp)
+    arms = np.zeros((pb.breakpoints.size, 3))
+    arms[:, 2] = pb.breakpoints
+    M = M + cross(arms, pb.point_forces).sum(0)
     for s0, ls, m0, m1 in zip(pb.section_starts, pb.section_lengths, pb.mass_per_length0, pb.mass_per_length1):
         mass = 0.5 * (m0 + m1) * ls
         first = ls / 6.0 * (s0 * m0 + 4.0 * (s0 + 0.5 * ls) * 0.5 * (m0 + m1) + (s0 + ls) * m1)  # Simpson
         F = F + mass * pb.gravity
-        M = M + np.cross([0.0, 0.0, first], pb.gravity)
+        M = M + cross(np.array([0.0, 0.0, first]), pb.gravity)
     return lam * np.concatenate([F, M])
 
 
@@ -74,10 +76,14 @@ class Shooter:
     tol : float
         Required max-norm of the scaled tip residual; DOP853 runs at ``rtol = tol / 10``
         (not below 1e-13).
+    compiled : bool, optional
+        Right-hand side by the numba kernel (default: where numba is installed) or numpy
+        (:func:`~workbench.physics.cosserat.rod.integrate_segments`).
     """
 
-    def __init__(self, pb: RodProblem, tol: float) -> None:
+    def __init__(self, pb: RodProblem, tol: float, compiled: bool | None = None) -> None:
         self.pb = pb
+        self.compiled = compiled
         self.tol = float(tol)
         self.rtol = max(1e-13, 0.1 * self.tol)
         self.point = _Point(0.0, np.zeros(pb.n_tendons), np.zeros(6))
@@ -99,14 +105,18 @@ class Shooter:
 
     def residual(self, X: np.ndarray, lam: float, tau: np.ndarray) -> np.ndarray:
         """Scaled tip residuals ``(B, 6)`` of base wrenches ``X`` ``(B, 6)`` at load ``(lam, tau)``."""
-        pb = self.pb
-        tip, _ = integrate_segments(pb, X, tau, lam, self.rtol)
+        tip, _ = integrate_segments(self.pb, X, tau, lam, self.rtol, compiled=self.compiled)
         self.shots += X.shape[0]
         self._tip = tip[0]
+        return self.tip_residual(tip, lam, tau)
+
+    def tip_residual(self, tip: np.ndarray, lam: float, tau: np.ndarray) -> np.ndarray:
+        """Scaled tip residuals ``(B, 6)`` of integrated tip states ``tip`` ``(B, n_state)``."""
+        pb = self.pb
         Wp = lam * pb.payload_mass * pb.gravity
         arm = np.einsum("bij,j->bi", tip[:, 3:12].reshape(-1, 3, 3), pb.payload_offset)
         F = lam * (pb.tip_force + pb.point_forces[-1]) + Wp
-        M = lam * pb.tip_torque + np.cross(arm, Wp)
+        M = lam * pb.tip_torque + cross(arm, Wp)
         fs, ms = self._scales(lam, tau)
         return np.concatenate([(tip[:, 12:15] - F) / fs, (tip[:, 15:18] - M) / ms], axis=1)
 
