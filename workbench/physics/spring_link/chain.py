@@ -45,11 +45,14 @@ class Chain:
     ``_set_gravity(lam)`` (default: the mass-proportional loads of ``gravity_loads``).
 
     Class attributes: ``planar`` (result in the base x-z plane), ``rigid_bodies`` (rigid bodies
-    with joint constraints, as opposed to minimal coordinates), ``axial`` and ``torsion``.
+    with joint constraints, as opposed to minimal coordinates), ``axial``, ``torsion`` and
+    ``link_ropes`` (the rope forces come from the variant's own user function, so tendons get eyelet
+    markers but no rope connectors; :mod:`.tree`).
     """
 
     planar: bool = True
     rigid_bodies: bool = True
+    link_ropes: bool = False
     axial: bool = False
     torsion: str = "spring"
 
@@ -153,7 +156,7 @@ class Chain:
         for i, t in enumerate(self.tendons):
             marks = [self._eyelet_marker(mbs, i, t, lk, zk, dk) for lk, zk, dk in zip(t.eye_link, t.eye_z, t.eye_d)]
             self.eyelet_markers.append(marks)
-            if self.mode is None:
+            if self.mode is None or self.link_ropes:
                 items = []
             elif self.ropes:
                 items = add_eyelet_rope(mbs, marks, t, self.mode, self.options.damping)
@@ -193,6 +196,8 @@ class Chain:
             self._set_continuum()
 
     def _set_ropes(self) -> None:
+        if self.link_ropes:  # the variant's user function reads self._values / self._L0
+            return
         mbs = self.mbs
         for i, items in enumerate(self.tendon_items):
             if self.mode == "tension":

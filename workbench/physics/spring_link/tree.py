@@ -126,7 +126,9 @@ class TreeChain(Chain):
         self.planar = not self.spatial
         self.torsion = torsion if self.spatial else "locked"
         self.per = (3 if torsion == "spring" else 2) if self.spatial else 1
-        self.link_ropes = self.spatial and options.tendon_model == "continuum" and load.actuation is not None
+        # 3-D tendons (continuum or eyelets) as rope forces of the tree's user function (.linkrope):
+        # rope connectors on tree markers cost O(n^2) tree kinematics per connector Jacobian
+        self.link_ropes = self.spatial and load.actuation is not None
         super().__init__(robot, load, options, geo)
 
     def _continuum_ropes(self) -> bool:
