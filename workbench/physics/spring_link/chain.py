@@ -314,6 +314,8 @@ class Chain:
     def _distal_weight(self) -> np.ndarray:
         """Weight of everything beyond each joint (backbone, disks, payload), base frame, ``(N, 3)`` [N]."""
         robot, s = self.robot, self.geo.joints
+        if not np.any(robot.gravity_in_base()):  # weightless: nothing to integrate
+            return np.zeros((s.size, 3))
         starts = np.concatenate([[0.0], robot.section_ends[:-1]])
         disks = robot.disk_stations()
         disk_m = np.concatenate([np.full(sec.n_disks, sec.disk_mass) for sec in robot.sections])
@@ -347,8 +349,8 @@ class Chain:
             j = np.asarray(joint, dtype=float)
             bend = np.abs(j[:, 0]) if j.shape[1] == 1 else np.hypot(j[:, 0], j[:, 1])
             ends = robot.section_ends
-            passing = np.array([[geo.joints[k] < ends[sec] for sec, _, _ in robot.tendon_table()]
-                                for k in range(geo.n_links)], dtype=float).reshape(geo.n_links, -1)
+            secs = np.array([sec for sec, _, _ in robot.tendon_table()], dtype=int)
+            passing = (geo.joints[:, None] < np.asarray(ends)[secs][None, :]).astype(float).reshape(geo.n_links, -1)
             N = -(passing @ np.asarray(tensions, dtype=float)) if passing.size else np.zeros(geo.n_links)
             F_ext = np.asarray(self.load.tip_force, dtype=float)[None, :] + self._distal_weight()
             N = N + np.sum(F_ext * link_axes, axis=1)

@@ -26,7 +26,7 @@ from ...models.result import ModelFailure, SolverOptions
 from ...robot import LoadCase, Payload, Robot
 from .chain import Chain
 from .geometry import ChainGeometry, chain_geometry_from_robot
-from .linkrope import axis_rotation, generalised_forces
+from .linkrope import axis_rotation, generalised_force_jacobian, generalised_forces, rope_layout, tree_kinematics
 from .routing import TendonRoute
 from .._stepping import PathPoint, RampExhausted, RampPolicy, load_ramp
 
@@ -136,18 +136,21 @@ class TreeChain(Chain):
         ``forceUserFunction`` (:mod:`.linkrope`), not rope connectors; otherwise as the base."""
         return False if self.link_ropes else super()._continuum_ropes()
 
-    def _rope_tension(self, i: int, length: float) -> float:
-        """Tension of link rope ``i`` at polygon ``length``: the command (tension mode) or
-        ``EA_t (L - L_0) / L_0`` while taut (length mode)."""
+    def _rope_tensions(self, length: np.ndarray) -> np.ndarray:
+        """Tensions ``(..., n_tendons)`` of the link ropes at polygon lengths ``(..., n_tendons)``: the
+        commands (tension mode) or ``EA_t (L - L_0) / L_0`` while taut, 0 when slack (length mode)."""
         if self.mode == "tension":
-            return float(self._values[i])
-        if not self.tendon_active[i]:
-            return 0.0
-        L0 = float(self._L0[i])
-        return self.tendons[i].axial_stiffness * (length - L0) / L0
+            return np.broadcast_to(self._values, np.shape(length))
+        EA = np.array([t.axial_stiffness for t in self.tendons])
+        L0 = np.asarray(self._L0, dtype=float)
+        return np.where(np.asarray(self.tendon_active), EA * (length - L0) / L0, 0.0)
 
     def _rope_user_force(self, mbs, t, itemNumber, q, q_t):  # noqa: ANN001, ARG002 - Exudyn signature
-        return generalised_forces(self.geo, self._axes, np.asarray(q), self.tendons, self._rope_tension).tolist()
+        return generalised_forces(self._layout, q, self._rope_tensions)
+
+    def _rope_user_jacobian(self, mbs, t, itemNumber, q, q_t, fODE2, fODE2_t):  # noqa: ANN001, ARG002
+        # the forces are on the right-hand side: the left-hand side's Jacobian is -fODE2 dQ/dq
+        return -fODE2 * generalised_force_jacobian(self._layout, np.asarray(q), self._rope_tensions)
 
     def _build(self, mbs) -> None:  # noqa: ANN001
         exu, eii, geo = self.exu, self.eii, self.geo
@@ -157,10 +160,16 @@ class TreeChain(Chain):
         links = _tree_links(exu, geo, mass, coms, inertias, self.per)
         self.n_coords = n
         self.node, self.tree = _add_kinematic_tree(mbs, exu, eii, links, self.options.damping)
+        # the joints and (for link ropes) the eyelets of the vectorised kinematics (.linkrope)
+        self._layout = rope_layout(geo, [joint_axes(self.per, k) for k in range(geo.n_links)],
+                                   self.tendons if self.link_ropes else [])
         if self.link_ropes:
-            self._axes = [joint_axes(self.per, k) for k in range(geo.n_links)]
             self._values = np.zeros(len(self.tendons))
-            mbs.SetObjectParameter(self.tree, "forceUserFunction", self._rope_user_force)
+            # the rope forces as a generic ODE2 object on the tree's coordinates, with its own
+            # Jacobian (Exudyn would difference a tree user function one coordinate per call)
+            self.rope_object = mbs.AddObject(eii.ObjectGenericODE2(
+                nodeNumbers=[self.node], massMatrix=np.zeros((n, n)), forceUserFunction=self._rope_user_force,
+                jacobianUserFunction=self._rope_user_jacobian))
         self.ground = mbs.AddObject(eii.ObjectGround(referencePosition=[0.0, 0.0, 0.0]))
         m_tip = mbs.AddMarker(eii.MarkerKinematicTreeRigid(objectNumber=self.tree, linkNumber=n - 1,
                                                            localPosition=[0.0, 0.0, float(geo.link_lengths[-1])]))
@@ -212,18 +221,10 @@ class TreeChain(Chain):
             mbs.SetObjectParameter(items[0], "offset", off)
 
     def link_frames(self) -> tuple[np.ndarray, np.ndarray]:
-        """Joint positions (N, 3) and link rotations (N, 3, 3) from the tree coordinates."""
-        q = np.asarray(self.mbs.systemData.GetODE2Coordinates(), dtype=float).reshape(-1, self.per)
-        geo = self.geo
-        P = np.zeros((geo.n_links, 3))
-        R = np.zeros((geo.n_links, 3, 3))
-        Rk, pk = np.eye(3), np.array([0.0, 0.0, geo.joints[0]])
-        for k in range(geo.n_links):
-            if k > 0:
-                pk = pk + geo.link_lengths[k - 1] * Rk[:, 2]
-            for ax, a in zip(joint_axes(self.per, k), q[k]):
-                Rk = Rk @ axis_rotation(ax, a)
-            P[k], R[k] = pk, Rk
+        """Joint positions (N, 3) and link rotations (N, 3, 3) from the tree coordinates
+        (:func:`.linkrope.tree_kinematics`)."""
+        q = np.asarray(self.mbs.systemData.GetODE2Coordinates(), dtype=float)
+        P, R, _ = tree_kinematics(q, self._layout)
         return P, R
 
     def link_states(self) -> tuple[np.ndarray, np.ndarray]:
