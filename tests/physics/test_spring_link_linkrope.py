@@ -1,10 +1,10 @@
 """The vectorised rope forces of the 3-D kinematic tree (``workbench/physics/spring_link/linkrope.py``).
 
-Three independent checks: the batched forces equal a plain loop over joints, links and tendons written
-here from the rope law; the batched central-difference Jacobian (rigid rotations of the distal part)
+Three independent checks: the batched forces (ropes and tip loads) equal a plain loop over joints, links
+and tendons written here from the rope law; the batched central-difference Jacobian (rigid rotations of the distal part)
 equals column-by-column differences of the re-chained forces; and a solve with the rope forces as the
 generic object's user function equals the same tree with one constant-force rope connector per segment
-(``routing.add_eyelet_rope``), eyelets and length mode included.  Also the link-count Richardson
+(``routing.add_eyelet_rope``) and Exudyn's tip loads on the tree marker, eyelets and length mode included.  Also the link-count Richardson
 extrapolation (``workbench/physics/spring_link/richardson.py``) against an exact arc.
 """
 
@@ -34,8 +34,9 @@ def rao(n_disks: int = 10) -> Robot:
     return Robot(sections=tuple(Section(0.2, cs, tg, n_disks=n_disks) for _ in range(2)))
 
 
-def loop_forces(geo, axes, q, tendons, tension_of) -> np.ndarray:  # noqa: ANN001
-    """Generalised forces by plain loops: chain the joint rotations, place every eyelet, sum ``(p - o) x F``."""
+def loop_forces(geo, axes, q, tendons, tension_of, tip) -> np.ndarray:  # noqa: ANN001
+    """Generalised forces by plain loops: chain the joint rotations, place every eyelet and the tip, sum
+    ``(p - o) x F`` (and the tip torque)."""
     N, P, R, A = geo.n_links, [], [], []
     Rk, pk, i = np.eye(3), np.array([0.0, 0.0, geo.joints[0]]), 0
     for k in range(N):
@@ -59,9 +60,10 @@ def loop_forces(geo, axes, q, tendons, tension_of) -> np.ndarray:  # noqa: ANN00
         for e, (a, b) in enumerate(zip(pts[:-1], pts[1:])):
             f = T * (b - a) / np.linalg.norm(b - a)
             forces += [(t.eye_link[e], a, f), (t.eye_link[e + 1], b, -f)]
+    forces.append((N - 1, P[-1] + R[-1] @ np.array([0.0, 0.0, geo.link_lengths[-1]]), tip[0]))
     Q = np.zeros(len(A))
     for i, (a, k) in enumerate(A):
-        Q[i] = sum(a @ np.cross(p - P[k], f) for link, p, f in forces if link >= k)
+        Q[i] = sum(a @ np.cross(p - P[k], f) for link, p, f in forces if link >= k) + a @ tip[1]
     return Q
 
 
@@ -77,10 +79,12 @@ def test_vectorised_rope_forces_equal_a_plain_loop(per, model):
     L0 = np.array([0.99 * t.reference_length for t in tendons])
     law = [lambda i, L: (4.0, 0.0, 1.5, 0.5, 2.0, 3.0)[i], lambda i, L: 1e4 * (L - L0[i]) / L0[i]]
     vec = [lambda L: np.broadcast_to(np.array([4.0, 0.0, 1.5, 0.5, 2.0, 3.0]), L.shape), lambda L: 1e4 * (L - L0) / L0]
-    for loop_law, vec_law in zip(law, vec):
-        ref = loop_forces(geo, axes, q, tendons, loop_law)
+    for loop_law, vec_law, tip in zip(law, vec, [(np.zeros(3), np.zeros(3)), (np.array([0.1, -0.2, 0.05]),
+                                                                           np.array([0.01, 0.0, -0.02]))]):
+        ref = loop_forces(geo, axes, q, tendons, loop_law, tip)
         assert np.max(np.abs(ref)) > 1e-3
-        np.testing.assert_allclose(generalised_forces(lay, q, vec_law), ref, rtol=0, atol=1e-12 * np.max(np.abs(ref)))
+        np.testing.assert_allclose(generalised_forces(lay, q, vec_law, tip), ref, rtol=0,
+                                   atol=1e-12 * np.max(np.abs(ref)))
 
 
 def test_rope_jacobian_equals_differences_of_the_rechained_forces():
@@ -91,10 +95,11 @@ def test_rope_jacobian_equals_differences_of_the_rechained_forces():
     q = np.random.default_rng(1).normal(0.0, 0.3, 3 * geo.n_links)
     L0 = np.array([0.99 * t.reference_length for t in tendons])
     law = lambda L: 1e4 * (L - L0) / L0  # noqa: E731 - length mode: the tension depends on q too
+    tip = (np.array([0.1, -0.2, 0.05]), np.array([0.01, 0.0, -0.02]))
     h = 1e-6
-    ref = np.stack([(generalised_forces(lay, q + h * e, law) - generalised_forces(lay, q - h * e, law)) / (2 * h)
-                    for e in np.eye(len(q))], axis=1)
-    J = generalised_force_jacobian(lay, q, law)
+    ref = np.stack([(generalised_forces(lay, q + h * e, law, tip) - generalised_forces(lay, q - h * e, law, tip))
+                    / (2 * h) for e in np.eye(len(q))], axis=1)
+    J = generalised_force_jacobian(lay, q, law, tip)
     assert np.max(np.abs(ref)) > 1.0
     np.testing.assert_allclose(J, ref, rtol=0, atol=1e-7 * np.max(np.abs(ref)))
 
@@ -111,7 +116,8 @@ class _ConnectorTree(TreeChain):
 def test_user_function_ropes_equal_rope_connectors(model, mode):
     robot = rao(n_disks=4)
     values = (3.0, 0.0, 0.0, 0.0, 1.5, 0.5) if mode == "tension" else (-4e-3, 0.0, 0.0, 0.0, -2e-3, 0.0)
-    load = LoadCase(actuation=TendonActuation(mode, values), tip_force=(0.02, 0.0, -0.03))
+    load = LoadCase(actuation=TendonActuation(mode, values), tip_force=(0.02, 0.0, -0.03),
+                    tip_torque=(0.0, 2e-3, 1e-3))
     opts = SolverOptions(n_elements=8, tendon_model=model)
     geo = chain_geometry_from_robot(robot, 8)
     tips, tensions = [], []

@@ -1,4 +1,4 @@
-"""Tendons of the 3-D kinematic tree as ropes through their eyelets (pure numpy, vectorised).
+"""Tendons of the 3-D kinematic tree as ropes through their eyelets, and its tip loads (pure numpy, vectorised).
 
 A frictionless tendon with tension ``T`` through eyelets ``p_0`` (base plate) ... ``p_m`` (its
 terminating eyelet) pulls eyelet ``i`` with ``T (u_i - u_{i-1})`` (``u_i`` the unit vector from
@@ -9,7 +9,9 @@ the forces distal to it, accumulated from the tip; length mode uses the reeving 
 ``T = EA_t (L - L_0) / L_0`` (0 when slack) with the polygon length ``L``.  The same code serves
 continuum tendons (an eyelet at every link eyelet; the continuous routing is the limit as the links
 grow, chord lever arm ``O(ds^2)``) and eyelet tendons (the disk eyelets of
-:func:`.routing.route_tendons`).
+:func:`.routing.route_tendons`).  The tip force (at the tip point) and tip torque enter the same sums, so
+their Jacobian comes with the ropes' (Exudyn's numerical Jacobian of loads on tree markers was the
+larger cost).
 
 Exudyn differentiates the tree's ``forceUserFunction`` numerically (one call per tree coordinate and
 Newton iteration), so one call is one pass of whole-array operations over all joints and eyelets
@@ -68,7 +70,8 @@ class RopeLayout:
     lengths : ndarray (N,)
         Link lengths [m].
     loc : ndarray (M, 3)
-        Every eyelet of every tendon in its link frame (base plate: in the base frame), tendon by tendon.
+        Every eyelet of every tendon in its link frame (base plate: in the base frame), tendon by tendon,
+        and last the tip point (where the tip force acts).
     eye_link : ndarray (M,) int
         Link of each eyelet (-1: the base plate).
     seg_sum : ndarray (M - 1, n_tendons)
@@ -119,13 +122,15 @@ def rope_layout(geo: ChainGeometry, axes: list[tuple[str, ...]], tendons: list[T
         locs.append(t.eye_d[:, None] * u[None, :] + np.outer(t.eye_z, [0.0, 0.0, 1.0]))
         links.append(np.asarray(t.eye_link, dtype=int))
         segs.append(np.full(len(t.eye_link), i))
-    tid = np.concatenate(segs) if segs else np.zeros(0, dtype=int)
-    eye_link = np.concatenate(links) if links else np.zeros(0, dtype=int)
-    seg_sum = ((tid[1:] == tid[:-1])[:, None] & (tid[:-1, None] == np.arange(len(tendons))[None, :])).astype(float)
     N, n = len(axes), len(unit)
+    locs.append(np.array([[0.0, 0.0, float(geo.link_lengths[-1])]]))  # the tip point, last row
+    links.append(np.array([N - 1]))
+    segs.append(np.array([-1]))
+    tid = np.concatenate(segs)
+    eye_link = np.concatenate(links)
+    seg_sum = ((tid[1:] == tid[:-1])[:, None] & (tid[:-1, None] == np.arange(len(tendons))[None, :])).astype(float)
     return RopeLayout(unit, S, S @ S, joint_link, last, float(geo.joints[0]),
-                      np.asarray(geo.link_lengths, dtype=float),
-                      np.concatenate(locs) if locs else np.zeros((0, 3)), eye_link, seg_sum,
+                      np.asarray(geo.link_lengths, dtype=float), np.concatenate(locs), eye_link, seg_sum,
                       (eye_link[None, :] >= np.arange(N)[:, None]).astype(float),
                       eye_link[None, :] >= joint_link[:, None], np.arange(N)[None, :] > joint_link[:, None],
                       np.arange(n)[None, :] > np.arange(n)[:, None])
@@ -165,9 +170,10 @@ def _eyelet_positions(lay: RopeLayout, P: np.ndarray, R: np.ndarray) -> np.ndarr
     return pts
 
 
-def _forces(lay: RopeLayout, pts: np.ndarray, P: np.ndarray, A: np.ndarray, tensions) -> np.ndarray:  # noqa: ANN001
+def _forces(lay: RopeLayout, pts: np.ndarray, P: np.ndarray, A: np.ndarray, tensions, tip: tuple) -> np.ndarray:  # noqa: ANN001
     """Generalised forces ``(..., n)`` from eyelet positions ``(..., M, 3)``, joint positions
-    ``(..., N, 3)`` and joint axes ``(..., n, 3)`` (any leading batch axes)."""
+    ``(..., N, 3)`` and joint axes ``(..., n, 3)`` (any leading batch axes); ``tip``: the tip force and
+    torque (base frame)."""
     seg = pts[..., 1:, :] - pts[..., :-1, :]
     length = np.sqrt(np.sum(seg * seg, axis=-1))
     T = tensions(length @ lay.seg_sum)                      # (..., n_tendons) from the polygon lengths
@@ -175,16 +181,21 @@ def _forces(lay: RopeLayout, pts: np.ndarray, P: np.ndarray, A: np.ndarray, tens
     F = np.zeros_like(pts)
     F[..., :-1, :] += Fs
     F[..., 1:, :] -= Fs
+    F[..., -1, :] += tip[0]
     Fd = lay.distal @ F                                      # force distal to (and on) link k
-    Md = lay.distal @ _cross(pts, F) - _cross(P, Fd)         # its moment about joint k
+    Md = lay.distal @ _cross(pts, F) - _cross(P, Fd) + tip[1]  # its moment about joint k
     return np.sum(A * Md[..., lay.joint_link, :], axis=-1)
 
 
-def generalised_forces(lay: RopeLayout, q: np.ndarray, tensions) -> np.ndarray:  # noqa: ANN001
-    """Tree generalised forces ``(n,)`` of the ropes at tree coordinates ``q``: ``tensions(L)``
-    gives the ropes' tensions ``(..., n_tendons)`` from their polygon lengths ``(..., n_tendons)``."""
+_NO_TIP = (np.zeros(3), np.zeros(3))
+
+
+def generalised_forces(lay: RopeLayout, q: np.ndarray, tensions, tip: tuple = _NO_TIP) -> np.ndarray:  # noqa: ANN001
+    """Tree generalised forces ``(n,)`` of the ropes and the tip loads at tree coordinates ``q``:
+    ``tensions(L)`` gives the ropes' tensions ``(..., n_tendons)`` from their polygon lengths
+    ``(..., n_tendons)``; ``tip`` is the tip force and torque ``(3,), (3,)`` in the base frame."""
     P, R, A = tree_kinematics(q, lay)
-    return _forces(lay, _eyelet_positions(lay, P, R), P, A, tensions)
+    return _forces(lay, _eyelet_positions(lay, P, R), P, A, tensions, tip)
 
 
 def _rodrigues(axis: np.ndarray, angle: float) -> np.ndarray:
@@ -193,7 +204,8 @@ def _rodrigues(axis: np.ndarray, angle: float) -> np.ndarray:
     return np.eye(3) + math.sin(angle) * S + (1.0 - math.cos(angle)) * (S @ S)
 
 
-def generalised_force_jacobian(lay: RopeLayout, q: np.ndarray, tensions, h: float = 1e-6) -> np.ndarray:  # noqa: ANN001
+def generalised_force_jacobian(lay: RopeLayout, q: np.ndarray, tensions, tip: tuple = _NO_TIP,  # noqa: ANN001
+                               h: float = 1e-6) -> np.ndarray:
     """``dQ/dq`` ``(n, n)`` of :func:`generalised_forces` by central differences, all columns at once.
 
     Turning tree joint ``j`` by ``+-h`` rotates everything distal to it rigidly about its world
@@ -219,5 +231,5 @@ def generalised_force_jacobian(lay: RopeLayout, q: np.ndarray, tensions, h: floa
             return np.where(moves[..., None], Y, X[None, :, :])
 
         cols.append(_forces(lay, turn(pts, lay.eye_moves, o), turn(P, lay.point_moves, o),
-                            turn(A, lay.axis_moves, None), tensions))
+                            turn(A, lay.axis_moves, None), tensions, tip))
     return ((cols[0] - cols[1]) / (2.0 * h)).T.reshape(n, n)

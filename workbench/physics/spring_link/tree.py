@@ -146,11 +146,19 @@ class TreeChain(Chain):
         return np.where(np.asarray(self.tendon_active), EA * (length - L0) / L0, 0.0)
 
     def _rope_user_force(self, mbs, t, itemNumber, q, q_t):  # noqa: ANN001, ARG002 - Exudyn signature
-        return generalised_forces(self._layout, q, self._rope_tensions)
+        return generalised_forces(self._layout, q, self._rope_tensions, self._tip)
 
     def _rope_user_jacobian(self, mbs, t, itemNumber, q, q_t, fODE2, fODE2_t):  # noqa: ANN001, ARG002
         # the forces are on the right-hand side: the left-hand side's Jacobian is -fODE2 dQ/dq
-        return -fODE2 * generalised_force_jacobian(self._layout, np.asarray(q), self._rope_tensions)
+        return -fODE2 * generalised_force_jacobian(self._layout, np.asarray(q), self._rope_tensions, self._tip)
+
+    def set_external(self, lam: float) -> None:
+        """Gravity and tip loads at load factor ``lam``; with link ropes the tip loads are the generic
+        object's (:mod:`.linkrope`), the tree marker's loads stay zero."""
+        super().set_external(lam)
+        if self.link_ropes:
+            self._tip = (lam * np.asarray(self.load.tip_force, dtype=float),
+                         lam * np.asarray(self.load.tip_torque, dtype=float))
 
     def _build(self, mbs) -> None:  # noqa: ANN001
         exu, eii, geo = self.exu, self.eii, self.geo
@@ -173,7 +181,11 @@ class TreeChain(Chain):
         self.ground = mbs.AddObject(eii.ObjectGround(referencePosition=[0.0, 0.0, 0.0]))
         m_tip = mbs.AddMarker(eii.MarkerKinematicTreeRigid(objectNumber=self.tree, linkNumber=n - 1,
                                                            localPosition=[0.0, 0.0, float(geo.link_lengths[-1])]))
-        self._add_tip_loads(mbs, m_tip)
+        if self.link_ropes:  # tip loads in the rope object's user function (with their Jacobian)
+            self._tip = (np.zeros(3), np.zeros(3))
+            self._add_tip_loads(mbs, m_tip, force=np.zeros(3), torque=np.zeros(3))
+        else:
+            self._add_tip_loads(mbs, m_tip)
         self._add_tendons(mbs)
 
     def _tree_marker(self, mbs, link: int, position: list[float]) -> int:  # noqa: ANN001
