@@ -13,11 +13,13 @@ grow, chord lever arm ``O(ds^2)``) and eyelet tendons (the disk eyelets of
 their Jacobian comes with the ropes' (Exudyn's numerical Jacobian of loads on tree markers was the
 larger cost).
 
-Exudyn differentiates the tree's ``forceUserFunction`` numerically (one call per tree coordinate and
-Newton iteration), so one call is one pass of whole-array operations over all joints and eyelets
-(:class:`RopeLayout` holds the constant index arrays; the joint rotations are chained by a
-log-depth prefix product) instead of Python loops over joints, links and tendons.  Much faster
-than rope connectors on tree markers, whose every segment Jacobian evaluates the tree's kinematics.
+The tree (:mod:`.tree`) applies them as an ``ObjectGenericODE2`` on its node: :func:`generalised_forces`
+is its force user function and :func:`generalised_force_jacobian` its Jacobian user function (Exudyn
+would otherwise difference a user function one coordinate per call).  One call is one pass of
+whole-array operations over all joints and eyelets (:class:`RopeLayout` holds the constant index arrays;
+the joint rotations are chained by a log-depth prefix product), and the Jacobian evaluates all its
+perturbed geometries in one batch.  Much faster than rope connectors on tree markers, whose every
+segment Jacobian evaluates the tree's kinematics (measured in ``docs/models.md``, "Spring-link").
 Checked by ``tests/physics/test_spring_link_linkrope.py`` (equals a plain loop implementation and
 the rope connectors) and ``tests/physics/test_spring_link_crossexam.py`` (converges to the Cosserat
 rod under tendon + tip force and gravity).

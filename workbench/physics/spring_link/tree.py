@@ -8,7 +8,10 @@ intermediate link massless.  No joint constraints, so eyelet ropes (``MarkerKine
 eyelets) keep Newton quadratic; :mod:`.driver` uses it for every eyelet rope it can.  Planar
 continuum tendons act as generalised joint forces (``jointForceVector``), in length mode as a
 rotational spring to ground; 3-D ones (and planar tapered ones in length mode) are ropes through an
-eyelet at every link (:meth:`.chain.Chain._continuum_ropes`).
+eyelet at every link (:meth:`.chain.Chain._continuum_ropes`).  In 3-D every tendon (continuum or
+eyelets) and the tip force and torque are the generalised forces of one ``ObjectGenericODE2`` on the
+tree's node with its own Jacobian (:mod:`.linkrope`); planar eyelet ropes are rope connectors on tree
+markers.
 
 :func:`tree_tip_position` is a stripped variant (continuum tendons at sigma in {0, pi}, tip moment
 about base y and gravity, all as joint forces or the tree's own gravity) timed by
@@ -126,14 +129,14 @@ class TreeChain(Chain):
         self.planar = not self.spatial
         self.torsion = torsion if self.spatial else "locked"
         self.per = (3 if torsion == "spring" else 2) if self.spatial else 1
-        # 3-D tendons (continuum or eyelets) as rope forces of the tree's user function (.linkrope):
-        # rope connectors on tree markers cost O(n^2) tree kinematics per connector Jacobian
+        # 3-D tendons (continuum or eyelets) as rope forces of a generic object's user functions
+        # (.linkrope): rope connectors on tree markers re-evaluate the tree kinematics per Jacobian entry
         self.link_ropes = self.spatial and load.actuation is not None
         super().__init__(robot, load, options, geo)
 
     def _continuum_ropes(self) -> bool:
-        """3-D continuum tendons: rope forces through every link eyelet as the tree's
-        ``forceUserFunction`` (:mod:`.linkrope`), not rope connectors; otherwise as the base."""
+        """3-D continuum tendons: rope forces through every link eyelet from the rope object's user
+        functions (:mod:`.linkrope`), not rope connectors; otherwise as the base."""
         return False if self.link_ropes else super()._continuum_ropes()
 
     def _rope_tensions(self, length: np.ndarray) -> np.ndarray:
@@ -201,7 +204,7 @@ class TreeChain(Chain):
 
     def _continuum_items(self, mbs, i: int, tendon: TendonRoute) -> list:  # noqa: ANN001
         eii = self.eii
-        if self.link_ropes:  # forces from the tree's user function
+        if self.link_ropes:  # forces from the rope object's user function
             return []
         if self.mode == "length":  # planar: rotational spring on the terminating link's angle
             mg = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=self.ground, localPosition=[0.0, 0.0, 0.0]))
