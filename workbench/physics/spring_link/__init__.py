@@ -7,8 +7,8 @@ A segmented backbone (Hannan & Walker's trunk: a robot with joint springs ``k`` 
   stations equally spaced within every section (``N`` a multiple of the number of sections),
   joint ``k`` half-way between eyelets ``k - 1`` and ``k`` with bending stiffness ``EI / ds``; link
   masses and inertias from the mass per length, the disk masses and the payload.
-* :mod:`.params` -- :class:`SpringLinkParams` (dimension, torsion, axial springs, backend) and
-  :func:`is_planar`.
+* :mod:`.params` -- :class:`SpringLinkParams` (dimension, torsion, axial springs, backend, Richardson
+  extrapolation) and :func:`is_planar`.
 * :mod:`.chain` -- the :class:`Chain` base every variant shares; :mod:`.planar` (``RigidBody2D``,
   the base x-z plane), :mod:`.spatial` (Euler-parameter bodies, spherical or Cardan joints) and
   :mod:`.tree` (one ``ObjectKinematicTree``, planar or Cardan; used for eyelet ropes).
@@ -17,13 +17,16 @@ A segmented backbone (Hannan & Walker's trunk: a robot with joint springs ``k`` 
   switching in length mode); ``"continuum"`` on planar chains, the exact internal moment
   ``T d cos(alpha)`` at every joint the tendon passes (and its compression ``T`` with axial springs);
   in 3-D (and planar tapered length mode) a rope through an eyelet at every link, whose limit as the
-  links grow is the continuous routing (:mod:`.linkrope` on the kinematic tree).
+  links grow is the continuous routing.  On the 3-D kinematic tree every tendon (and the tip load) is a
+  generalised force of one generic object with its own Jacobian (:mod:`.linkrope`).
 * :mod:`.lengthmode` -- planar continuum length mode with axial springs (the default there,
   :func:`.params.resolve_axial`): the tendon length includes the backbone's compression.
 * :mod:`.driver` -- :func:`solve` and the registered :func:`run`: a static load ramp (gravity, tip
   loads and tendon commands together, on :func:`workbench.physics._stepping.load_ramp`); dynamics:
   equilibrium at ``t = 0``, then implicit generalised-alpha with the commands updated every step,
   joint damping ``options.damping * k``.
+* :mod:`.richardson` -- ``richardson=True``: static solves at ``N / 2`` and ``N`` links extrapolated at
+  order 2.
 * :mod:`.shape` -- the result: positions at ``options.n_stations`` stations along the links, tip
   frame, ``length_change`` (axial springs only), tensions, ``joint_angles``, ``tip_twist`` (3-D).
 * Disks are point masses at their own stations (:mod:`.geometry`).
@@ -34,7 +37,8 @@ statics), ``test_spring_link_eyelets.py`` (rope routing, convergence to the ANCF
 ``test_hannan_walker.py`` (Eq. 1 cable geometry, the link rope's chord lever arm),
 ``test_spring_link_layout.py`` (the chain hooks, the load ramp's steps) and
 ``test_spring_link_crossexam.py`` (3-D continuum tendons under external loads, disk weights and
-length-mode tensions against the Cosserat rod and beam theory).  Measured behaviour (timings, Newton convergence with eyelet ropes, why
+length-mode tensions against the Cosserat rod and beam theory), ``test_spring_link_linkrope.py`` (the
+vectorised rope forces and their Jacobian, Richardson extrapolation).  Measured behaviour (timings, Newton convergence with eyelet ropes, why
 the tree backend is chosen) and the limitations: ``docs/models.md``, "Spring-link".
 """
 

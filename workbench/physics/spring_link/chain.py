@@ -45,11 +45,14 @@ class Chain:
     ``_set_gravity(lam)`` (default: the mass-proportional loads of ``gravity_loads``).
 
     Class attributes: ``planar`` (result in the base x-z plane), ``rigid_bodies`` (rigid bodies
-    with joint constraints, as opposed to minimal coordinates), ``axial`` and ``torsion``.
+    with joint constraints, as opposed to minimal coordinates), ``axial``, ``torsion`` and
+    ``link_ropes`` (the rope forces come from the variant's own user function, so tendons get eyelet
+    markers but no rope connectors; :mod:`.tree`).
     """
 
     planar: bool = True
     rigid_bodies: bool = True
+    link_ropes: bool = False
     axial: bool = False
     torsion: str = "spring"
 
@@ -153,7 +156,7 @@ class Chain:
         for i, t in enumerate(self.tendons):
             marks = [self._eyelet_marker(mbs, i, t, lk, zk, dk) for lk, zk, dk in zip(t.eye_link, t.eye_z, t.eye_d)]
             self.eyelet_markers.append(marks)
-            if self.mode is None:
+            if self.mode is None or self.link_ropes:
                 items = []
             elif self.ropes:
                 items = add_eyelet_rope(mbs, marks, t, self.mode, self.options.damping)
@@ -193,6 +196,8 @@ class Chain:
             self._set_continuum()
 
     def _set_ropes(self) -> None:
+        if self.link_ropes:  # the variant's user function reads self._values / self._L0
+            return
         mbs = self.mbs
         for i, items in enumerate(self.tendon_items):
             if self.mode == "tension":
@@ -309,6 +314,8 @@ class Chain:
     def _distal_weight(self) -> np.ndarray:
         """Weight of everything beyond each joint (backbone, disks, payload), base frame, ``(N, 3)`` [N]."""
         robot, s = self.robot, self.geo.joints
+        if not np.any(robot.gravity_in_base()):  # weightless: nothing to integrate
+            return np.zeros((s.size, 3))
         starts = np.concatenate([[0.0], robot.section_ends[:-1]])
         disks = robot.disk_stations()
         disk_m = np.concatenate([np.full(sec.n_disks, sec.disk_mass) for sec in robot.sections])
@@ -342,8 +349,8 @@ class Chain:
             j = np.asarray(joint, dtype=float)
             bend = np.abs(j[:, 0]) if j.shape[1] == 1 else np.hypot(j[:, 0], j[:, 1])
             ends = robot.section_ends
-            passing = np.array([[geo.joints[k] < ends[sec] for sec, _, _ in robot.tendon_table()]
-                                for k in range(geo.n_links)], dtype=float).reshape(geo.n_links, -1)
+            secs = np.array([sec for sec, _, _ in robot.tendon_table()], dtype=int)
+            passing = (geo.joints[:, None] < np.asarray(ends)[secs][None, :]).astype(float).reshape(geo.n_links, -1)
             N = -(passing @ np.asarray(tensions, dtype=float)) if passing.size else np.zeros(geo.n_links)
             F_ext = np.asarray(self.load.tip_force, dtype=float)[None, :] + self._distal_weight()
             N = N + np.sum(F_ext * link_axes, axis=1)

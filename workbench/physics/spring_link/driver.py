@@ -27,6 +27,7 @@ from .geometry import ChainGeometry, chain_geometry_from_robot
 from .lengthmode import settle_lagged
 from .params import SpringLinkParams, is_planar, resolve_axial
 from .planar import PlanarChain
+from .richardson import check_richardson, richardson_result
 from .spatial import SpatialChain
 from .tree import TreeChain
 
@@ -97,6 +98,11 @@ def static_ramp(model: Chain, options: SolverOptions, params: SpringLinkParams,
     # a failing step is cut off early, a 3-D tree Jacobian with ropes costs ~0.5-2 s.
     eyelet_ropes = model.ropes and model.mode is not None
     settings.staticSolver.newton.maxIterations = (250 if eyelet_ropes else 40) if model.rigid_bodies else 25
+    if model.link_ropes:  # modified Newton: a rope Jacobian costs ~ a dozen residuals, keep it while it contracts
+        settings.staticSolver.newton.useModifiedNewton = True
+    # Exudyn differentiates the tip loads numerically even when they are zero (on the 3-D tree most of
+    # the Jacobian's time); a zero load has a zero Jacobian, so skipping it changes nothing
+    settings.staticSolver.computeLoadsJacobian = bool(np.any(model.tip_force_full) or np.any(model.tip_torque_full))
     newton_its = 0
 
     def attempt(lam: float) -> bool | PathPoint:
@@ -261,7 +267,7 @@ def solve(robot: Robot, load: LoadCase, options: SolverOptions,
     options : SolverOptions
         ``n_elements`` is the number of links ``N`` (multiple of the number of sections).
     params : SpringLinkParams
-        Model-specific settings.
+        Model-specific settings (``richardson=True``: two static solves extrapolated, :mod:`.richardson`).
 
     Returns
     -------
@@ -281,6 +287,10 @@ def solve(robot: Robot, load: LoadCase, options: SolverOptions,
     from .._exudyn import quiet_exudyn
 
     check_model_inputs(robot, load, options)
+    if params.richardson:
+        check_richardson(options.n_elements, robot.n_sections, load.analysis)
+        return richardson_result(lambda n: solve(robot, load, replace(options, n_elements=n),
+                                                 replace(params, richardson=False)), options.n_elements)
     planar, why = is_planar(robot, load)
     if params.dimension == "2d" and not planar:
         raise ModelFailure(f"spring_link: dimension='2d' requested but the case is not planar: {why}")

@@ -129,21 +129,15 @@ def _section_properties(robot: Robot, s: np.ndarray) -> dict[str, np.ndarray]:
 def _rod_moments(robot: Robot, joints: np.ndarray, ends: np.ndarray, n_quad: int) -> tuple[np.ndarray, ...]:
     """Rod mass over each link span ``[joints[k], ends[k]]`` (Gauss-Legendre) and its first and
     second moments about the joint, plus ``sum w mu d^2`` for the solid-disk inertia terms."""
-    n_links = joints.size
     xg, wg = np.polynomial.legendre.leggauss(n_quad)
-    mass = np.zeros(n_links)
-    first = np.zeros(n_links)
-    second = np.zeros(n_links)
-    radial = np.zeros(n_links)
-    for k in range(n_links):
-        a, b = joints[k], ends[k]
-        s = 0.5 * (a + b) + 0.5 * (b - a) * xg
-        w = 0.5 * (b - a) * wg
-        p = _section_properties(robot, s)
-        mass[k] = np.sum(w * p["mu"])
-        first[k] = np.sum(w * p["mu"] * (s - a))
-        second[k] = np.sum(w * p["mu"] * (s - a) ** 2)
-        radial[k] = np.sum(w * p["mu"] * p["d"] ** 2)
+    a, b = joints[:, None], ends[:, None]
+    s = 0.5 * (a + b) + 0.5 * (b - a) * xg[None, :]   # (N, n_quad) Gauss points of every link
+    w = 0.5 * (b - a) * wg[None, :]
+    p = {k: v.reshape(s.shape) for k, v in _section_properties(robot, s.ravel()).items()}
+    mass = np.sum(w * p["mu"], axis=1)
+    first = np.sum(w * p["mu"] * (s - a), axis=1)
+    second = np.sum(w * p["mu"] * (s - a) ** 2, axis=1)
+    radial = np.sum(w * p["mu"] * p["d"] ** 2, axis=1)
     return mass, first, second, radial
 
 

@@ -58,6 +58,11 @@ class SpringLinkParams:
         (length or tension mode; planar, or 3-D with ``torsion="locked"``) and bodies otherwise;
         ``axial=True`` always uses bodies.  Why (measured Newton convergence and timings):
         ``docs/models.md``, "Spring-link".
+    richardson : bool
+        Static solves only.  ``False`` (default): one chain of ``n_elements`` links.  ``True``: chains of
+        ``n_elements / 2`` and ``n_elements`` links, Richardson-extrapolated at order 2 in the link length
+        (:mod:`.richardson`: positions, tip position, tensions; the error bar in the extras as
+        ``richardson_tip_bar``); ``n_elements`` must be a multiple of twice the number of sections.
     """
 
     dimension: Literal["auto", "2d", "3d"] = "auto"
@@ -65,6 +70,7 @@ class SpringLinkParams:
     torsion: Literal["spring", "locked"] = "spring"
     axial: bool | None = None
     backend: Literal["auto", "bodies", "tree"] = "auto"
+    richardson: bool = False
 
     def __post_init__(self) -> None:
         if self.dimension not in ("auto", "2d", "3d"):
@@ -77,6 +83,8 @@ class SpringLinkParams:
             raise ValueError("SpringLinkParams: axial=True needs torsion='spring'")
         if self.torsion not in ("spring", "locked"):
             raise ValueError(f"SpringLinkParams.torsion must be 'spring' or 'locked', got {self.torsion!r}")
+        if self.richardson not in (True, False):
+            raise ValueError(f"SpringLinkParams.richardson must be True or False, got {self.richardson!r}")
         if int(self.max_active_set_iterations) < 1:
             raise ValueError("SpringLinkParams.max_active_set_iterations must be >= 1")
 

@@ -57,6 +57,9 @@ class StaticSession:
         check_model_inputs(robot, load, options)
         if load.analysis != "static" or load.actuation is None:
             raise ModelFailure("spring_link StaticSession: needs a static load case with a tendon actuation")
+        if params.richardson:
+            raise ModelFailure("spring_link StaticSession: keeps one chain warm; richardson=True (two chains) is "
+                               "for single solves")
         planar, why = is_planar(robot, load)
         if params.dimension == "2d" and not planar:
             raise ModelFailure(f"spring_link: dimension='2d' requested but the case is not planar: {why}")

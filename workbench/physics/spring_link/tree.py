@@ -8,7 +8,10 @@ intermediate link massless.  No joint constraints, so eyelet ropes (``MarkerKine
 eyelets) keep Newton quadratic; :mod:`.driver` uses it for every eyelet rope it can.  Planar
 continuum tendons act as generalised joint forces (``jointForceVector``), in length mode as a
 rotational spring to ground; 3-D ones (and planar tapered ones in length mode) are ropes through an
-eyelet at every link (:meth:`.chain.Chain._continuum_ropes`).
+eyelet at every link (:meth:`.chain.Chain._continuum_ropes`).  In 3-D every tendon (continuum or
+eyelets) and the tip force and torque are the generalised forces of one ``ObjectGenericODE2`` on the
+tree's node with its own Jacobian (:mod:`.linkrope`); planar eyelet ropes are rope connectors on tree
+markers.
 
 :func:`tree_tip_position` is a stripped variant (continuum tendons at sigma in {0, pi}, tip moment
 about base y and gravity, all as joint forces or the tree's own gravity) timed by
@@ -26,7 +29,7 @@ from ...models.result import ModelFailure, SolverOptions
 from ...robot import LoadCase, Payload, Robot
 from .chain import Chain
 from .geometry import ChainGeometry, chain_geometry_from_robot
-from .linkrope import axis_rotation, generalised_forces
+from .linkrope import axis_rotation, generalised_force_jacobian, generalised_forces, rope_layout, tree_kinematics
 from .routing import TendonRoute
 from .._stepping import PathPoint, RampExhausted, RampPolicy, load_ramp
 
@@ -126,26 +129,39 @@ class TreeChain(Chain):
         self.planar = not self.spatial
         self.torsion = torsion if self.spatial else "locked"
         self.per = (3 if torsion == "spring" else 2) if self.spatial else 1
-        self.link_ropes = self.spatial and options.tendon_model == "continuum" and load.actuation is not None
+        # 3-D tendons (continuum or eyelets) as rope forces of a generic object's user functions
+        # (.linkrope): rope connectors on tree markers re-evaluate the tree kinematics per Jacobian entry
+        self.link_ropes = self.spatial and load.actuation is not None
         super().__init__(robot, load, options, geo)
 
     def _continuum_ropes(self) -> bool:
-        """3-D continuum tendons: rope forces through every link eyelet as the tree's
-        ``forceUserFunction`` (:mod:`.linkrope`), not rope connectors; otherwise as the base."""
+        """3-D continuum tendons: rope forces through every link eyelet from the rope object's user
+        functions (:mod:`.linkrope`), not rope connectors; otherwise as the base."""
         return False if self.link_ropes else super()._continuum_ropes()
 
-    def _rope_tension(self, i: int, length: float) -> float:
-        """Tension of link rope ``i`` at polygon ``length``: the command (tension mode) or
-        ``EA_t (L - L_0) / L_0`` while taut (length mode)."""
+    def _rope_tensions(self, length: np.ndarray) -> np.ndarray:
+        """Tensions ``(..., n_tendons)`` of the link ropes at polygon lengths ``(..., n_tendons)``: the
+        commands (tension mode) or ``EA_t (L - L_0) / L_0`` while taut, 0 when slack (length mode)."""
         if self.mode == "tension":
-            return float(self._values[i])
-        if not self.tendon_active[i]:
-            return 0.0
-        L0 = float(self._L0[i])
-        return self.tendons[i].axial_stiffness * (length - L0) / L0
+            return np.broadcast_to(self._values, np.shape(length))
+        EA = np.array([t.axial_stiffness for t in self.tendons])
+        L0 = np.asarray(self._L0, dtype=float)
+        return np.where(np.asarray(self.tendon_active), EA * (length - L0) / L0, 0.0)
 
     def _rope_user_force(self, mbs, t, itemNumber, q, q_t):  # noqa: ANN001, ARG002 - Exudyn signature
-        return generalised_forces(self.geo, self._axes, np.asarray(q), self.tendons, self._rope_tension).tolist()
+        return generalised_forces(self._layout, q, self._rope_tensions, self._tip)
+
+    def _rope_user_jacobian(self, mbs, t, itemNumber, q, q_t, fODE2, fODE2_t):  # noqa: ANN001, ARG002
+        # the forces are on the right-hand side: the left-hand side's Jacobian is -fODE2 dQ/dq
+        return -fODE2 * generalised_force_jacobian(self._layout, np.asarray(q), self._rope_tensions, self._tip)
+
+    def set_external(self, lam: float) -> None:
+        """Gravity and tip loads at load factor ``lam``; with link ropes the tip loads are the generic
+        object's (:mod:`.linkrope`), the tree marker's loads stay zero."""
+        super().set_external(lam)
+        if self.link_ropes:
+            self._tip = (lam * np.asarray(self.load.tip_force, dtype=float),
+                         lam * np.asarray(self.load.tip_torque, dtype=float))
 
     def _build(self, mbs) -> None:  # noqa: ANN001
         exu, eii, geo = self.exu, self.eii, self.geo
@@ -155,14 +171,24 @@ class TreeChain(Chain):
         links = _tree_links(exu, geo, mass, coms, inertias, self.per)
         self.n_coords = n
         self.node, self.tree = _add_kinematic_tree(mbs, exu, eii, links, self.options.damping)
+        # the joints and (for link ropes) the eyelets of the vectorised kinematics (.linkrope)
+        self._layout = rope_layout(geo, [joint_axes(self.per, k) for k in range(geo.n_links)],
+                                   self.tendons if self.link_ropes else [])
         if self.link_ropes:
-            self._axes = [joint_axes(self.per, k) for k in range(geo.n_links)]
             self._values = np.zeros(len(self.tendons))
-            mbs.SetObjectParameter(self.tree, "forceUserFunction", self._rope_user_force)
+            # the rope forces as a generic ODE2 object on the tree's coordinates, with its own
+            # Jacobian (Exudyn would difference a tree user function one coordinate per call)
+            self.rope_object = mbs.AddObject(eii.ObjectGenericODE2(
+                nodeNumbers=[self.node], massMatrix=np.zeros((n, n)), forceUserFunction=self._rope_user_force,
+                jacobianUserFunction=self._rope_user_jacobian))
         self.ground = mbs.AddObject(eii.ObjectGround(referencePosition=[0.0, 0.0, 0.0]))
         m_tip = mbs.AddMarker(eii.MarkerKinematicTreeRigid(objectNumber=self.tree, linkNumber=n - 1,
                                                            localPosition=[0.0, 0.0, float(geo.link_lengths[-1])]))
-        self._add_tip_loads(mbs, m_tip)
+        if self.link_ropes:  # tip loads in the rope object's user function (with their Jacobian)
+            self._tip = (np.zeros(3), np.zeros(3))
+            self._add_tip_loads(mbs, m_tip, force=np.zeros(3), torque=np.zeros(3))
+        else:
+            self._add_tip_loads(mbs, m_tip)
         self._add_tendons(mbs)
 
     def _tree_marker(self, mbs, link: int, position: list[float]) -> int:  # noqa: ANN001
@@ -178,7 +204,7 @@ class TreeChain(Chain):
 
     def _continuum_items(self, mbs, i: int, tendon: TendonRoute) -> list:  # noqa: ANN001
         eii = self.eii
-        if self.link_ropes:  # forces from the tree's user function
+        if self.link_ropes:  # forces from the rope object's user function
             return []
         if self.mode == "length":  # planar: rotational spring on the terminating link's angle
             mg = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=self.ground, localPosition=[0.0, 0.0, 0.0]))
@@ -210,18 +236,10 @@ class TreeChain(Chain):
             mbs.SetObjectParameter(items[0], "offset", off)
 
     def link_frames(self) -> tuple[np.ndarray, np.ndarray]:
-        """Joint positions (N, 3) and link rotations (N, 3, 3) from the tree coordinates."""
-        q = np.asarray(self.mbs.systemData.GetODE2Coordinates(), dtype=float).reshape(-1, self.per)
-        geo = self.geo
-        P = np.zeros((geo.n_links, 3))
-        R = np.zeros((geo.n_links, 3, 3))
-        Rk, pk = np.eye(3), np.array([0.0, 0.0, geo.joints[0]])
-        for k in range(geo.n_links):
-            if k > 0:
-                pk = pk + geo.link_lengths[k - 1] * Rk[:, 2]
-            for ax, a in zip(joint_axes(self.per, k), q[k]):
-                Rk = Rk @ axis_rotation(ax, a)
-            P[k], R[k] = pk, Rk
+        """Joint positions (N, 3) and link rotations (N, 3, 3) from the tree coordinates
+        (:func:`.linkrope.tree_kinematics`)."""
+        q = np.asarray(self.mbs.systemData.GetODE2Coordinates(), dtype=float)
+        P, R, _ = tree_kinematics(q, self._layout)
         return P, R
 
     def link_states(self) -> tuple[np.ndarray, np.ndarray]:
