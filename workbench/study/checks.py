@@ -20,13 +20,15 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass, field
-from typing import Any, Mapping, Sequence
+from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 from pydantic import ValidationError
 
 from .build import build_load, build_options, build_robot
-from .expand import count_cases, sweep_blocks
+from .by_model import BY_MODEL, by_model_problems, setters, solver_for_model
+from .expand import apply_swept, count_cases, sweep_blocks
+from .keypath import KeyPathError, get_value, parse_key_path, with_value
 from .messages import StudyError, check_robot_value, join_key, num, param_unit, pydantic_problems, suggest
 from .params import canonical_json
 from .scenarios import SCENARIOS, load_with_scenario, scenario_parameters
@@ -160,10 +162,14 @@ def _capability_rules(robot, load_case, params, models, solvers) -> list[str]:
 
     out: list[str] = []
     for solver in solvers or [params.get("solver", {})]:
-        f = case_features(robot, load_case, params, solver)
-        for m in models:
+        for m in models:  # each model against its own settings ([solver.by_model.<m>] over [solver])
+            f = case_features(robot, load_case, params, solver_for_model(solver, m))
             info = registry.MODELS.get(m)
             for line in unsupported(m, info.capabilities if info else None, f):
+                key, sep, rest = line.partition(": ")
+                option = key.partition(".")[2]
+                if key.startswith("solver.") and setters(solver, option, [m]):
+                    line = f"solver.{BY_MODEL}.{m}.{option}{sep}{rest}"
                 if line not in out:
                     out.append(line)
     return out
@@ -233,7 +239,8 @@ def _spring_link_warnings(robot, load_case, params: Mapping[str, Any], models: S
     for m in models:
         if m not in ("spring_link", "spring_link_cardan"):
             continue
-        options = build_options({k: v for k, v in params.get("solver", {}).items() if k not in LIMIT_KEYS})
+        solver = solver_for_model(params.get("solver", {}), m)
+        options = build_options({k: v for k, v in solver.items() if k not in LIMIT_KEYS})
         p = CARDAN if m == "spring_link_cardan" else SpringLinkParams(**options.settings("spring_link"))
         line = inextensible_length_warning(robot, load_case, options.tendon_model, p)
         if line:
@@ -362,7 +369,7 @@ def check_cases(study, source: str, budget: float | None = None, *, run_models: 
                                                       if "solver.time_step" in sub]
     min_dt = min((x for x in steps if x), default=None)
     solvers = list({canonical_json(s_): s_ for s_ in (
-        {**study.base["solver"], **{k.partition(".")[2]: v for _, sub in combo for k, v in sub.items()}}
+        _params({"solver": study.base["solver"]}, [sub for _, sub in combo])["solver"]
         for combo in itertools.islice(itertools.product(*sv), 64))}.values())
     found: dict[str, list[tuple[int, dict]]] = {}
     warned: dict[str, list[tuple[int, dict]]] = {}
@@ -396,9 +403,7 @@ def check_cases(study, source: str, budget: float | None = None, *, run_models: 
 def _params(base: dict[str, dict[str, Any]], parts: list[dict[str, Any]]) -> dict[str, dict[str, Any]]:
     params = {sec: dict(d) for sec, d in base.items()}
     for part in parts:
-        for path, value in part.items():
-            section, _, key = path.partition(".")
-            params[section][key] = value
+        apply_swept(params, part)
     return params
 
 
@@ -411,27 +416,53 @@ def known_paths(base: dict[str, dict[str, Any]]) -> list[str]:
             if not (s == "robot" and k == "preset") and not (s == "scenario" and k == "name")]
 
 
-def check_override(path: str, value: Any, base: dict[str, dict[str, Any]],
-                   preset_defaults: Mapping[str, Any]) -> tuple[Any, str | None]:
-    """Validate one swept value at dotted ``path``; returns ``(coerced, problem_or_None)``."""
-    section, _, key = path.partition(".")
-    if section == "robot":
-        return check_robot_value(key, value, preset_defaults[key])
-    if section == "scenario":
-        return check_robot_value(key, value, scenario_parameters(base["scenario"]["name"])[key], "scenario")
-    model = SECTION_MODELS[section]
-    data = dict(base[section])
-    data[key] = value
+#: The validator of the resolved ``[robot]`` table: ``robot dict -> (resolved robot, problems)``
+#: (:func:`workbench.study.spec.parse_study` passes the one it resolves the file's ``[robot]`` with).
+RobotCheck = Callable[[Mapping[str, Any]], "tuple[dict[str, Any] | None, list[str]]"]
+
+
+def check_override(path: str, value: Any, base: dict[str, dict[str, Any]], robot_check: RobotCheck,
+                   models: Sequence[str] = ()) -> tuple[Any, str | None]:
+    """Validate one swept value at key ``path``; returns ``(coerced, problem_or_None)``.
+
+    The value is applied to the base parameters (:func:`workbench.study.keypath.with_value`: a
+    list element or a nested field, ``load.tensions[0]``), then the whole section is checked by
+    its own validator, as the file's section is: ``robot_check`` for ``[robot]``,
+    :func:`check_scenario`, the section's schema (plus :func:`load_rules`, and
+    :func:`~workbench.study.by_model.by_model_problems` against ``models``) for the others.  The
+    problem names no key (the caller prefixes the sweep key).
+    """
+    section = path.partition(".")[0]
     try:
-        validated = model.model_validate(data)
-    except ValidationError as e:
-        probs = [p.split(": ", 1)[1] for p in pydantic_problems(e, (section,), model)]
-        return value, "; ".join(probs)
-    if section == "load":
-        probs = load_rules(validated.model_dump(), "load")
-        if probs:
-            return value, "; ".join(probs)
-    return getattr(validated, key), None
+        data = with_value(base, path, value, create=True)[section]
+    except KeyPathError as e:
+        return value, str(e).partition(": ")[2]
+    if section in ("robot", "scenario"):
+        owner = "preset" if section == "robot" else "name"
+        top = parse_key_path(path)[1]
+        if owner in data:  # a preset's / scenario's parameters: checked as the file's table setting this one
+            data = {owner: data[owner], top: data[top]}
+        resolved, probs = robot_check(data) if section == "robot" else check_scenario(data)
+    else:
+        model = SECTION_MODELS[section]
+        try:
+            resolved = model.model_validate(data).model_dump()
+            probs = []
+        except ValidationError as e:
+            resolved, probs = None, pydantic_problems(e, (section,), model)
+        if resolved is not None and section == "load":
+            probs = load_rules(resolved, "load")
+        if resolved is not None and section == "solver" and resolved.get(BY_MODEL):
+            probs = by_model_problems(resolved[BY_MODEL], models)
+    if probs or resolved is None:
+        return value, "; ".join(p.split(": ", 1)[-1] for p in probs) or "invalid value"
+    return get_value({section: resolved}, path), None
+
+
+def _overlap(a: tuple, b: tuple) -> bool:
+    """One key path contains the other (``load.tensions`` and ``load.tensions[0]``)."""
+    n = min(len(a), len(b))
+    return a[:n] == b[:n]
 
 
 @dataclass
@@ -439,13 +470,14 @@ class _Axes:
     """Bookkeeping of one :func:`check_sweep` call: which block owns each axis, and the problems."""
 
     base: dict[str, dict[str, Any]]
-    preset_defaults: Mapping[str, Any]
+    robot_check: RobotCheck
+    models: Sequence[str] = ()
     known: list[str] = field(default_factory=list)
     owner: dict[str, str] = field(default_factory=dict)
     problems: list[str] = field(default_factory=list)
 
     def path_ok(self, path: str, where: str) -> bool:
-        """``path`` names a sweepable key not swept in another block (else a problem is recorded)."""
+        """``path`` names a sweepable value not swept in another block (else a problem is recorded)."""
         if path == "robot.preset":
             self.problems.append(f'{where}["robot.preset"]: the preset cannot be swept (one study per preset)')
             return False
@@ -455,13 +487,29 @@ class _Axes:
         if path in {f"solver.{k}" for k in LIMIT_KEYS}:
             self.problems.append(f'{where}["{path}"]: a per-case limit of the run, not a parameter: it cannot be swept')
             return False
-        if path not in self.known:
+        head = ".".join(str(p) for p in path.split("[")[0].split(".")[:2])
+        if head not in self.known and head != f"solver.{BY_MODEL}":
             if path.partition(".")[0] not in SWEEP_SECTIONS:
-                self.problems.append(f'{where}["{path}"]: unknown axis; axes are dotted keys into '
+                self.problems.append(f'{where}["{path}"]: unknown axis; axes are key paths into '
                                      f"{', '.join(SWEEP_SECTIONS)}{suggest(path, self.known)}")
             else:
                 self.problems.append(f'{where}["{path}"]: unknown axis{suggest(path, self.known)}')
             return False
+        try:
+            parts = parse_key_path(path)
+            with_value(self.base, parts, None, create=True)
+        except KeyPathError as e:
+            self.problems.append(f'{where}["{path}"]: {str(e).partition(": ")[2]}')
+            return False
+        return self._owned(path, parts, where) and self._applies(path, where)
+
+    def _owned(self, path: str, parts: tuple, where: str) -> bool:
+        """No other axis sets (part of) the same value."""
+        for other, block in self.owner.items():
+            if other != path and _overlap(parts, parse_key_path(other)):
+                self.problems.append(f'{where}["{path}"]: overlaps the axis "{other}" of {block} (a value may be '
+                                     f"swept by one axis only)")
+                return False
         if path in self.owner and self.owner[path] != where:
             self.problems.append(f'{where}["{path}"]: already swept in {self.owner[path]} '
                                  f"(a key may appear in one block only)")
@@ -469,8 +517,21 @@ class _Axes:
         self.owner[path] = where
         return True
 
+    def _applies(self, path: str, where: str) -> bool:
+        """A ``solver.<option>`` axis applies to some model (not every model's ``by_model`` table sets it)."""
+        section, _, option = path.partition(".")
+        if section != "solver" or not self.models:
+            return True
+        shadow = setters(self.base.get("solver", {}), option, self.models)
+        if len(shadow) < len(self.models):
+            return True
+        self.problems.append(f'{where}["{path}"]: every model sets {option} in [solver.by_model] '
+                             f"({', '.join(shadow)}), so this axis changes nothing; sweep "
+                             f'"solver.by_model.<model>.{option}" instead')
+        return False
+
     def value(self, path: str, value: Any) -> tuple[Any, str | None]:
-        return check_override(path, value, self.base, self.preset_defaults)
+        return check_override(path, value, self.base, self.robot_check, self.models)
 
     def values(self, path: str, values: list[Any], where: str) -> list[Any]:
         """Every value of an axis checked; the coerced values."""
@@ -576,10 +637,15 @@ def _check_samples(spec: dict[str, Any], where: str, axes: _Axes) -> dict[str, A
     return {"n": n, **clean}
 
 
-def check_sweep(sw: SweepSection, base: dict[str, dict[str, Any]],
-                preset_defaults: Mapping[str, Any]) -> tuple[dict[str, Any], list[str]]:
-    """The ``[sweep]`` blocks with checked values, and the problems (block by block, in file order)."""
-    axes = _Axes(base, preset_defaults, known=known_paths(base))
+def check_sweep(sw: SweepSection, base: dict[str, dict[str, Any]], robot_check: RobotCheck,
+                models: Sequence[str] = ()) -> tuple[dict[str, Any], list[str]]:
+    """The ``[sweep]`` blocks with checked values, and the problems (block by block, in file order).
+
+    An axis is a key path (:mod:`workbench.study.keypath`) into the base parameters; each value is
+    checked by :func:`check_override` (``robot_check``: the ``[robot]`` validator; ``models``: the
+    study's, for ``solver.by_model`` values and axes every model's table shadows).
+    """
+    axes = _Axes(base, robot_check, models, known=known_paths(base))
     out: dict[str, Any] = {}
     if sw.product:
         out["product"] = _check_grid(sw.product, "sweep.product", axes)

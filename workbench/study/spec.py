@@ -41,6 +41,7 @@ from typing import Any, Mapping, Sequence
 
 from pydantic import BaseModel, ValidationError
 
+from .by_model import by_model_problems
 from .report_keys import check_report
 from .checks import check_cases, check_named_params, check_scenario, check_sweep, known_paths, load_rules
 from .messages import StudyError, collapse_indexed, pydantic_problems, read_toml, suggest
@@ -209,9 +210,8 @@ def _check_models(sections: Mapping[str, BaseModel]) -> list[str]:
     for i, m in enumerate(getattr(sol, "error_estimate_exempt", None) or []):
         if m not in st.models:
             problems.append(f"solver.error_estimate_exempt[{i}]: {m!r} is not one of study.models ({', '.join(st.models)})")
-    for m in getattr(sol, "n_elements_by_model", None) or {}:
-        if m not in st.models:
-            problems.append(f"solver.n_elements_by_model: {m!r} is not one of study.models ({', '.join(st.models)})")
+    if sol is not None and sol.by_model:
+        problems += by_model_problems(sol.by_model, st.models)
     return problems
 
 
@@ -245,6 +245,13 @@ def _resolve_robot(rraw: Any) -> tuple[dict[str, Any] | None, dict[str, Any], li
     return {"preset": preset, **values}, defaults, problems + more
 
 
+def _robot_check(robot: Mapping[str, Any]) -> tuple[dict[str, Any] | None, list[str]]:
+    """The ``[robot]`` validator of a swept value (:func:`~workbench.study.checks.check_sweep`): the
+    resolved table with the value applied, checked by :func:`_resolve_robot` like the file's."""
+    resolved, _, problems = _resolve_robot(dict(robot))
+    return resolved, problems
+
+
 def _load_and_derived_rules(sections: Mapping[str, BaseModel], rraw: Any,
                             preset_defaults: Mapping[str, Any], raw_sweep: Any = None) -> list[str]:
     """The load's cross-field rules; ``derived.gravity_parameter`` (set or swept) against ``robot.gravity``."""
@@ -274,9 +281,9 @@ def _resolve_base(sections: Mapping[str, BaseModel], robot_base: dict[str, Any] 
     base = {
         "robot": robot_base,
         "load": sections["load"].model_dump(),
-        # n_elements_by_model and spring_link_axial only when set (keeps the case ids of the studies without them)
+        # by_model and spring_link_axial only when set (keeps the case ids of the studies without them)
         "solver": sections["solver"].model_dump(exclude=set(LIMIT_KEYS) | (
-            set() if sections["solver"].n_elements_by_model else {"n_elements_by_model"}) | (
+            set() if sections["solver"].by_model else {"by_model"}) | (
             set() if sections["solver"].spring_link_axial is not None else {"spring_link_axial"})),
         "derived": sections["derived"].model_dump(),
     }
@@ -329,7 +336,8 @@ def _with_defaults(base: dict[str, dict[str, Any]], unset: set[str],
     """``base`` with every key that had a problem back at its default (the case checks' view of the file)."""
     out = {sec: dict(d) for sec, d in base.items()}
     for key in unset:
-        section, _, name = key.partition(".")
+        section, _, path = key.partition(".")
+        name = path.split(".")[0].split("[")[0]  # a problem inside a value (robot.diameter[1]): the whole value
         if name not in out.get(section, {}):
             continue
         if section == "robot":
@@ -368,7 +376,8 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
     sweep: dict[str, Any] = {}
     sweep_problems: list[str] = []
     if "sweep" in usable and base is not None:
-        sweep, sweep_problems = check_sweep(usable["sweep"], base, preset_defaults)
+        models = tuple(usable["study"].models) if "study" in usable else ()
+        sweep, sweep_problems = check_sweep(usable["sweep"], base, _robot_check, models)
         if raw.get("scenario") is not None and scenario_base is None:  # knock-on errors of a bad [scenario]
             sweep_problems = [p for p in sweep_problems if '["scenario.' not in p.partition(": ")[0]]
         later += sweep_problems
