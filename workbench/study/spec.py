@@ -143,13 +143,20 @@ def load_study(path: str | Path, *, max_cases: int | None = None, overrides: Seq
         Overrides ``study.max_cases`` (the CLI's ``--max-cases``).
     overrides : sequence of str
         ``key=value`` settings from the command line (:mod:`workbench.study.overrides`), applied
-        before validation and recorded in :attr:`Study.overrides`.
+        before validation and recorded in :attr:`Study.overrides`; one that would change no case
+        (a sweep axis or every model's ``by_model`` table sets the key) is a problem
+        (:func:`~workbench.study.overrides.unapplied_overrides`).
     """
-    from .overrides import apply_overrides
+    from .overrides import apply_overrides, unapplied_overrides
 
     raw = apply_overrides(read_toml(path), overrides)
     study = parse_study(raw, source=str(Path(path)), max_cases=max_cases)
-    return replace(study, overrides=tuple(overrides)) if overrides else study
+    if not overrides:
+        return study
+    idle = unapplied_overrides(overrides, study.sweep, study.base["solver"], study.models)
+    if idle:
+        raise StudyError([f"{study.path}: {p}" for p in idle])
+    return replace(study, overrides=tuple(overrides))
 
 
 def _parse_sections(raw: Mapping[str, Any]) -> tuple[dict[str, BaseModel], list[str], dict[str, BaseModel]]:
@@ -386,7 +393,7 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
     report = usable["report"].model_dump(exclude_defaults=True) if "report" in usable else None
     scenario_ok = raw.get("scenario") is None or scenario_base is not None  # else its keys are unknown: knock-ons
     if base is not None and report is not None and scenario_ok:
-        later += check_report(report, known_paths(base))
+        later += check_report(report, known_paths(base) + sweep_keys(sweep))  # element axes: p.load.tensions[0]
     problems += [p for p in later if not knock_on(p, unset)]
     unset = problem_keys(problems)
     whole = unset & {"robot", "load", "solver", "derived", "scenario"}  # a table as a whole is wrong
