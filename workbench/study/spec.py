@@ -43,7 +43,8 @@ from pydantic import BaseModel, ValidationError
 
 from .by_model import by_model_problems
 from .report_keys import check_report
-from .checks import check_cases, check_named_params, check_scenario, check_sweep, known_paths, load_rules
+from .sweep_checks import check_sweep, known_paths
+from .checks import check_cases, check_named_params, check_scenario, load_rules
 from .messages import StudyError, collapse_indexed, pydantic_problems, read_toml, suggest
 from .expand import sweep_keys
 from .outcomes import CaseLimits
@@ -253,7 +254,7 @@ def _resolve_robot(rraw: Any) -> tuple[dict[str, Any] | None, dict[str, Any], li
 
 
 def _robot_check(robot: Mapping[str, Any]) -> tuple[dict[str, Any] | None, list[str]]:
-    """The ``[robot]`` validator of a swept value (:func:`~workbench.study.checks.check_sweep`): the
+    """The ``[robot]`` validator of a swept value (:func:`~workbench.study.sweep_checks.check_sweep`): the
     resolved table with the value applied, checked by :func:`_resolve_robot` like the file's."""
     resolved, _, problems = _resolve_robot(dict(robot))
     return resolved, problems
@@ -373,6 +374,9 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
     sections, problems, repaired = _parse_sections(raw)
     usable = {**repaired, **sections}  # the valid sections and the valid part of the others
     problems += _check_models(usable)
+    if not run_models and "solver" in usable and usable["solver"].by_model:
+        problems.append("solver.by_model: this study kind computes its rows with its own tasks, not with the models' "
+                        "run(); per-model settings would not apply (set the options in [solver])")
     robot_base, preset_defaults, robot_problems = _resolve_robot(raw.get("robot"))
     problems += robot_problems
     unset = problem_keys(problems)
