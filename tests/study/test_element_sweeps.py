@@ -78,7 +78,7 @@ def test_the_swept_element_is_a_number_in_table_report_and_xarray(tmp_path, writ
     from workbench.results import load, to_xarray
 
     study = load_study(write_study(_sweep('product = { "load.tensions[0]" = [1.0, 2.0, 4.0] }')
-                                   + '\n[report]\naxes = ["load.tensions[0]"]\n'))
+                                   + '\n[report]\naxes = ["load.tensions[0]"]\nsensitivity = ["load.tensions[0]"]\n'))
     run_cases(fakes.sweep_kind(), study, tmp_path / "out", SerialExecutor(), RunConfig(progress=False))
     df = load(tmp_path / "out")
     col = "p.load.tensions[0]"
@@ -90,6 +90,9 @@ def test_the_swept_element_is_a_number_in_table_report_and_xarray(tmp_path, writ
     assert ds[col].dtype == np.float64 and ds[col].values.tolist() == [1.0, 2.0, 4.0] and ds.attrs["layout"] == "grid"
     rs = load_results(tmp_path / "out")
     assert rs.axes == (col,) and col not in rs.categories
+    from workbench.report.headline import baseline_value, sensitivity_keys
+
+    assert sensitivity_keys(rs) == [col] and baseline_value(rs, col) == 1.0  # the file's tensions = [1.0, 0.0]
 
 
 def test_a_whole_vector_axis_is_labelled_by_its_numbers(tmp_path, write_study):

@@ -7,10 +7,12 @@ The format reference (an annotated example of every section, the sweep semantics
     [robot]     preset = "<name>" + overrides of that preset's parameters (typed by its defaults)
     [load]      mode, bend_angle | tensions | length_changes, bend_plane, pretension, tip loads,
                 analysis, duration, ramp_time, start_delays, ramp_durations
-    [solver]    the fields of workbench.models.SolverOptions
+    [solver]    the fields of workbench.models.SolverOptions; [solver.by_model.<model>] per-model
+                settings (:mod:`workbench.study.by_model`)
     [scenario]  optional: name of a registered scenario + its keyword parameters
     [derived]   optional: gravity_parameter (gamma = q L^3 / EI sets the preset's gravity)
-    [sweep]     product / zip / cases / random / latin_hypercube / sobol blocks of dotted-key axes
+    [sweep]     product / zip / cases / random / latin_hypercube / sobol blocks of key-path axes
+                (``load.tensions[0]``: :mod:`workbench.study.keypath`)
     [report]    optional presentation hints (not in the config hash)
 
 All quantities are SI.  :func:`load_study` collects *all* problems and raises one
@@ -42,6 +44,7 @@ from typing import Any, Mapping, Sequence
 from pydantic import BaseModel, ValidationError
 
 from .by_model import by_model_problems
+from .keypath import KeyPathError, get_value
 from .report_keys import check_report
 from .sweep_checks import check_sweep, known_paths
 from .checks import check_cases, check_named_params, check_scenario, load_rules
@@ -307,10 +310,13 @@ def _sensitivity_rules(rep: Any, base: dict[str, Any] | None, sweep: Mapping[str
     swept = set(sweep_keys(sweep))
     problems = []
     for i, key in enumerate(rep.sensitivity):
-        section, _, name = str(key).partition(".")
+        section = str(key).partition(".")[0]
         if key not in swept:
             problems.append(f"report.sensitivity[{i}]: {key!r} is not a [sweep] key")
-        elif name not in (base.get(section) or {}):
+            continue
+        try:  # a key path: the element of the base value (load.tensions[0])
+            get_value(base, str(key))
+        except KeyPathError:
             problems.append(f"report.sensitivity[{i}]: {key!r} needs its baseline value in [{section}]")
     return problems
 
