@@ -97,6 +97,21 @@ def test_each_model_is_validated_against_its_own_settings(tmp_path):
     assert any("solver.by_model.cosserat.tendon_model (every case" in p and "model 'cosserat'" in p for p in lines), lines
 
 
+def test_all_problems_in_one_pass_without_knock_ons(tmp_path):
+    """A bad table, a bad [solver] key and a bad sweep value: each one line; beam3d, whose table is bad, is not
+    also reported for running continuum tendons (it would, with its table unset)."""
+    bad = MIXED.replace('tendon_model = "eyelets"', 'tendon_model = "rope"\nn_elemnts = 3').replace(
+        "n_elements = 16", "n_elements = 16\nn_stationz = 3").replace("[1.0, 3.0]", "[1.0, -3.0]")
+    path = _write(tmp_path, bad)
+    with pytest.raises(StudyError) as e:
+        load_study(path)
+    assert e.value.problems == [f"{path}: {p}" for p in (
+        "solver.n_stationz: unknown key; did you mean 'n_stations'?",
+        "solver.by_model.beam3d.n_elemnts: unknown option; did you mean 'n_elements'?",
+        "solver.by_model.beam3d.tendon_model: must be 'continuum' or 'eyelets', got 'rope'",
+        'sweep.product["load.tensions[0]"][1]: must be >= 0 [N], got -3')]
+
+
 def test_a_sweep_axis_or_override_that_every_table_shadows_is_refused(tmp_path):
     tables = "".join(f"[solver.by_model.{m}]\nn_elements = 8\n" for m in MODELS)
     every = MIXED.replace('[solver.by_model.beam3d]\ntendon_model = "eyelets"\n',
