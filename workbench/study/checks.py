@@ -386,10 +386,13 @@ def check_cases(study, source: str, budget: float | None = None, *, run_models: 
             warned.setdefault(w, []).append((index, swept))
         check.built += 1
     for combo in itertools.product(*sv):
-        try:
-            build_options(_params(study.base, [sub for _, sub in combo])["solver"])
-        except (TypeError, ValueError) as e:
-            found.setdefault(f"solver: {e}", []).append((0, {k: v for _, sub in combo for k, v in sub.items()}))
+        solver = _params(study.base, [sub for _, sub in combo])["solver"]
+        for m in (None, *(solver.get(BY_MODEL) or {})):  # [solver], then each model's own settings
+            try:
+                build_options(solver if m is None else solver_for_model(solver, m))
+            except (TypeError, ValueError) as e:
+                key = "solver" if m is None else f"solver.{BY_MODEL}.{m}"
+                found.setdefault(f"{key}: {e}", []).append((0, {k: v for _, sub in combo for k, v in sub.items()}))
     unit = "cases" if check.distinct == n else "robot/load combinations"
     check.problems = _group(found, check.distinct, unit)
     check.warnings = _group(warned, check.distinct, unit)
