@@ -152,3 +152,12 @@ def test_cc_cosserat_beam3d_spring_link_in_one_table(tmp_path):
     assert sorted(set(vs["model"])) == ["beam3d", "cc", "spring_link"] and len(vs) == 6
     # a 0.5 m steel rod bent by 1-3 N: every model within 1e-3 % of L of the Cosserat rod's tip
     assert (vs["tip_error_pct"] < 1e-3).all(), vs[["model", "tip_error_pct"]]
+
+
+def test_a_per_model_time_step_counts_for_the_step_bound(tmp_path):
+    dyn = MIXED.replace('tensions = [2.0, 0.0, 0.0]', 'tensions = [2.0, 0.0, 0.0]\nanalysis = "dynamic"\nduration = 10.0')
+    dyn = dyn.replace('models = ["cc", "cosserat", "beam3d", "spring_link"]', 'models = ["cc", "beam3d"]').replace(
+        'reference = "cosserat"', 'reference = "cc"')
+    load_study(_write(tmp_path, dyn))  # 10 s at the default 2 ms: 5000 steps
+    with pytest.raises(StudyError, match=r"load.duration / time_step = 1e\+08 steps exceeds 1e\+07"):
+        load_study(_write(tmp_path, dyn.replace('tendon_model = "eyelets"', 'tendon_model = "eyelets"\ntime_step = 1e-7')))

@@ -365,10 +365,11 @@ def check_cases(study, source: str, budget: float | None = None, *, run_models: 
     check = CaseCheck(distinct=math.prod(len(b) for b in rl) if rl else 1)
     steps = [study.base["solver"].get("time_step")] + [sub["solver.time_step"] for b in sv for _, sub in b
                                                       if "solver.time_step" in sub]
-    min_dt = min((x for x in steps if x), default=None)
     solvers = list({canonical_json(s_): s_ for s_ in (
         _params({"solver": study.base["solver"]}, [sub for _, sub in combo])["solver"]
         for combo in itertools.islice(itertools.product(*sv), 64))}.values())
+    steps += [t.get("time_step") for s_ in solvers for t in (s_.get(BY_MODEL) or {}).values()]  # per-model steps
+    min_dt = min((x for x in steps if x), default=None)
     found: dict[str, list[tuple[int, dict]]] = {}
     warned: dict[str, list[tuple[int, dict]]] = {}
     t_end = time.monotonic() + (CHECK_SECONDS if budget is None else budget)
