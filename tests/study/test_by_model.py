@@ -94,7 +94,8 @@ def test_each_model_is_validated_against_its_own_settings(tmp_path):
     with pytest.raises(StudyError) as e:
         load_study(_write(tmp_path, wrong))
     lines = e.value.problems
-    assert any("solver.by_model.cosserat.tendon_model (every case" in p and "model 'cosserat'" in p for p in lines), lines
+    assert any("solver.by_model.cosserat.tendon_model (every case" in p and "model 'cosserat'" in p
+               for p in lines), lines
 
 
 def test_all_problems_in_one_pass_without_knock_ons(tmp_path):
@@ -155,9 +156,11 @@ def test_cc_cosserat_beam3d_spring_link_in_one_table(tmp_path):
 
 
 def test_a_per_model_time_step_counts_for_the_step_bound(tmp_path):
-    dyn = MIXED.replace('tensions = [2.0, 0.0, 0.0]', 'tensions = [2.0, 0.0, 0.0]\nanalysis = "dynamic"\nduration = 10.0')
+    dyn = MIXED.replace('tensions = [2.0, 0.0, 0.0]',
+                        'tensions = [2.0, 0.0, 0.0]\nanalysis = "dynamic"\nduration = 10.0')
     dyn = dyn.replace('models = ["cc", "cosserat", "beam3d", "spring_link"]', 'models = ["cc", "beam3d"]').replace(
         'reference = "cosserat"', 'reference = "cc"')
     load_study(_write(tmp_path, dyn))  # 10 s at the default 2 ms: 5000 steps
     with pytest.raises(StudyError, match=r"load.duration / time_step = 1e\+08 steps exceeds 1e\+07"):
-        load_study(_write(tmp_path, dyn.replace('tendon_model = "eyelets"', 'tendon_model = "eyelets"\ntime_step = 1e-7')))
+        load_study(_write(tmp_path, dyn.replace('tendon_model = "eyelets"',
+                                                'tendon_model = "eyelets"\ntime_step = 1e-7')))

@@ -163,7 +163,7 @@ def build_load(robot, load: Mapping[str, Any]):
     )
 
 
-#: ``[solver]`` keys the study pipeline reads (:class:`PipelineOptions`, :mod:`workbench.study.by_model`), not the models
+#: ``[solver]`` keys the study pipeline reads, not the models (:class:`PipelineOptions`, :mod:`.by_model`)
 PIPELINE_KEYS = ("error_estimate", "error_estimate_exempt", "by_model")
 
 

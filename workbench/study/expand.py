@@ -21,7 +21,8 @@ from .keypath import with_value
 from .params import canonical_json, case_id_for, case_id_from_sections, flatten_params
 from .schema import SAMPLED_BLOCKS
 
-__all__ = ["Case", "apply_swept", "expand", "count_cases", "case_id_for", "flatten_params", "sweep_blocks", "sweep_keys"]
+__all__ = ["Case", "apply_swept", "expand", "count_cases", "case_id_for", "flatten_params", "sweep_blocks",
+           "sweep_keys"]
 
 
 class SweepSpec(Protocol):
