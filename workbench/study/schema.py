@@ -97,7 +97,7 @@ class SolverSection(CaseLimitFields):
     error_estimate_exempt: list[str] = Field(default_factory=list)
     # [solver.by_model.<model>] tables of per-model options (workbench.study.by_model checks them;
     # a case key only when set: keeps the case ids of the studies without it)
-    by_model: dict[str, dict[str, Any]] = Field(default_factory=dict)
+    by_model: dict[str, Any] = Field(default_factory=dict)
 
 
 class DerivedSection(BaseModel):
