@@ -167,7 +167,9 @@ def to_xarray(table, axes: list[str] | None = None):
         Dimensions ``(*axes, "model")`` when the cases form the full grid of the axes' values
         (``product`` sweeps), else ``("case_id", "model")`` with the axes as coordinates along
         ``case_id`` (``zip``, ``cases``, sampled sweeps).  List-valued axes (``p.load.tensions``)
-        are labelled by their JSON (``"[1.0,0.0]"``).  Scalar columns are variables over those
+        are labelled by their JSON (``"[1.0,0.0]"``); a swept element (``p.load.tensions[0]``) is a
+        float column of the table (:func:`workbench.study.folder.add_element_columns`): a float
+        coordinate.  Scalar columns are variables over those
         dimensions (NaN / missing where a (case, model) has no row); array columns of one shape
         in every row get their own trailing dimensions (``positions``: ``station``, ``xyz``;
         series: ``t``, ...), others stay object variables of arrays.  ``units`` and ``frame`` of

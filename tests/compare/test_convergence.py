@@ -110,7 +110,7 @@ def test_an_exempt_side_is_flagged_and_reports_say_exempt_not_plus_minus_zero():
 
 
 def test_a_headline_case_is_titled_by_its_own_models_row():
-    # spring_link ran 128 links where the case's other rows say 64 elements (n_elements_by_model):
+    # spring_link ran 128 links where the case's other rows say 64 elements (solver.by_model):
     # the title of a spring_link finding must show the 128
     import pandas as pd
 

@@ -97,28 +97,29 @@ def test_bend_angle_goes_through_arc_actuation(write_study, monkeypatch):
     assert r["x.kappa"] == pytest.approx(1.2 / 0.8, rel=1e-12)
 
 
-def test_n_elements_by_model(write_study):
-    """``[solver] n_elements_by_model``: each model runs (and records) its own resolution; without the
+def test_by_model_runs_each_model_with_its_own_settings(write_study):
+    """``[solver.by_model.<model>]``: each model runs (and records) its own settings; without the
     key the case parameters (and so the case ids) do not mention it."""
     from study_fakes import GOOD
 
     from workbench.study import StudyError
 
-    assert "n_elements_by_model" not in _case(write_study)[0].params["solver"]
-    base = GOOD.replace("n_elements = 8\n", "n_elements = 8\nn_elements_by_model = { ancf = 32 }\n")
+    assert "by_model" not in _case(write_study)[0].params["solver"]
+    base = GOOD.replace("n_elements = 8\n", "n_elements = 8\nby_model.ancf = { n_elements = 32, n_stations = 17 }\n")
     case = _case(write_study, base=base)[0]
     seen = {}
 
     def lookup(name):
         def run(robot, load, options):
-            seen.setdefault(name, []).append(options.n_elements)
+            seen.setdefault(name, []).append((options.n_elements, options.n_stations))
             return fakes.arc(robot, load, options)
         return run
 
     rows = evaluate_case(case.case_id, case.params, ("cc", "ancf"), lookup)
     assert [r["p.solver.n_elements"] for r in rows] == [8, 32]
-    assert seen["cc"] == [8] and seen["ancf"][:3] == [32, 16, 8]  # the estimate coarsens the model's own mesh
-    with pytest.raises(StudyError, match="n_elements_by_model: 'beam3d' is not one of study.models"):
-        load_study(write_study(base=base.replace("ancf = 32", "beam3d = 32")))
-    with pytest.raises(StudyError, match="must be in"):
-        load_study(write_study(base=base.replace("ancf = 32", "ancf = 0")))
+    assert [r["p.solver.n_stations"] for r in rows] == [9, 17]
+    assert seen["cc"] == [(8, 9)] and [n for n, _ in seen["ancf"][:3]] == [32, 16, 8]  # the estimate coarsens it
+    with pytest.raises(StudyError, match=r"solver\.by_model\.beam3d: 'beam3d' is not one of study.models"):
+        load_study(write_study(base=base.replace("by_model.ancf", "by_model.beam3d")))
+    with pytest.raises(StudyError, match=r"solver\.by_model\.ancf\.n_elements: must be >= 1"):
+        load_study(write_study(base=base.replace("n_elements = 32", "n_elements = 0")))

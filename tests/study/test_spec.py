@@ -152,16 +152,17 @@ def test_solver_section_mirrors_solver_and_pipeline_options():
     fields.update({f.name: f.default for f in dataclasses.fields(PipelineOptions)})
     fields["spring_link_backend"] = "auto"  # SpringLinkParams.backend's default
     fields["spring_link_axial"] = None  # SpringLinkParams.axial's default (the model's own rule)
+    fields["by_model"] = {}  # the per-model tables (workbench.study.by_model)
     section = SolverSection()
     assert set(SolverSection.model_fields) == set(fields) | set(LIMIT_KEYS)
-    # tuples are lists in the section; n_elements_by_model's (name, n) pairs are a table there
+    # tuples are lists in the section
     assert section.model_dump(exclude=set(LIMIT_KEYS)) == {
-        k: (dict(v) if k == "n_elements_by_model" else list(v)) if isinstance(v, tuple) else v
-        for k, v in fields.items()}
+        k: list(v) if isinstance(v, tuple) else v for k, v in fields.items()}
     options = build_options(section.model_dump(exclude=set(LIMIT_KEYS)))
     assert options.settings("spring_link") == {"backend": "auto"} and options.settings("cc") == {}
     assert build_options({"spring_link_axial": False}).settings("spring_link") == {"axial": False}
-    assert build_pipeline_options({"n_elements_by_model": {"ancf": 32}}).for_model("ancf", options).n_elements == 32
+    assert build_options({"by_model": {"ancf": {"n_elements": 32}}}).n_elements == 16  # the pipeline's key
+    assert build_pipeline_options({"by_model": {"ancf": {"error_estimate": "none"}}}).error_estimate == "richardson"
 
 
 def test_good_study_and_defaults(write_study):

@@ -65,8 +65,9 @@ class SolverOptions:
         ``{"spring_link": {"backend": "tree"}}`` (the study key ``[solver] spring_link_backend``,
         :func:`workbench.study.build.build_options`).
 
-    The study pipeline's own ``[solver]`` keys (``error_estimate``, ``error_estimate_exempt``,
-    ``n_elements_by_model``) are not here: :class:`workbench.study.build.PipelineOptions`.
+    The study pipeline's own ``[solver]`` keys (``error_estimate``, ``error_estimate_exempt``) are not
+    here (:class:`workbench.study.build.PipelineOptions`), nor ``by_model``: a model's options are built
+    with its ``[solver.by_model.<model>]`` table applied (:mod:`workbench.study.by_model`).
     """
 
     n_elements: int = 16

@@ -63,7 +63,7 @@ def _tolerance_note(h: Headline) -> str:
 
 def _case_text(study: ResultSet, case_id: str, model: str | None = None) -> str:
     """The case's title from ``model``'s row where it has one (its ``p.solver.n_elements`` is the
-    resolution that model ran at, ``[solver] n_elements_by_model``), else from the case's first row."""
+    resolution that model ran at, ``[solver.by_model.<model>]``), else from the case's first row."""
     rows = study.ok[study.ok["case_id"] == case_id]
     if model is not None and "model" in rows and (rows["model"] == model).any():
         rows = rows[rows["model"] == model]

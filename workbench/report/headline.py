@@ -81,15 +81,19 @@ def baseline_value(study: ResultSet, column: str) -> Any:
     """The baseline of a sensitivity column: its value in the resolved spec's base section.
 
     Sweep studies record ``{section: {key: value}}``; series-parallel studies their geometry
-    under ``"geometry"``.  ``None`` when the spec does not hold it.
+    under ``"geometry"``.  The column names a key path (``p.load.tensions[0]``: the element of the
+    base value, :mod:`workbench.study.keypath`).  ``None`` when the spec does not hold it.
     """
-    _, section, key = column.split(".", 2)
-    sec = study.spec.get(section)
-    if isinstance(sec, Mapping) and key in sec:
-        return sec[key]
-    base = study.spec.get("base")
-    if isinstance(base, Mapping) and isinstance(base.get(section), Mapping):
-        return base[section].get(key)
+    from ..study.keypath import KeyPathError, get_value
+
+    path = column[2:]
+    section = path.split(".", 1)[0]
+    for root in (study.spec, study.spec.get("base")):
+        if isinstance(root, Mapping) and isinstance(root.get(section), Mapping):
+            try:
+                return get_value(root, path)
+            except KeyPathError:
+                continue
     return None
 
 

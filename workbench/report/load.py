@@ -39,7 +39,7 @@ from ..study.expand import sweep_keys
 from ..study.folder import read_folder
 from ..study.store import current_name
 
-__all__ = ["DIMENSIONLESS_AXES", "ResultSet", "canonical_order", "load_results", "numeric"]
+__all__ = ["DIMENSIONLESS_AXES", "ResultSet", "canonical_order", "category_label", "load_results", "numeric"]
 
 #: swept parameter column -> dimensionless column plotted instead (when it exists).
 DIMENSIONLESS_AXES = {
@@ -200,7 +200,7 @@ def load_results(data_dir: str | Path) -> ResultSet:
     frame = str(rep.get("frame") or "world")
     if frame not in ("world", "base"):
         raise ValueError(f"{path}: [report] frame must be 'world' or 'base', got {frame!r}")
-    categories = {a: tuple(sorted(ok[a].dropna().astype(str).unique())) for a in axes
+    categories = {a: _category_order(ok[a].dropna().map(category_label).unique()) for a in axes
                   if _varies_categorical(df, ok, a)}
     return ResultSet(
         name=name,
@@ -216,6 +216,45 @@ def load_results(data_dir: str | Path) -> ResultSet:
         expected_cases=_expected_cases(manifest),
         frame=frame,
     )
+
+
+def _vector(text: str) -> tuple[float, ...] | None:
+    """A readable label ``(1, 0.5)`` back to its numbers, else ``None``."""
+    if not (text.startswith("(") and text.endswith(")")):
+        return None
+    try:
+        return tuple(float(x) for x in text[1:-1].split(", "))
+    except ValueError:
+        return None
+
+
+def category_label(value: Any) -> str:
+    """The label of a categorical axis value: a swept vector (stored as JSON ``[1.0,0.5]``) as ``(1, 0.5)``.
+
+    Whole-vector sweeps (``load.tensions = [[1.0, 0.0], [2.0, 0.0]]``) are categorical axes; their
+    labels are the numbers in ``%g``, not the stored JSON.  Any other value is its text.
+    """
+    import json
+
+    text = str(value)
+    if text[:1] != "[":
+        return text
+    try:
+        v = json.loads(text)
+    except ValueError:
+        return text
+    if isinstance(v, list) and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v):
+        return "(" + ", ".join(f"{float(x):g}" for x in v) + ")"
+    return text
+
+
+def _category_order(labels) -> tuple[str, ...]:
+    """Categories in plot order: vectors by their numbers (``(2, 0)`` before ``(10, 0)``), else alphabetical."""
+    labels = [str(x) for x in labels]
+    vectors = [_vector(x) for x in labels]
+    if labels and all(v is not None for v in vectors):
+        return tuple(x for _, x in sorted(zip(vectors, labels)))
+    return tuple(sorted(labels))
 
 
 def _model_order(df: pd.DataFrame, spec: Mapping[str, Any]) -> tuple[str, ...]:

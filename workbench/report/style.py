@@ -18,7 +18,7 @@ from matplotlib.figure import Figure
 
 from ..compare.table import DERIVED_LABELS
 from ..registry import row_info
-from .load import ResultSet
+from .load import ResultSet, category_label
 from .units import label_of, shown_unit, unit_depends_on
 
 __all__ = [
@@ -221,8 +221,9 @@ def axis_value(study: ResultSet, col: str, v: float) -> str:
 def category_ticks(ax, study: ResultSet, col: str, which: str) -> None:
     """Label a categorical axis (values coded 0..n-1 by :func:`code_categories`)."""
     cats = study.categories.get(col)
-    if cats:
-        getattr(ax, f"set_{which}ticks")(range(len(cats)), cats)
+    if cats:  # long labels (swept vectors) slanted, so neighbours do not overlap
+        slant = {"rotation": 30, "ha": "right"} if which == "x" and max(map(len, cats)) > 8 else {}
+        getattr(ax, f"set_{which}ticks")(range(len(cats)), cats, **slant)
 
 
 def code_categories(study: ResultSet, table: pd.DataFrame) -> pd.DataFrame:
@@ -230,7 +231,7 @@ def code_categories(study: ResultSet, table: pd.DataFrame) -> pd.DataFrame:
     out = table.copy()
     for col, cats in study.categories.items():
         if col in out:
-            out[col] = out[col].astype(str).map({c: i for i, c in enumerate(cats)}).astype(float)
+            out[col] = out[col].map(category_label).map({c: i for i, c in enumerate(cats)}).astype(float)
     return out
 
 

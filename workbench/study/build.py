@@ -163,16 +163,18 @@ def build_load(robot, load: Mapping[str, Any]):
     )
 
 
-#: ``[solver]`` keys the study pipeline reads (:class:`PipelineOptions`), not the models
-PIPELINE_KEYS = ("error_estimate", "error_estimate_exempt", "n_elements_by_model")
+#: ``[solver]`` keys the study pipeline reads, not the models (:class:`PipelineOptions`, :mod:`.by_model`)
+PIPELINE_KEYS = ("error_estimate", "error_estimate_exempt", "by_model")
 
 
 def build_options(solver: Mapping[str, Any]):
     """:class:`~workbench.models.SolverOptions` from the ``[solver]`` parameters of one case.
 
-    The pipeline's keys (:data:`PIPELINE_KEYS`) are left out (:func:`build_pipeline_options`);
-    ``spring_link_backend`` and ``spring_link_axial`` (when not ``None``) become the spring-link
-    model's own settings ``backend`` and ``axial`` (``SolverOptions.model_settings``, read by
+    The pipeline's keys (:data:`PIPELINE_KEYS`) are left out (:func:`build_pipeline_options`; a
+    model's own ``by_model`` table is applied before, by
+    :func:`workbench.study.by_model.solver_for_model`); ``spring_link_backend`` and
+    ``spring_link_axial`` (when not ``None``) become the spring-link model's own settings
+    ``backend`` and ``axial`` (``SolverOptions.model_settings``, read by
     ``workbench.physics.spring_link.run``).
     """
     from ..models.result import SolverOptions
@@ -198,35 +200,19 @@ class PipelineOptions:
         Models whose discretisation *is* the hardware (e.g. a spring-link chain with one link per
         physical joint), so that coarsening them would change the robot, not the mesh; they get
         no estimate.
-    n_elements_by_model : tuple of (str, int)
-        ``n_elements`` of the named models where it differs from ``[solver] n_elements``
-        (``n_elements_by_model = { spring_link = 256 }``; a mapping is accepted); :meth:`for_model`
-        applies it.  Lets one case give an order-2 chain more links than an order-4 beam needs elements.
 
-    Checked by ``tests/study/test_evaluate.py`` and ``tests/study/test_estimate.py``.
+    Checked by ``tests/study/test_estimate.py``.
     """
 
     error_estimate: str = "richardson"
     error_estimate_exempt: tuple[str, ...] = ()
-    n_elements_by_model: tuple[tuple[str, int], ...] = ()
 
     def __post_init__(self) -> None:
         if self.error_estimate not in ("richardson", "none"):
             raise ValueError(f"error_estimate must be 'richardson' or 'none', got {self.error_estimate!r}")
         object.__setattr__(self, "error_estimate_exempt", tuple(str(m) for m in self.error_estimate_exempt))
-        by = self.n_elements_by_model
-        pairs = tuple(sorted((str(k), v) for k, v in (by.items() if isinstance(by, Mapping) else by)))
-        for k, v in pairs:
-            if isinstance(v, bool) or int(v) != v or v < 1:
-                raise ValueError(f"n_elements_by_model[{k!r}] must be an integer >= 1, got {v!r}")
-        object.__setattr__(self, "n_elements_by_model", tuple((k, int(v)) for k, v in pairs))
-
-    def for_model(self, name: str, options):
-        """``options`` (a SolverOptions) with ``n_elements`` of model ``name`` (``n_elements_by_model``, else unchanged)."""
-        n = dict(self.n_elements_by_model).get(str(name))
-        return options if n is None or n == options.n_elements else replace(options, n_elements=n)
 
 
 def build_pipeline_options(solver: Mapping[str, Any]) -> PipelineOptions:
     """:class:`PipelineOptions` from the ``[solver]`` parameters of one case."""
-    return PipelineOptions(**{k: solver[k] for k in PIPELINE_KEYS if k in solver})
+    return PipelineOptions(**{k: solver[k] for k in ("error_estimate", "error_estimate_exempt") if k in solver})

@@ -1,9 +1,9 @@
-"""Checks of a sweep study beyond its schema: scenario, load rules, sweep axes, every case.
+"""Checks of a sweep study beyond its schema: scenario, load rules, every case.
 
 :func:`workbench.study.spec.parse_study` validates the sections (:mod:`workbench.study.schema`),
 then calls these: :func:`check_scenario` (``[scenario]`` typed by the function's defaults),
-:func:`load_rules` (cross-field load checks), :func:`check_sweep` (every axis of every block,
-value by value, :func:`check_override`) and, once the study is complete, :func:`check_cases`
+:func:`load_rules` (cross-field load checks), the sweep axes' checks
+(:mod:`workbench.study.sweep_checks`) and, once the study is complete, :func:`check_cases`
 (the size limit, duplicate cases, and a dry build of each case's robot and load, so infeasible
 commands are input errors before anything runs).  Every problem is one line
 ``<key path>: <reason>`` (:mod:`workbench.study.messages`).
@@ -23,17 +23,17 @@ from dataclasses import dataclass, field
 from typing import Any, Mapping, Sequence
 
 import numpy as np
-from pydantic import ValidationError
 
 from .build import build_load, build_options, build_robot
-from .expand import count_cases, sweep_blocks
-from .messages import StudyError, check_robot_value, join_key, num, param_unit, pydantic_problems, suggest
+from .by_model import BY_MODEL, setters, solver_for_model
+from .expand import apply_swept, count_cases, sweep_blocks
+from .messages import StudyError, check_robot_value, join_key, num, param_unit, suggest
 from .params import canonical_json
 from .scenarios import SCENARIOS, load_with_scenario, scenario_parameters
-from .schema import LIMIT_KEYS, SAMPLED_BLOCKS, SECTION_MODELS, SWEEP_SECTIONS, SweepSection
+from .schema import LIMIT_KEYS, SAMPLED_BLOCKS
 
-__all__ = ["CHECK_SECONDS", "CaseCheck", "check_scenario", "load_rules", "case_rules", "check_cases",
-           "check_override", "check_sweep", "known_paths"]
+__all__ = ["CHECK_SECONDS", "CaseCheck", "check_scenario", "check_named_params", "load_rules", "case_rules",
+           "check_cases"]
 
 # Load list fields whose entries must be >= 0.
 _NONNEG_LIST_FIELDS = ("tensions", "start_delays", "ramp_durations")
@@ -160,10 +160,14 @@ def _capability_rules(robot, load_case, params, models, solvers) -> list[str]:
 
     out: list[str] = []
     for solver in solvers or [params.get("solver", {})]:
-        f = case_features(robot, load_case, params, solver)
-        for m in models:
+        for m in models:  # each model against its own settings ([solver.by_model.<m>] over [solver])
+            f = case_features(robot, load_case, params, solver_for_model(solver, m))
             info = registry.table("models").get(m)
             for line in unsupported(m, info.capabilities if info else None, f):
+                key, sep, rest = line.partition(": ")
+                option = key.partition(".")[2]
+                if key.startswith("solver.") and setters(solver, option, [m]):
+                    line = f"solver.{BY_MODEL}.{m}.{option}{sep}{rest}"
                 if line not in out:
                     out.append(line)
     return out
@@ -233,7 +237,8 @@ def _spring_link_warnings(robot, load_case, params: Mapping[str, Any], models: S
     for m in models:
         if m not in ("spring_link", "spring_link_cardan"):
             continue
-        options = build_options({k: v for k, v in params.get("solver", {}).items() if k not in LIMIT_KEYS})
+        solver = solver_for_model(params.get("solver", {}), m)
+        options = build_options({k: v for k, v in solver.items() if k not in LIMIT_KEYS})
         p = CARDAN if m == "spring_link_cardan" else SpringLinkParams(**options.settings("spring_link"))
         line = inextensible_length_warning(robot, load_case, options.tendon_model, p)
         if line:
@@ -360,10 +365,11 @@ def check_cases(study, source: str, budget: float | None = None, *, run_models: 
     check = CaseCheck(distinct=math.prod(len(b) for b in rl) if rl else 1)
     steps = [study.base["solver"].get("time_step")] + [sub["solver.time_step"] for b in sv for _, sub in b
                                                       if "solver.time_step" in sub]
-    min_dt = min((x for x in steps if x), default=None)
     solvers = list({canonical_json(s_): s_ for s_ in (
-        {**study.base["solver"], **{k.partition(".")[2]: v for _, sub in combo for k, v in sub.items()}}
+        _params({"solver": study.base["solver"]}, [sub for _, sub in combo])["solver"]
         for combo in itertools.islice(itertools.product(*sv), 64))}.values())
+    steps += [t.get("time_step") for s_ in solvers for t in (s_.get(BY_MODEL) or {}).values()]  # per-model steps
+    min_dt = min((x for x in steps if x), default=None)
     found: dict[str, list[tuple[int, dict]]] = {}
     warned: dict[str, list[tuple[int, dict]]] = {}
     t_end = time.monotonic() + (CHECK_SECONDS if budget is None else budget)
@@ -381,10 +387,13 @@ def check_cases(study, source: str, budget: float | None = None, *, run_models: 
             warned.setdefault(w, []).append((index, swept))
         check.built += 1
     for combo in itertools.product(*sv):
-        try:
-            build_options(_params(study.base, [sub for _, sub in combo])["solver"])
-        except (TypeError, ValueError) as e:
-            found.setdefault(f"solver: {e}", []).append((0, {k: v for _, sub in combo for k, v in sub.items()}))
+        solver = _params(study.base, [sub for _, sub in combo])["solver"]
+        for m in (None, *(solver.get(BY_MODEL) or {})):  # [solver], then each model's own settings
+            try:
+                build_options(solver if m is None else solver_for_model(solver, m))
+            except (TypeError, ValueError) as e:
+                key = "solver" if m is None else f"solver.{BY_MODEL}.{m}"
+                found.setdefault(f"{key}: {e}", []).append((0, {k: v for _, sub in combo for k, v in sub.items()}))
     unit = "cases" if check.distinct == n else "robot/load combinations"
     check.problems = _group(found, check.distinct, unit)
     check.warnings = _group(warned, check.distinct, unit)
@@ -396,203 +405,5 @@ def check_cases(study, source: str, budget: float | None = None, *, run_models: 
 def _params(base: dict[str, dict[str, Any]], parts: list[dict[str, Any]]) -> dict[str, dict[str, Any]]:
     params = {sec: dict(d) for sec, d in base.items()}
     for part in parts:
-        for path, value in part.items():
-            section, _, key = path.partition(".")
-            params[section][key] = value
+        apply_swept(params, part)
     return params
-
-
-# ---------------------------------------------------------------------------------------
-# sweep axes
-# ---------------------------------------------------------------------------------------
-def known_paths(base: dict[str, dict[str, Any]]) -> list[str]:
-    """The dotted keys a sweep axis may name (everything in ``base`` but the preset and scenario names)."""
-    return [f"{s}.{k}" for s in SWEEP_SECTIONS for k in base.get(s, {})
-            if not (s == "robot" and k == "preset") and not (s == "scenario" and k == "name")]
-
-
-def check_override(path: str, value: Any, base: dict[str, dict[str, Any]],
-                   preset_defaults: Mapping[str, Any]) -> tuple[Any, str | None]:
-    """Validate one swept value at dotted ``path``; returns ``(coerced, problem_or_None)``."""
-    section, _, key = path.partition(".")
-    if section == "robot":
-        return check_robot_value(key, value, preset_defaults[key])
-    if section == "scenario":
-        return check_robot_value(key, value, scenario_parameters(base["scenario"]["name"])[key], "scenario")
-    model = SECTION_MODELS[section]
-    data = dict(base[section])
-    data[key] = value
-    try:
-        validated = model.model_validate(data)
-    except ValidationError as e:
-        probs = [p.split(": ", 1)[1] for p in pydantic_problems(e, (section,), model)]
-        return value, "; ".join(probs)
-    if section == "load":
-        probs = load_rules(validated.model_dump(), "load")
-        if probs:
-            return value, "; ".join(probs)
-    return getattr(validated, key), None
-
-
-@dataclass
-class _Axes:
-    """Bookkeeping of one :func:`check_sweep` call: which block owns each axis, and the problems."""
-
-    base: dict[str, dict[str, Any]]
-    preset_defaults: Mapping[str, Any]
-    known: list[str] = field(default_factory=list)
-    owner: dict[str, str] = field(default_factory=dict)
-    problems: list[str] = field(default_factory=list)
-
-    def path_ok(self, path: str, where: str) -> bool:
-        """``path`` names a sweepable key not swept in another block (else a problem is recorded)."""
-        if path == "robot.preset":
-            self.problems.append(f'{where}["robot.preset"]: the preset cannot be swept (one study per preset)')
-            return False
-        if path == "scenario.name":
-            self.problems.append(f'{where}["scenario.name"]: the scenario cannot be swept (one study per scenario)')
-            return False
-        if path in {f"solver.{k}" for k in LIMIT_KEYS}:
-            self.problems.append(f'{where}["{path}"]: a per-case limit of the run, not a parameter: it cannot be swept')
-            return False
-        if path not in self.known:
-            if path.partition(".")[0] not in SWEEP_SECTIONS:
-                self.problems.append(f'{where}["{path}"]: unknown axis; axes are dotted keys into '
-                                     f"{', '.join(SWEEP_SECTIONS)}{suggest(path, self.known)}")
-            else:
-                self.problems.append(f'{where}["{path}"]: unknown axis{suggest(path, self.known)}')
-            return False
-        if path in self.owner and self.owner[path] != where:
-            self.problems.append(f'{where}["{path}"]: already swept in {self.owner[path]} '
-                                 f"(a key may appear in one block only)")
-            return False
-        self.owner[path] = where
-        return True
-
-    def value(self, path: str, value: Any) -> tuple[Any, str | None]:
-        return check_override(path, value, self.base, self.preset_defaults)
-
-    def values(self, path: str, values: list[Any], where: str) -> list[Any]:
-        """Every value of an axis checked; the coerced values."""
-        res = []
-        for i, v in enumerate(values):
-            cv, prob = self.value(path, v)
-            if prob:
-                self.problems.append(join_key(f'{where}["{path}"][{i}]', prob))
-            res.append(cv)
-        return res
-
-
-def _check_grid(block: dict[str, list[Any]], where: str, axes: _Axes) -> dict[str, list[Any]]:
-    """A ``product`` or ``zip`` block: axis -> its checked values."""
-    out = {}
-    for path, values in block.items():
-        if not axes.path_ok(path, where):
-            continue
-        if not values:
-            axes.problems.append(f'{where}["{path}"]: empty axis (give at least one value)')
-            continue
-        out[path] = axes.values(path, values, where)
-    return out
-
-
-def _check_cases(cases: list[dict[str, Any]], axes: _Axes) -> list[dict[str, Any]]:
-    """The ``cases`` block: every case's values checked; all cases must set the same keys."""
-    if not cases:
-        axes.problems.append("sweep.cases: empty list (give at least one case or remove the key)")
-    out = []
-    for i, case in enumerate(cases):
-        if not case:
-            axes.problems.append(f"sweep.cases[{i}]: empty case")
-        entry = {}
-        for path, v in case.items():
-            if not axes.path_ok(path, "sweep.cases"):
-                continue
-            cv, prob = axes.value(path, v)
-            if prob:
-                axes.problems.append(join_key(f'sweep.cases[{i}]["{path}"]', prob))
-            entry[path] = cv
-        out.append(entry)
-    if len({frozenset(c) for c in cases}) > 1:
-        axes.problems.append("sweep.cases: every case must set the same keys")
-    return out
-
-
-def _check_range(path: str, rng: Any, where: str, axes: _Axes) -> dict[str, Any] | None:
-    """One ``{low, high}`` axis of a sample block; ``None`` when it is unusable."""
-    if not isinstance(rng, dict):
-        axes.problems.append(f'{where}["{path}"]: must be a table {{low = ..., high = ...}}, got {type(rng).__name__}')
-        return None
-    for k in sorted(set(rng) - {"low", "high"}):
-        axes.problems.append(f'{where}["{path}"].{k}: unknown key{suggest(k, ["low", "high"])}')
-    if "low" not in rng or "high" not in rng:
-        axes.problems.append(f'{where}["{path}"]: needs both low and high')
-        return None
-    lo, hi = rng["low"], rng["high"]
-    ok = True
-    for nm, v in (("low", lo), ("high", hi)):
-        if isinstance(v, bool) or not isinstance(v, (int, float)):
-            axes.problems.append(f'{where}["{path}"].{nm}: must be a number, got {type(v).__name__} {v!r}')
-            ok = False
-            continue
-        _, prob = axes.value(path, v)
-        if prob:
-            axes.problems.append(f'{where}["{path}"].{nm}: {prob}')
-            ok = False
-    if ok and not lo < hi:
-        axes.problems.append(f'{where}["{path}"]: low must be < high, got low = {num(lo)}, high = {num(hi)}')
-        ok = False
-    if not ok:
-        return None
-    if not (isinstance(lo, int) and isinstance(hi, int)):
-        # an integer parameter cannot take float samples
-        _, prob = axes.value(path, (lo + hi) / 2.0)
-        if prob:
-            axes.problems.append(f'{where}["{path}"]: {prob} (give integer low/high)')
-            return None
-    return {"low": lo, "high": hi}
-
-
-def _check_samples(spec: dict[str, Any], where: str, axes: _Axes) -> dict[str, Any]:
-    """A ``random``, ``latin_hypercube`` or ``sobol`` block: ``n`` and the checked ranges."""
-    n = spec.get("n")
-    if n is None:
-        axes.problems.append(f"{where}.n: missing required key (number of samples)")
-    elif isinstance(n, bool) or not isinstance(n, int) or n < 1:
-        axes.problems.append(f"{where}.n: must be an integer >= 1, got {n!r}")
-    elif where.endswith("sobol") and n & (n - 1):
-        axes.problems.append(f"{where}.n: a Sobol sequence is balanced only for a power of 2, got {n} "
-                             f"(use {1 << (n - 1).bit_length() >> 1} or {1 << (n - 1).bit_length()})")
-    ranges = {k: v for k, v in spec.items() if k != "n"}
-    if not ranges:
-        axes.problems.append(f"{where}: no axes (add e.g. \"robot.length\" = {{low = 0.5, high = 1.0}})")
-    clean = {}
-    for path, rng in ranges.items():
-        if not axes.path_ok(path, where):
-            continue
-        checked = _check_range(path, rng, where, axes)
-        if checked is not None:
-            clean[path] = checked
-    return {"n": n, **clean}
-
-
-def check_sweep(sw: SweepSection, base: dict[str, dict[str, Any]],
-                preset_defaults: Mapping[str, Any]) -> tuple[dict[str, Any], list[str]]:
-    """The ``[sweep]`` blocks with checked values, and the problems (block by block, in file order)."""
-    axes = _Axes(base, preset_defaults, known=known_paths(base))
-    out: dict[str, Any] = {}
-    if sw.product:
-        out["product"] = _check_grid(sw.product, "sweep.product", axes)
-    if sw.zip:
-        lengths = {p: len(v) for p, v in sw.zip.items()}
-        if len(set(lengths.values())) > 1:
-            axes.problems.append("sweep.zip: paired axes must have equal lengths, got "
-                                 + ", ".join(f"{p}: {n}" for p, n in lengths.items()))
-        out["zip"] = _check_grid(sw.zip, "sweep.zip", axes)
-    if "cases" in sw.model_fields_set:
-        out["cases"] = _check_cases(sw.cases, axes)
-    for block in SAMPLED_BLOCKS:
-        spec = getattr(sw, block)
-        if spec is not None:
-            out[block] = _check_samples(spec, f"sweep.{block}", axes)
-    return out, axes.problems

@@ -22,6 +22,7 @@ import time
 import traceback
 from typing import Any, Callable, Iterator, Mapping, Sequence
 
+from .by_model import BY_MODEL, solver_for_model
 from .build import build_load, build_options, build_pipeline_options, resolve_case
 from .estimate import LazyCCResult, discretization_columns
 from .params import flatten_params
@@ -109,10 +110,10 @@ def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str
         yield from failed_rows(case_id, params, models, f"building the case failed: {_reason(e)}")
         return
     flat = flatten_params(ran, _FLAT_ROBOTS)  # a memoised robot's cells are converted once
-    cc_result = LazyCCResult(model_lookup, robot, load, options)
+    cc_result = LazyCCResult(model_lookup, robot, load, _model_resolution("cc", options, ran, flat)[0])
     for name in models:
         t0 = time.perf_counter()
-        opts, ran_m, flat_m = _model_resolution(name, options, pipeline, ran, flat)
+        opts, ran_m, flat_m = _model_resolution(name, options, ran, flat)
         try:
             fn = model_lookup(name)
             with quiet_if_loaded():
@@ -130,14 +131,16 @@ def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str
         yield row
 
 
-def _model_resolution(name: str, options, pipeline, ran: Mapping[str, Any], flat: Mapping[str, Any]):
-    """Options, parameters and flat ``p.*`` cells of model ``name``: its ``[solver] n_elements_by_model``
-    entry applied, so its rows record the resolution that ran (``p.solver.n_elements``)."""
-    opts = pipeline.for_model(name, options)
-    if opts is options:
+def _model_resolution(name: str, options, ran: Mapping[str, Any], flat: Mapping[str, Any]):
+    """Options, parameters and flat ``p.*`` cells of model ``name``: its ``[solver.by_model.<name>]``
+    table applied (:func:`~workbench.study.by_model.solver_for_model`), so its rows record the
+    settings it ran with (``p.solver.*``)."""
+    own = (ran["solver"].get(BY_MODEL) or {}).get(name)
+    if not own:
         return options, ran, flat
-    ran_m = {**ran, "solver": {**ran["solver"], "n_elements": opts.n_elements}}
-    return opts, ran_m, {**flat, "p.solver.n_elements": opts.n_elements}
+    solver = solver_for_model(ran["solver"], name)
+    ran_m = {**ran, "solver": solver}
+    return build_options(solver), ran_m, {**flat, **flatten_params({"solver": dict(own)})}
 
 
 def evaluate_rows(payload: tuple) -> Iterator[dict[str, Any]]:

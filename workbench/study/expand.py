@@ -17,10 +17,12 @@ from typing import Any, Mapping, Protocol
 
 import numpy as np
 
+from .keypath import with_value
 from .params import canonical_json, case_id_for, case_id_from_sections, flatten_params
 from .schema import SAMPLED_BLOCKS
 
-__all__ = ["Case", "expand", "count_cases", "case_id_for", "flatten_params", "sweep_blocks", "sweep_keys"]
+__all__ = ["Case", "apply_swept", "expand", "count_cases", "case_id_for", "flatten_params", "sweep_blocks",
+           "sweep_keys"]
 
 
 class SweepSpec(Protocol):
@@ -127,6 +129,21 @@ def _samples(spec: dict[str, Any], seed: int, tag: int, kind: str) -> list[dict[
     return [{p: cols[p][i] for p in cols} for i in range(n)]
 
 
+def apply_swept(params: dict[str, dict[str, Any]], swept: Mapping[str, Any]) -> None:
+    """Set every ``{key path: value}`` of ``swept`` in ``params`` (a dict of section dicts, changed in place).
+
+    ``section.key`` sets the key; a deeper path (``load.tensions[0]``, ``solver.by_model.ancf.n_elements``)
+    replaces the section by a copy with that element set (:func:`workbench.study.keypath.with_value`;
+    a missing table key is added: validation has checked the path).
+    """
+    for path, value in swept.items():
+        section, _, key = path.partition(".")
+        if "." in key or "[" in key:
+            params[section] = with_value(params[section], key, value, create=True)
+        else:
+            params[section][key] = value
+
+
 def count_cases(study: SweepSpec) -> int:
     """Number of cases :func:`expand` would produce (without expanding)."""
     n = 1
@@ -153,9 +170,7 @@ def expand(study: SweepSpec) -> list[Case]:
             swept.update(part)
         params = {sec: {k: (list(v) if isinstance(v, list) else v) for k, v in d.items()}
                   for sec, d in study.base.items()}
-        for path, value in swept.items():
-            section, _, key = path.partition(".")
-            params[section][key] = value
+        apply_swept(params, swept)
         touched = {path.partition(".")[0] for path in swept}
         fixed = {sec: j for sec, j in base_json.items() if sec not in touched}
         cases.append(Case(case_id=case_id_from_sections(params, fixed), index=i, params=params, swept=swept))

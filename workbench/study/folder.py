@@ -28,7 +28,8 @@ from .expand import sweep_keys
 from .session import read_manifest, study_name
 from .store import MANIFEST, SCHEMA_FILE, CorruptPart, current_name, read_columns, read_table
 
-__all__ = ["StudyFolder", "PartSchemaMismatch", "check_part_schemas", "read_folder", "swept_columns"]
+__all__ = ["StudyFolder", "PartSchemaMismatch", "add_element_columns", "check_part_schemas", "read_folder",
+           "swept_columns"]
 
 
 class PartSchemaMismatch(CorruptPart):
@@ -140,16 +141,59 @@ def read_folder(folder: str | Path) -> StudyFolder:
     if not schema.exists():  # written by hand or by an old version: the parts' own schema
         if not any(path.glob("part-*.parquet")):
             raise FileNotFoundError(f"{path}: no Parquet parts (no stored rows)")
-        return StudyFolder(path, manifest, read_table(path))
+        return StudyFolder(path, manifest, add_element_columns(read_table(path), _spec(manifest)))
     try:
         names = pq.read_schema(schema).names
     except (OSError, pa.ArrowException) as e:
         raise CorruptPart(schema, str(e).splitlines()[0] if str(e) else type(e).__name__) from None
     table = read_columns(path, names)
-    return StudyFolder(path, manifest, table)
+    return StudyFolder(path, manifest, add_element_columns(table, _spec(manifest)))
 
 
 def swept_columns(spec: Mapping[str, Any], columns) -> list[str]:
     """The ``p.*`` columns of the keys the spec's ``[sweep]`` names (:func:`sweep_keys`) that ``columns`` holds."""
     have = set(columns)
     return [f"p.{k}" for k in sweep_keys(spec.get("sweep")) if f"p.{k}" in have]
+
+
+def _spec(manifest: Mapping[str, Any]) -> Mapping[str, Any]:
+    spec = manifest.get("study")
+    return spec if isinstance(spec, Mapping) else {}
+
+
+def _element(cell: Any, parts: tuple) -> Any:
+    """The element ``parts`` of a stored ``p.<section>.<key>`` cell (JSON text of a list / table), else ``None``."""
+    import json
+
+    from .keypath import KeyPathError, format_key_path, get_value
+
+    if isinstance(cell, str) and cell[:1] in "[{":
+        cell = json.loads(cell)
+    try:
+        v = get_value({"v": cell}, format_key_path(("v", *parts)))
+    except KeyPathError:
+        return None
+    return float(v) if isinstance(v, (int, float)) and not isinstance(v, bool) else v
+
+
+def add_element_columns(table, spec: Mapping[str, Any]):
+    """``table`` with a column ``p.<path>`` for every swept key path below ``section.key`` (``load.tensions[0]``).
+
+    The rows store a case's parameters by section key (``p.load.tensions`` holds the whole list,
+    as JSON text); a sweep over one element gets its own column of that element's values (numbers
+    as floats), so it is an axis like any other: a number in the table, the report and
+    :func:`workbench.results.to_xarray`.  Existing columns are left as they are.
+    """
+    from .keypath import KeyPathError, parse_key_path
+
+    for axis in sweep_keys(spec.get("sweep")):
+        col = f"p.{axis}"
+        try:
+            parts = parse_key_path(axis)
+        except KeyPathError:
+            continue
+        source = f"p.{parts[0]}.{parts[1]}" if len(parts) > 2 and isinstance(parts[1], str) else None
+        if col in table.columns or source is None or source not in table.columns:
+            continue
+        table[col] = table[source].map(lambda cell, rest=parts[2:]: _element(cell, rest))
+    return table

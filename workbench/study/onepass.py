@@ -11,7 +11,8 @@ must not hide the problems of the others, so the later stages run on the valid p
 - every key that had a problem is *unset* (:func:`problem_keys`): a later line that involves
   it -- keyed by it, or naming it in its reason -- would be about the default, not the user's
   value, and is dropped (:func:`knock_on`); so are, when a robot key is unset, the case lines
-  that depend on the robot as a whole (its build, the tendon / section counts).
+  that depend on the robot as a whole (its build, the tendon / section counts), and, when a key of
+  a ``[solver.by_model.<model>]`` table is unset, the lines about that model.
 
 Pure functions of the problem lines.  Checked by ``tests/study/test_spec.py``
 (``test_schema_error_does_not_hide_case_checks`` and its neighbours).
@@ -79,6 +80,9 @@ def knock_on(line: str, unset: set[str]) -> bool:
     key = _key_of(line)
     if key in unset or key.partition(".")[0] in unset:
         return True
+    tables = {k.split(".")[2] for k in unset if k.startswith("solver.by_model.") and k.count(".") >= 2}
+    if any(f"model '{m}'" in line for m in tables):
+        return True  # a model whose [solver.by_model.<model>] table had a problem runs without it in the checks
     reason = line.partition(": ")[2]
     if any(_names(reason, k) for k in unset):
         return True

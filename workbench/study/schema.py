@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from typing import Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator
+from pydantic import BaseModel, ConfigDict, Field
 
 __all__ = [
     "DEFAULT_MAX_CASES", "DEFAULT_MAX_CASE_SECONDS", "SAMPLED_BLOCKS", "LIMIT_KEYS", "MAX_RESOLUTION", "SWEEP_SECTIONS",
@@ -95,16 +95,9 @@ class SolverSection(CaseLimitFields):
     spring_link_axial: bool | None = None
     error_estimate: Literal["richardson", "none"] = "richardson"
     error_estimate_exempt: list[str] = Field(default_factory=list)
-    # per-model n_elements (a study key only when set: keeps the case ids of studies without it)
-    n_elements_by_model: dict[str, int] = Field(default_factory=dict)
-
-    @field_validator("n_elements_by_model")
-    @classmethod
-    def _resolutions(cls, v: dict[str, int]) -> dict[str, int]:
-        for k, n in v.items():
-            if not 1 <= n <= MAX_RESOLUTION["n_elements"]:
-                raise ValueError(f"n_elements_by_model[{k!r}] = {n} must be in [1, {MAX_RESOLUTION['n_elements']}]")
-        return v
+    # [solver.by_model.<model>] tables of per-model options (workbench.study.by_model checks them;
+    # a case key only when set: keeps the case ids of the studies without it)
+    by_model: dict[str, Any] = Field(default_factory=dict)
 
 
 class DerivedSection(BaseModel):

@@ -7,10 +7,12 @@ The format reference (an annotated example of every section, the sweep semantics
     [robot]     preset = "<name>" + overrides of that preset's parameters (typed by its defaults)
     [load]      mode, bend_angle | tensions | length_changes, bend_plane, pretension, tip loads,
                 analysis, duration, ramp_time, start_delays, ramp_durations
-    [solver]    the fields of workbench.models.SolverOptions
+    [solver]    the fields of workbench.models.SolverOptions; [solver.by_model.<model>] per-model
+                settings (:mod:`workbench.study.by_model`)
     [scenario]  optional: name of a registered scenario + its keyword parameters
     [derived]   optional: gravity_parameter (gamma = q L^3 / EI sets the preset's gravity)
-    [sweep]     product / zip / cases / random / latin_hypercube / sobol blocks of dotted-key axes
+    [sweep]     product / zip / cases / random / latin_hypercube / sobol blocks of key-path axes
+                (``load.tensions[0]``: :mod:`workbench.study.keypath`)
     [report]    optional presentation hints (not in the config hash)
 
 All quantities are SI.  :func:`load_study` collects *all* problems and raises one
@@ -41,8 +43,11 @@ from typing import Any, Mapping, Sequence
 
 from pydantic import BaseModel, ValidationError
 
+from .by_model import by_model_problems
+from .keypath import KeyPathError, get_value
 from .report_keys import check_report
-from .checks import check_cases, check_named_params, check_scenario, check_sweep, known_paths, load_rules
+from .sweep_checks import check_sweep, known_paths
+from .checks import check_cases, check_named_params, check_scenario, load_rules
 from .messages import StudyError, collapse_indexed, pydantic_problems, read_toml, suggest
 from .expand import sweep_keys
 from .outcomes import CaseLimits
@@ -142,13 +147,20 @@ def load_study(path: str | Path, *, max_cases: int | None = None, overrides: Seq
         Overrides ``study.max_cases`` (the CLI's ``--max-cases``).
     overrides : sequence of str
         ``key=value`` settings from the command line (:mod:`workbench.study.overrides`), applied
-        before validation and recorded in :attr:`Study.overrides`.
+        before validation and recorded in :attr:`Study.overrides`; one that would change no case
+        (a sweep axis or every model's ``by_model`` table sets the key) is a problem
+        (:func:`~workbench.study.overrides.unapplied_overrides`).
     """
-    from .overrides import apply_overrides
+    from .overrides import apply_overrides, unapplied_overrides
 
     raw = apply_overrides(read_toml(path), overrides)
     study = parse_study(raw, source=str(Path(path)), max_cases=max_cases)
-    return replace(study, overrides=tuple(overrides)) if overrides else study
+    if not overrides:
+        return study
+    idle = unapplied_overrides(overrides, study.sweep, study.base["solver"], study.models)
+    if idle:
+        raise StudyError([f"{study.path}: {p}" for p in idle])
+    return replace(study, overrides=tuple(overrides))
 
 
 def _parse_sections(raw: Mapping[str, Any]) -> tuple[dict[str, BaseModel], list[str], dict[str, BaseModel]]:
@@ -210,9 +222,8 @@ def _check_models(sections: Mapping[str, BaseModel]) -> list[str]:
     for i, m in enumerate(getattr(sol, "error_estimate_exempt", None) or []):
         if m not in st.models:
             problems.append(f"solver.error_estimate_exempt[{i}]: {m!r} is not one of study.models ({', '.join(st.models)})")
-    for m in getattr(sol, "n_elements_by_model", None) or {}:
-        if m not in st.models:
-            problems.append(f"solver.n_elements_by_model: {m!r} is not one of study.models ({', '.join(st.models)})")
+    if sol is not None and sol.by_model:
+        problems += by_model_problems(sol.by_model, st.models)
     return problems
 
 
@@ -247,6 +258,13 @@ def _resolve_robot(rraw: Any) -> tuple[dict[str, Any] | None, dict[str, Any], li
     return {"preset": preset, **values}, defaults, problems + more
 
 
+def _robot_check(robot: Mapping[str, Any]) -> tuple[dict[str, Any] | None, list[str]]:
+    """The ``[robot]`` validator of a swept value (:func:`~workbench.study.sweep_checks.check_sweep`): the
+    resolved table with the value applied, checked by :func:`_resolve_robot` like the file's."""
+    resolved, _, problems = _resolve_robot(dict(robot))
+    return resolved, problems
+
+
 def _load_and_derived_rules(sections: Mapping[str, BaseModel], rraw: Any,
                             preset_defaults: Mapping[str, Any], raw_sweep: Any = None) -> list[str]:
     """The load's cross-field rules; ``derived.gravity_parameter`` (set or swept) against ``robot.gravity``."""
@@ -276,9 +294,9 @@ def _resolve_base(sections: Mapping[str, BaseModel], robot_base: dict[str, Any] 
     base = {
         "robot": robot_base,
         "load": sections["load"].model_dump(),
-        # n_elements_by_model and spring_link_axial only when set (keeps the case ids of the studies without them)
+        # by_model and spring_link_axial only when set (keeps the case ids of the studies without them)
         "solver": sections["solver"].model_dump(exclude=set(LIMIT_KEYS) | (
-            set() if sections["solver"].n_elements_by_model else {"n_elements_by_model"}) | (
+            set() if sections["solver"].by_model else {"by_model"}) | (
             set() if sections["solver"].spring_link_axial is not None else {"spring_link_axial"})),
         "derived": sections["derived"].model_dump(),
     }
@@ -294,10 +312,13 @@ def _sensitivity_rules(rep: Any, base: dict[str, Any] | None, sweep: Mapping[str
     swept = set(sweep_keys(sweep))
     problems = []
     for i, key in enumerate(rep.sensitivity):
-        section, _, name = str(key).partition(".")
+        section = str(key).partition(".")[0]
         if key not in swept:
             problems.append(f"report.sensitivity[{i}]: {key!r} is not a [sweep] key")
-        elif name not in (base.get(section) or {}):
+            continue
+        try:  # a key path: the element of the base value (load.tensions[0])
+            get_value(base, str(key))
+        except KeyPathError:
             problems.append(f"report.sensitivity[{i}]: {key!r} needs its baseline value in [{section}]")
     return problems
 
@@ -331,7 +352,8 @@ def _with_defaults(base: dict[str, dict[str, Any]], unset: set[str],
     """``base`` with every key that had a problem back at its default (the case checks' view of the file)."""
     out = {sec: dict(d) for sec, d in base.items()}
     for key in unset:
-        section, _, name = key.partition(".")
+        section, _, path = key.partition(".")
+        name = path.split(".")[0].split("[")[0]  # a problem inside a value (robot.diameter[1]): the whole value
         if name not in out.get(section, {}):
             continue
         if section == "robot":
@@ -360,6 +382,9 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
     sections, problems, repaired = _parse_sections(raw)
     usable = {**repaired, **sections}  # the valid sections and the valid part of the others
     problems += _check_models(usable)
+    if not run_models and "solver" in usable and usable["solver"].by_model:
+        problems.append("solver.by_model: this study kind computes its rows with its own tasks, not with the models' "
+                        "run(); per-model settings would not apply (set the options in [solver])")
     robot_base, preset_defaults, robot_problems = _resolve_robot(raw.get("robot"))
     problems += robot_problems
     unset = problem_keys(problems)
@@ -370,7 +395,8 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
     sweep: dict[str, Any] = {}
     sweep_problems: list[str] = []
     if "sweep" in usable and base is not None:
-        sweep, sweep_problems = check_sweep(usable["sweep"], base, preset_defaults)
+        models = tuple(usable["study"].models) if "study" in usable else ()
+        sweep, sweep_problems = check_sweep(usable["sweep"], base, _robot_check, models)
         if raw.get("scenario") is not None and scenario_base is None:  # knock-on errors of a bad [scenario]
             sweep_problems = [p for p in sweep_problems if '["scenario.' not in p.partition(": ")[0]]
         later += sweep_problems
@@ -379,7 +405,7 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
     report = usable["report"].model_dump(exclude_defaults=True) if "report" in usable else None
     scenario_ok = raw.get("scenario") is None or scenario_base is not None  # else its keys are unknown: knock-ons
     if base is not None and report is not None and scenario_ok:
-        later += check_report(report, known_paths(base))
+        later += check_report(report, known_paths(base) + sweep_keys(sweep))  # element axes: p.load.tensions[0]
     problems += [p for p in later if not knock_on(p, unset)]
     unset = problem_keys(problems)
     whole = unset & {"robot", "load", "solver", "derived", "scenario"}  # a table as a whole is wrong

@@ -27,7 +27,7 @@ from ...study.expand import Case, count_cases, expand
 from ...study.kinds import StudyKind
 from ...study.messages import StudyError, read_toml
 from ...study.outcomes import CaseLimits
-from ...study.overrides import apply_overrides
+from ...study.overrides import apply_overrides, unapplied_overrides
 from ...study.params import canonical_json
 from ...study.spec import Study, parse_study
 from .worker import CLOSED_SUFFIX, PLAN, evaluate_closed_loop_rows, row_models
@@ -98,6 +98,10 @@ def load_closed_loop_study(path: str | Path, *, max_cases: int | None = None,
     except StudyError as e:
         problems += e.problems
     if study is not None:
+        problems += [f"{src}: {p}" for p in unapplied_overrides(overrides, study.sweep, study.base["solver"], ())]
+        if study.base["solver"].get("by_model"):
+            problems.append(f"{src}: solver.by_model: a closed_loop study runs every plant with the [solver] options; "
+                            f"per-model settings would not apply")
         bad = [m for m in study.models if m == PLAN or m.endswith(CLOSED_SUFFIX)]
         problems += [f"{src}: study.models: {m!r} is a row name of this kind, not a plant" for m in bad]
         if reference not in row_models(study.models):

@@ -25,7 +25,7 @@ from ...study.expand import Case, count_cases, expand
 from ...study.kinds import StudyKind
 from ...study.messages import StudyError, read_toml
 from ...study.outcomes import CaseLimits
-from ...study.overrides import apply_overrides
+from ...study.overrides import apply_overrides, unapplied_overrides
 from ...study.spec import Study, parse_study
 from .worker import PLANS, evaluate_grasp_rows
 
@@ -62,6 +62,9 @@ def load_grasp_study(path: str | Path, max_cases: int | None = None, overrides: 
         raise StudyError([f"{source}: {p}" for p in problems])
     # the grasp tasks compute the rows (not the models' run()): their capability rows do not apply
     study = parse_study(raw, source=source, max_cases=max_cases, run_models=False)
+    idle = unapplied_overrides(overrides, study.sweep, study.base["solver"], study.models)
+    if idle:
+        raise StudyError([f"{source}: {p}" for p in idle])
     return replace(study, overrides=tuple(overrides))
 
 
