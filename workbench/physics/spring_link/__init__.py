@@ -19,16 +19,14 @@ A segmented backbone (Hannan & Walker's trunk: a robot with joint springs ``k`` 
   in 3-D (and planar tapered length mode) a rope through an eyelet at every link, whose limit as the
   links grow is the continuous routing.  On the 3-D kinematic tree every tendon (and the tip load) is a
   generalised force of one generic object with its own Jacobian (:mod:`.linkrope`).
-* :mod:`.lengthmode` -- planar continuum length mode with axial springs (the default there,
-  :func:`.params.resolve_axial`): the tendon length includes the backbone's compression.
+* :mod:`.lengthmode` -- planar continuum length mode with axial springs (default there): the tendon
+  length includes the backbone's compression.
 * :mod:`.driver` -- :func:`solve` and the registered :func:`run`: a static load ramp (gravity, tip
   loads and tendon commands together, on :func:`workbench.physics._stepping.load_ramp`); dynamics:
   equilibrium at ``t = 0``, then implicit generalised-alpha with the commands updated every step,
   joint damping ``options.damping * k``.
-* :mod:`.richardson` -- ``richardson=True``: static solves at ``N / 2`` and ``N`` links extrapolated at
-  order 2.
-* :mod:`.shape` -- the result: positions at ``options.n_stations`` stations along the links, tip
-  frame, ``length_change`` (axial springs only), tensions, ``joint_angles``, ``tip_twist`` (3-D).
+* :mod:`.richardson` -- ``richardson=True``: ``N / 2`` and ``N`` links extrapolated (order 2); :mod:`.shape`
+  -- the result: stations along the links, tip frame, length change, tensions, joint angles, tip twist.
 * Disks are point masses at their own stations (:mod:`.geometry`).
 
 Checked by ``tests/physics/test_spring_link.py`` (order-2 convergence to the arc and the heavy
@@ -38,8 +36,8 @@ statics), ``test_spring_link_eyelets.py`` (rope routing, convergence to the ANCF
 ``test_spring_link_layout.py`` (the chain hooks, the load ramp's steps) and
 ``test_spring_link_crossexam.py`` (3-D continuum tendons under external loads, disk weights and
 length-mode tensions against the Cosserat rod and beam theory), ``test_spring_link_linkrope.py`` (the
-vectorised rope forces and their Jacobian, Richardson extrapolation).  Measured behaviour (timings, Newton convergence with eyelet ropes, why
-the tree backend is chosen) and the limitations: ``docs/models.md``, "Spring-link".
+vectorised rope forces and their Jacobian, Richardson).  Measured behaviour and limitations:
+``docs/models.md``, "Spring-link".
 """
 
 from __future__ import annotations
