@@ -222,7 +222,8 @@ class Beam3DSystem:
         return i if abs(self.node_s[i] - s) <= _ON_NODE * self.node_s[-1] else None
 
     def _node_body(self, i: int) -> int:
-        """A massless ``ObjectRigidBody`` on node ``i`` that carries eyelet markers (one per node, made once).
+        """A massless ``ObjectRigidBody`` on node ``i`` that carries eyelet markers (one per node, made once;
+        checked against element markers by ``tests/physics/test_beam3d_node_eyelets.py``).
 
         It adds no mass, inertia or stiffness; a marker on it is the node's frame, i.e. the element end's.
         """
