@@ -14,23 +14,20 @@ Model ``"beam3d"``: ``run(robot, load, options) -> PhysicsResult``.
 * Tendons (``options.tendon_model == "eyelets"``; ``"continuum"`` raises :class:`ModelFailure`
   for loaded tendons): anchored on the base plate at ``d(0)``, through marker eyelets at every
   disk at ``(d cos sigma, d sin sigma)``, offsets ``TendonGroup.offset_at(s / s_end)``
-  (:func:`._beam3d_layout.tendon_routes`); an eyelet on a node (a disk on an element boundary) is a marker
-  on a massless ``ObjectRigidBody`` of that node (same point and frame, half the coordinates in the
-  numerical connector Jacobian).  Tension mode: zero-stiffness ``ObjectConnectorSpringDamper`` segments
-  with constant force ``T`` between ``MarkerBodyPosition`` eyelets.  Length mode: one
-  ``ObjectConnectorReevingSystemSprings`` per tendon (rigid-marker eyelets), rest length
-  ``L_path0 / (1 + T_pre/EA_t) + delta_l``, ``regularizationForce`` 1e-3 N, tensions
-  ``max(0, EA_t stretch / rest length)``.  ``forODE2Connectors`` numerical differentiation is on.
+  (:func:`._beam3d_layout.tendon_routes`), on a massless node body where a disk is on a node.  Tension
+  mode: zero-stiffness ``ObjectConnectorSpringDamper`` segments with constant force ``T`` between
+  ``MarkerBodyPosition`` eyelets.  Length mode: one ``ObjectConnectorReevingSystemSprings`` per tendon
+  (rigid-marker eyelets), rest length ``L_path0 / (1 + T_pre/EA_t) + delta_l``, ``regularizationForce``
+  1e-3 N, tensions ``max(0, EA_t stretch / rest length)``.  ``forODE2Connectors`` numerical differentiation.
 * Static analysis (:func:`_ramp_static`): the load ramp (:func:`workbench.physics._stepping.load_ramp`)
   on the rod with EA, GA scaled down (:func:`auto_stiffness_stages`), then EA, GA raised at full
   load up to the real rod (``options.newton_tolerance``); the plain ramp if a stage fails.  Every
   ODE2 Jacobian term numerical (Exudyn's GE-beam one is wrong on EP nodes; ``docs/models.md``).
-* Dynamic analysis: generalised-alpha from the static equilibrium at t = 0; commands
-  ``TendonActuation.command_at(t, load.ramp_time)`` set in a ``preStepUserFunction`` (called with
-  the *end* time of the coming step); sparse LU; ``options.damping = beta`` [s]: Kelvin-Voigt damping
-  by inter-node connectors (``Beam3DSystem._add_section_dampers``); damped runs stop Newton at an
-  increment of ``DYNAMIC_ABSOLUTE_TOLERANCE_FACTOR x newton_tolerance``; series every ``max(time_step, duration
-  / 1000)`` (:func:`workbench.models.result.series_times`).
+* Dynamic analysis: generalised-alpha from the static equilibrium at t = 0; commands ``TendonActuation.
+  command_at(t, load.ramp_time)`` set in a ``preStepUserFunction`` (at the *end* time of the coming step);
+  sparse LU; ``options.damping = beta`` [s]: Kelvin-Voigt damping by inter-node connectors (``Beam3DSystem.
+  _add_section_dampers``), Newton stopped at ``DYNAMIC_ABSOLUTE_TOLERANCE_FACTOR x newton_tolerance`` if
+  damped; series every ``max(time_step, duration / 1000)`` (:func:`workbench.models.result.series_times`).
 * Outputs: ``positions`` by the element's own interpolation at ``options.n_stations`` stations;
   ``tip_frame`` = tip cross-section axes (z along the backbone); ``length_change`` = sum of
   ``L_e (|Gamma_e| - 1)``; ``tip_twist`` = sum of ``L_e kappa_1`` (relative to the base frame
