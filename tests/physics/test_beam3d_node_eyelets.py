@@ -80,3 +80,13 @@ def test_rope_length_from_the_connector_is_the_polyline_through_its_markers():
         rest = float(mbs.GetObjectParameter(system.tendon_objects[i][0], "referenceLength"))
         assert stretch[i] == pytest.approx(length - rest, rel=0, abs=1e-14)
         assert T[i] == pytest.approx(max(0.0, 4e4 * (length - rest) / rest), rel=1e-12, abs=1e-12)
+
+
+def test_undamped_dynamics_keep_the_element_markers():
+    """Undamped dynamics keep eyelets on the elements (answers that depend on the last bit stay as they were)."""
+    act = TendonActuation("length", (-2e-3, 1e-3, 0.0), pretension=5.0)
+    for damping, n_bodies in ((0.0, 0), (1e-3, 4)):
+        opts = SolverOptions(n_elements=8, tendon_model="eyelets", time_step=1e-3, damping=damping)
+        load = LoadCase(actuation=act, analysis="dynamic", duration=0.1, ramp_time=0.05)
+        system = _beam3d_system.Beam3DSystem(ROBOT, load, opts, "length")
+        assert len(system._node_bodies) == n_bodies

@@ -14,9 +14,9 @@ Model ``"beam3d"``: ``run(robot, load, options) -> PhysicsResult``.
 * Tendons (``options.tendon_model == "eyelets"``; ``"continuum"`` raises :class:`ModelFailure`
   for loaded tendons): anchored on the base plate at ``d(0)``, through marker eyelets at every
   disk at ``(d cos sigma, d sin sigma)``, offsets ``TendonGroup.offset_at(s / s_end)``
-  (:func:`._beam3d_layout.tendon_routes`), on a massless node body where a disk is on a node.  Tension
-  mode: zero-stiffness ``ObjectConnectorSpringDamper`` segments with constant force ``T`` between
-  ``MarkerBodyPosition`` eyelets.  Length mode: one ``ObjectConnectorReevingSystemSprings`` per tendon
+  (:func:`._beam3d_layout.tendon_routes`), on a massless node body at a disk on a node (but in undamped
+  dynamics).  Tension mode: zero-stiffness ``ObjectConnectorSpringDamper`` segments with constant force
+  ``T`` between ``MarkerBodyPosition`` eyelets.  Length mode: one ``ObjectConnectorReevingSystemSprings`` per tendon
   (rigid-marker eyelets), rest length ``L_path0 / (1 + T_pre/EA_t) + delta_l``, ``regularizationForce``
   1e-3 N, tensions ``max(0, EA_t stretch / rest length)``.  ``forODE2Connectors`` numerical differentiation.
 * Static analysis (:func:`_ramp_static`): the load ramp (:func:`workbench.physics._stepping.load_ramp`)
