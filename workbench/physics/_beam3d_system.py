@@ -27,6 +27,7 @@ from exudyn.itemInterface import (
     ObjectConnectorRigidBodySpringDamper,
     ObjectConnectorSpringDamper,
     ObjectGround,
+    ObjectRigidBody,
 )
 
 from ..models.result import ModelFailure, SolverOptions
@@ -36,6 +37,8 @@ from ._exudyn import add_gravity_loads, add_point_masses, clamp_coordinates, lum
 
 _SHEAR_FACTOR_IF_NONE = 100.0
 _REGULARIZATION_FORCE = 1e-3
+#: an eyelet within this fraction of the rod length from a node sits on the node (``Beam3DSystem._node_at``)
+_ON_NODE = 1e-9
 
 
 def beam_section(cs, damping: float, axial_shear_scale: float = 1.0) -> "exu.BeamSection":
@@ -99,6 +102,11 @@ class Beam3DSystem:
         self.tendon_markers: list[list[int]] = []
         self.tendon_path0 = np.zeros(0)
         self.tendon_rest0 = np.zeros(0)
+        self._node_bodies: dict[int, int] = {}
+        # undamped dynamics keep the element markers: their answers depend on the last bit (the undamped
+        # compensated arm's end tip moves by mm with the round-off; tests/regression golden wire_delay_arm)
+        self._node_eyelets = not (load.analysis == "dynamic" and options.damping == 0)
+        self._stress_cache = None
         if tendon_mode != "none":
             self._add_tendons(robot, load)
         self.dampers: list[int] = []
@@ -187,26 +195,54 @@ class Beam3DSystem:
     def _add_eyelets(self, ground: int, route: list, sigma: float, rigid: bool) -> tuple[list[int], np.ndarray]:
         """Markers of one tendon route (anchor on ground, then eyelets); the straight segment lengths.
 
-        ``rigid``: ``MarkerBodyRigid`` (the reeving rope needs them); else ``MarkerBodyPosition``
-        (same points; halves the numerically differentiated connector Jacobian, ``docs/models.md``).
+        ``rigid``: rigid markers (the reeving rope needs them); else position markers (same points;
+        halves the numerically differentiated connector Jacobian, ``docs/models.md``).  An eyelet on a
+        node (a disk on an element boundary) is a marker on that node's body (:meth:`_node_body`): it
+        depends on the node's 7 coordinates instead of the element's 14, so the numerical connector
+        Jacobian costs half as many rope evaluations, each cheaper (benchmarks/README.md, "wire delay");
+        the point and frame are the element end's, so the physics is the same.
         """
         c, s_ = math.cos(sigma), math.sin(sigma)
         Marker = MarkerBodyRigid if rigid else MarkerBodyPosition
         markers, pts = [], []
         for k, (s, d) in enumerate(route):
+            off = [d * c, d * s_]
+            i = None if k == 0 else self._node_at(s)
             if k == 0:
-                markers.append(self.mbs.AddMarker(Marker(bodyNumber=ground, localPosition=[0.0, d * c, d * s_])))
+                body, loc = ground, [0.0, *off]
+            elif i is not None:
+                body, loc = self._node_body(i), [0.0, *off]
             else:
                 e, xl = locate(self.node_s, s)
-                markers.append(self.mbs.AddMarker(Marker(bodyNumber=self.elements[e], localPosition=[xl, d * c, d * s_])))
-            pts.append([s, d * c, d * s_])
+                body, loc = self.elements[e], [xl, *off]
+            markers.append(self.mbs.AddMarker(Marker(bodyNumber=body, localPosition=loc)))
+            pts.append([s, *off])
         return markers, np.linalg.norm(np.diff(np.asarray(pts), axis=0), axis=1)
+
+    def _node_at(self, s: float) -> int | None:
+        """Index of the node at arc length ``s`` (to ``1e-9 L``), or None (the eyelet lies inside an element,
+        or undamped dynamics, see ``__init__``)."""
+        if not self._node_eyelets:
+            return None
+        i = int(np.argmin(np.abs(self.node_s - s)))
+        return i if abs(self.node_s[i] - s) <= _ON_NODE * self.node_s[-1] else None
+
+    def _node_body(self, i: int) -> int:
+        """A massless ``ObjectRigidBody`` on node ``i`` that carries eyelet markers (one per node, made once;
+        checked against element markers by ``tests/physics/test_beam3d_node_eyelets.py``).
+
+        It adds no mass, inertia or stiffness; a marker on it is the node's frame, i.e. the element end's.
+        """
+        if i not in self._node_bodies:
+            self._node_bodies[i] = self.mbs.AddObject(ObjectRigidBody(nodeNumber=self.nodes[i], mass=0.0,
+                                                                      inertia=[0.0] * 6))
+        return self._node_bodies[i]
 
     def _add_tendons(self, robot: Robot, load: LoadCase) -> None:
         """Tension mode: constant-force segments (position markers); length mode: one reeving rope per tendon (rigid markers)."""
         mbs, act = self.mbs, load.actuation
         ground = mbs.AddObject(ObjectGround())
-        path0, rest0 = [], []
+        path0, rest0, rope_EA = [], [], []
         for (j, sigma, group), route in zip(robot.tendon_table(), tendon_routes(robot)):
             markers, seg = self._add_eyelets(ground, route, sigma, rigid=self.tendon_mode != "tension")
             L0 = float(seg.sum())
@@ -223,6 +259,7 @@ class Beam3DSystem:
                 rest0.append(L0)
             else:
                 EAt = group.axial_stiffness
+                rope_EA.append(EAt)
                 rest0.append(L0 / (1.0 + act.pretension / EAt))
                 objs = [mbs.AddObject(ObjectConnectorReevingSystemSprings(
                     markerNumbers=markers, stiffnessPerLength=EAt, dampingPerLength=0.0, referenceLength=L0,
@@ -232,6 +269,8 @@ class Beam3DSystem:
             self.tendon_objects.append(objs)
         self.tendon_path0 = np.asarray(path0)
         self.tendon_rest0 = np.asarray(rest0)
+        self._rest = self.tendon_path0.copy()  # each rope's referenceLength as last set (built: the path length)
+        self._rope_EA = np.asarray(rope_EA)
 
     # -- setters ----------------------------------------------------------------------------
     def set_tendons(self, values: np.ndarray, lam_pre: float) -> None:
@@ -245,11 +284,13 @@ class Beam3DSystem:
                 for o in objs:
                     mbs.SetObjectParameter(o, "force", float(T))
         elif self.tendon_mode == "length":
-            for objs, L0, r0, dl in zip(self.tendon_objects, self.tendon_path0, self.tendon_rest0, values):
+            for i, (objs, L0, r0, dl) in enumerate(zip(self.tendon_objects, self.tendon_path0, self.tendon_rest0, values)):
                 rest = L0 + lam_pre * (r0 - L0) + float(dl)
                 if rest <= 0:
                     raise ModelFailure(f"beam3d: tendon rest length {rest:.4g} m <= 0 (command too large)")
-                mbs.SetObjectParameter(objs[0], "referenceLength", float(rest))
+                if rest != self._rest[i]:  # unchanged commands (before or after a ramp) are not set again
+                    mbs.SetObjectParameter(objs[0], "referenceLength", float(rest))
+                    self._rest[i] = rest
 
     def set_axial_shear_scale(self, scale: float) -> None:
         """Scale EA and GA of every element by ``scale`` (1: the robot's own section); bending and torsion unchanged."""
@@ -271,30 +312,30 @@ class Beam3DSystem:
             for i, objs in enumerate(self.tendon_objects):
                 T[i] = float(mbs.GetObjectParameter(objs[0], "force"))
         elif self.tendon_mode == "length":
-            for i, (objs, markers) in enumerate(zip(self.tendon_objects, self.tendon_markers)):
-                pts = np.array([mbs.GetMarkerOutput(m, exu.OutputVariableType.Position) for m in markers])
-                length = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
-                rest = float(mbs.GetObjectParameter(objs[0], "referenceLength"))
-                EA = float(mbs.GetObjectParameter(objs[0], "stiffnessPerLength"))
+            for i, objs in enumerate(self.tendon_objects):
+                # the rope's own path length through its markers (sheave radii 0: the polyline length)
+                length = float(mbs.GetObjectOutput(objs[0], exu.OutputVariableType.Distance))
+                rest = float(self._rest[i])
                 stretch[i] = length - rest
-                T[i] = max(0.0, EA * stretch[i] / rest)
+                T[i] = max(0.0, float(self._rope_EA[i]) * stretch[i] / rest)
         return T, stretch
 
     def element_strains(self) -> tuple[np.ndarray, np.ndarray]:
         """Strain ``(eps, gamma_y, gamma_z)`` and curvature ``(kappa_1 torsion, kappa_2, kappa_3)`` of every element, ``(n_el, 3)`` each."""
         mbs = self.mbs
-        # StrainLocal holds 6 entries: the first three are (eps, gamma_y, gamma_z)
-        g = np.array([np.asarray(mbs.GetObjectOutputBody(e, exu.OutputVariableType.StrainLocal,
-                                                         localPosition=[0, 0, 0]))[:3] for e in self.elements], dtype=float)
-        k = np.array([np.asarray(mbs.GetObjectOutputBody(e, exu.OutputVariableType.CurvatureLocal,
-                                                         localPosition=[0, 0, 0]))[:3] for e in self.elements], dtype=float)
+        # StrainLocal holds 6 entries: the first three are (eps, gamma_y, gamma_z); localPosition passed
+        # positionally (a keyword argument costs more than the call: benchmarks/README.md, "wire delay")
+        get, mid = mbs.GetObjectOutputBody, [0.0, 0.0, 0.0]
+        strain, curv = exu.OutputVariableType.StrainLocal, exu.OutputVariableType.CurvatureLocal
+        g = np.array([get(e, strain, mid)[:3] for e in self.elements], dtype=float)
+        k = np.array([get(e, curv, mid)[:3] for e in self.elements], dtype=float)
         return g, k
 
     def shape_scalars(self, strains: tuple[np.ndarray, np.ndarray] | None = None) -> tuple[float, float]:
         """(length change [m], tip twist [rad]) from element strains and torsional curvature."""
         g, k = self.element_strains() if strains is None else strains
-        Gam = np.column_stack([1.0 + g[:, 0], g[:, 1], g[:, 2]])
-        dl = float(np.sum(self.elem_len * (np.linalg.norm(Gam, axis=1) - 1.0)))
+        stretch = np.sqrt((1.0 + g[:, 0]) ** 2 + g[:, 1] ** 2 + g[:, 2] ** 2)  # |Gamma| per element
+        dl = float(np.sum(self.elem_len * (stretch - 1.0)))
         tw = float(np.sum(self.elem_len * k[:, 0]))
         return dl, tw
 
@@ -302,15 +343,22 @@ class Beam3DSystem:
         """Largest normal stress of every element (:mod:`workbench.models.stress`: ``EA eps`` and
         ``EI |(kappa_2, kappa_3)|``) and its strength: ``(sigma (n_el,), strength (n_el,))``, or
         ``None`` without stress geometry."""
-        from ..models.stress import combined_stress, section_arrays
+        from ..models.stress import combined_stress
 
-        arrs = section_arrays(self.elem_cs)
+        arrs, EA, EI = self._stress_sections()
         if arrs is None:
             return None
         g, k = self.element_strains() if strains is None else strains
-        EA = np.array([cs.EA for cs in self.elem_cs])
-        EI = np.array([cs.EI for cs in self.elem_cs])
         return combined_stress(EA * g[:, 0], EI * np.hypot(k[:, 1], k[:, 2]), arrs[0], arrs[1]), arrs[2]
+
+    def _stress_sections(self):
+        """``(section_arrays of the elements or None, EA (n_el,), EI (n_el,))``, computed once (dynamics reads them per sample)."""
+        if self._stress_cache is None:
+            from ..models.stress import section_arrays
+
+            self._stress_cache = (section_arrays(self.elem_cs), np.array([cs.EA for cs in self.elem_cs]),
+                                  np.array([cs.EI for cs in self.elem_cs]))
+        return self._stress_cache
 
     def tip_position(self) -> np.ndarray:
         """Tip node position, base frame, ``(3,)`` [m]."""
