@@ -8,6 +8,7 @@
     workbench validate STUDY.toml
     workbench report DIR [--out DIR] [--formats png,svg]
     workbench list models|presets|scenarios|kinds
+    workbench robot show STUDY.toml|PRESET [KEY=VALUE ...] [--out robot.png] [--tension T]
     workbench --version
 
 Executors of ``run``: by default the cases run one after another in a child process that is
@@ -43,6 +44,7 @@ import sys
 from pathlib import Path
 from typing import Sequence
 
+from .cli_robot import add_robot_arguments
 from .report.command import add_report_arguments, report_command
 from .study.cluster_command import add_cluster_arguments
 
@@ -159,6 +161,8 @@ def _parser() -> argparse.ArgumentParser:
 
     ls = sub.add_parser("list", help="what the registry offers: models (with capabilities), presets, scenarios, kinds")
     ls.add_argument("topic", choices=("models", "presets", "scenarios", "kinds", "represents"))
+
+    add_robot_arguments(sub)
 
     v = sub.add_parser("validate", help="check a study file without running it")
     v.add_argument("study", help="study file or bare name (studies/<name>.toml)")
@@ -563,9 +567,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SystemExit as e:  # --help, --version (0) or a usage error (2, one line on stderr)
         return e.code if isinstance(e.code, int) else 2
     from .cli_list import list_command
+    from .cli_robot import robot_command
 
     commands = {"run": _cmd_run, "show": _cmd_show, "validate": _cmd_validate, "report": _cmd_report,
-                "list": list_command}
+                "list": list_command, "robot": lambda a: robot_command(a, find_study)}
     try:
         code = commands[args.command](args)
         sys.stdout.flush()
