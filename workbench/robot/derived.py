@@ -42,7 +42,8 @@ import numpy as np
 from .description import Robot, Section
 
 __all__ = ["BETA1_L", "SectionProperties", "TendonProperties", "BendingFrequency", "section_properties",
-           "tendon_properties", "total_mass", "is_uniform", "first_bending_frequency", "cantilever_frequency"]
+           "tendon_properties", "total_mass", "is_uniform", "first_bending_frequency", "cantilever_frequency",
+           "finite_element_frequency"]
 
 #: First root of the clamped-free frequency equation ``1 + cos x cosh x = 0`` [-].
 BETA1_L = 1.8751040687119611
@@ -217,8 +218,12 @@ def _hermite_matrices(EI: float, m: float, h: float) -> tuple[np.ndarray, np.nda
     return k, mm
 
 
-def _fe_frequency(robot: Robot, min_elements: int) -> float:
-    """First eigenfrequency [Hz] of the clamped robot by Hermite beam elements (module docstring)."""
+def finite_element_frequency(robot: Robot, min_elements: int = 24) -> float:
+    """First eigenfrequency [Hz] of the clamped robot by Hermite beam elements (module docstring).
+
+    ``min_elements`` elements per section at least, rounded up to a multiple of its disk count so
+    that every disk sits on a node; the robot must have mass (:func:`first_bending_frequency` checks).
+    """
     from scipy.linalg import eigh
 
     EIs, ms, hs, point = [], [], [], []
@@ -271,6 +276,6 @@ def first_bending_frequency(robot: Robot, min_elements: int = 24) -> BendingFreq
     if is_uniform(robot) and no_points:
         return BendingFrequency(cantilever_frequency(cs.EI, cs.mass_per_length, robot.length), "analytic",
                                 "uniform Euler-Bernoulli cantilever, (1.8751)^2 sqrt(EI / (m' L^4)) / 2 pi")
-    f = _fe_frequency(robot, min_elements)
+    f = finite_element_frequency(robot, min_elements)
     return BendingFrequency(f, "finite elements",
                             "Hermite beam elements, disks and payload as point masses, straight unloaded robot")
