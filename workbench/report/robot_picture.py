@@ -5,7 +5,8 @@ base plate to its terminating disk with its offset varying along a tapered group
 base frame axes and the gravity arrow) and the cross-section at the base plate (backbone, each
 group's tendons at their base offset, filled, and at their tip offset, open).  A robot is long and
 thin, so the two side views stretch the lateral (x, y) scale by a stated factor; the cross-section
-is true to scale.  Pure presentation of a :class:`~workbench.robot.Robot` (no derived physics):
+is true to scale; a lower section's tendons are drawn wider, so groups that share a path stay visible.
+Pure presentation of a :class:`~workbench.robot.Robot` (no derived physics):
 matplotlib ``Figure`` (Agg, no pyplot) like every report figure.
 
 Checked by ``tests/report/test_robot_picture.py`` (tendon end points and the lateral scale) and
@@ -76,9 +77,10 @@ def _side_view(ax, robot: Robot, axis: int, k: float) -> None:
                 + [_half_width(robot) * 0.5])
         ax.plot([-1.15 * w * k, 1.15 * w * k], [z, z], color="0.45", lw=1.2, zorder=1)
     ax.plot([-1.3 * _half_width(robot) * k, 1.3 * _half_width(robot) * k], [0, 0], color="k", lw=3, zorder=3)
-    for sec, _sigma, p in paths:
+    last = max([sec for sec, _, _ in paths], default=0)
+    for sec, _sigma, p in paths:  # a lower section's tendons wider: groups may share a path
         c = _GROUP_COLORS[sec % len(_GROUP_COLORS)]
-        ax.plot(p[:, axis] * k, p[:, 2], color=c, lw=1.0, zorder=4)
+        ax.plot(p[:, axis] * k, p[:, 2], color=c, lw=1.0 + 1.2 * (last - sec), zorder=4)
         ax.plot(p[-1, axis] * k, p[-1, 2], "o", color=c, ms=3.5, zorder=5)
     if robot.payload.mass > 0:
         ax.plot(0, robot.length, "s", color="k", ms=7, zorder=6)
