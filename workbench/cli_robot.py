@@ -94,7 +94,8 @@ def resolve_target(target: str, overrides: tuple[str, ...], find_study: Callable
     except (ValueError, TypeError, KeyError) as e:
         raise StudyError([f"{path}: robot: {e}"]) from None
     swept = [k for k in sweep_keys(study.sweep) if k.startswith(("robot.", "derived."))]
-    where = f"study {path}: its base robot (preset {params.get('preset', '-')})"
+    how = f"preset {params['preset']}" if "preset" in params else "described in the file"
+    where = f"study {path}: its base robot ({how})"
     return robot, where + (f"; swept in the study, not shown: {', '.join(swept)}" if swept else "")
 
 

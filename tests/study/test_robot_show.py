@@ -8,6 +8,7 @@ so in one line (exit 2): its trunk is not a tendon-driven :class:`~workbench.rob
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
@@ -76,7 +77,11 @@ def test_override_and_tension(tmp_path, capsys):
     rc, o, e, _ = _show([str(ROOT / "studies/bending.toml"), "robot.diameter=0.004", "--tension", "5"],
                         tmp_path, capsys)
     assert rc == 0, e
-    assert "  1    0.8       4" in o  # the section row: L = 0.8 m, d = 4 mm
+    lines = o.splitlines()
+    head = lines.index("sections") + 1
+    row = dict(zip(re.split(r"\s{2,}", lines[head].strip()), lines[head + 1].split()))
+    # d = 4 mm: EI = 210e9 pi (4e-3)^4 / 64 = 2.639 N m^2, m' = 7850 pi (4e-3)^2 / 4 = 0.09865 kg/m
+    assert (row["d [mm]"], row["EI [N m²]"], row["m' [kg/m]"], row["L [m]"]) == ("4", "2.639", "0.09865", "0.8")
     assert "stresses at the command: 5 N on the first tendon of every section" in o
 
 
