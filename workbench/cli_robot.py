@@ -1,6 +1,7 @@
 """``workbench robot show <study.toml | preset> [KEY=VALUE ...] [--out robot.png] [--tension T]``.
 
-Prints the resolved robot (every section's fields with units), its derived quantities
+Prints the robot's parameters as resolved (units from :mod:`workbench.units`), the robot as built
+(every section's fields with units), its derived quantities
 (:mod:`workbench.study.robot_summary`: EI, EA, GJ and mass per length per section, total mass, the
 gravity parameter gamma, the first bending frequency, tendon stiffness and strength, the stresses at
 a stated command) and writes its picture (:mod:`workbench.report.robot_picture`) as a PNG.
@@ -55,8 +56,9 @@ def parse_tension(text: str | None) -> float | tuple[float, ...] | None:
     return vals[0] if len(vals) == 1 else vals
 
 
-def resolve_target(target: str, overrides: tuple[str, ...], find_study: Callable[[str], Path]) -> tuple[Any, str]:
-    """``(robot, where it comes from)`` for a preset name or a study file.
+def resolve_target(target: str, overrides: tuple[str, ...], find_study: Callable[[str], Path]
+                   ) -> tuple[Any, dict[str, Any], str]:
+    """``(robot, its parameters as resolved, where it comes from)`` for a preset name or a study file.
 
     Raises
     ------
@@ -72,8 +74,10 @@ def resolve_target(target: str, overrides: tuple[str, ...], find_study: Callable
     if target in registry.PRESETS and not Path(target).exists():
         if overrides:
             raise StudyError([f"{overrides[0]}: overrides apply to a study file, not to the preset {target!r}"])
+        from .robot.presets import preset_parameters
+
         robot, _ = resolve_robot({"preset": target})
-        return robot, f"preset {target} with its defaults"
+        return robot, {"preset": target, **preset_parameters(target)}, f"preset {target} with its defaults"
     try:
         path = find_study(target)
     except StudyError as e:
@@ -96,7 +100,7 @@ def resolve_target(target: str, overrides: tuple[str, ...], find_study: Callable
     swept = [k for k in sweep_keys(study.sweep) if k.startswith(("robot.", "derived."))]
     how = f"preset {params['preset']}" if "preset" in params else "described in the file"
     where = f"study {path}: its base robot ({how})"
-    return robot, where + (f"; swept in the study, not shown: {', '.join(swept)}" if swept else "")
+    return robot, params, where + (f"; swept in the study, not shown: {', '.join(swept)}" if swept else "")
 
 
 def _g(x: float | None, scale: float = 1.0, fmt: str = ".4g") -> str:
@@ -128,7 +132,7 @@ def _section_rows(robot) -> list[list[str]]:
 
 def _robot_lines(robot) -> list[str]:
     R = robot.base_rotation
-    out = [f"  length L {robot.length:.4g} m, {robot.n_sections} section(s), {robot.n_tendons} tendon(s)",
+    out = ["the robot as built", f"  length L {robot.length:.4g} m, {robot.n_sections} section(s), {robot.n_tendons} tendon(s)",
            f"  base position {_vec(robot.base_position)} m; base z axis in the world {_vec(R[i][2] for i in range(3))};"
            f" gravity {_vec(robot.gravity)} m/s² (world)",
            f"  payload {robot.payload.mass:.4g} kg at {_vec(robot.payload.offset)} m (tip frame)", "", "sections"]
@@ -193,9 +197,30 @@ def _stress_lines(summary: RobotSummary) -> list[str]:
     return out
 
 
-def summary_lines(summary: RobotSummary, where: str) -> list[str]:
-    """The lines ``workbench robot show`` prints for ``summary`` (robot, tendons, derived, stresses)."""
-    head = [f"robot {summary.robot.name!r}: {where}"]
+def _leaves(value: Any, path: str) -> list[tuple[str, Any]]:
+    """``(key path, value)`` of every leaf of nested robot parameters (``a.b``, ``a[i].b``; scalar lists whole)."""
+    if isinstance(value, dict):
+        return [leaf for k, v in value.items() for leaf in _leaves(v, f"{path}.{k}")]
+    if isinstance(value, (list, tuple)) and any(isinstance(v, (dict, list, tuple)) for v in value):
+        return [leaf for i, v in enumerate(value) for leaf in _leaves(v, f"{path}[{i}]")]
+    return [(path, value)]
+
+
+def _parameter_lines(params: dict[str, Any]) -> list[str]:
+    """The robot's parameters as resolved, one per line with the unit of ``workbench.units`` (none if unknown)."""
+    from .units import unit_of
+
+    out = ["parameters (as resolved; the unit where workbench/units.py knows the key)"]
+    for key, value in _leaves(params, "robot"):
+        unit = unit_of(key)
+        text = format(value, ".6g") if isinstance(value, float) else str(value)
+        out.append(f"  {key} = {text}" + (f" [{unit}]" if unit else ""))
+    return out
+
+
+def summary_lines(summary: RobotSummary, where: str, params: dict[str, Any] | None = None) -> list[str]:
+    """The lines ``workbench robot show`` prints for ``summary`` (parameters, robot, tendons, derived, stresses)."""
+    head = [f"robot {summary.robot.name!r}: {where}"] + (_parameter_lines(params) + [""] if params else [])
     return (head + _robot_lines(summary.robot) + [""] + _tendon_lines(summary) + [""] + _derived_lines(summary)
             + [""] + _stress_lines(summary))
 
@@ -211,7 +236,7 @@ def robot_command(args, find_study: Callable[[str], Path]) -> int:
         return 2
     try:
         tension = parse_tension(args.tension)
-        robot, where = resolve_target(args.target, tuple(args.overrides), find_study)
+        robot, params, where = resolve_target(args.target, tuple(args.overrides), find_study)
         summary = summarize_robot(robot, tension)
     except StudyError as e:
         for line in e.problems:
@@ -221,7 +246,7 @@ def robot_command(args, find_study: Callable[[str], Path]) -> int:
         msg = str(e)
         print(msg if msg.startswith("--tension") else f"--tension: {msg}", file=sys.stderr)
         return 2
-    for line in summary_lines(summary, where):
+    for line in summary_lines(summary, where, params):
         print(line)
     out = Path(args.out)
     try:
