@@ -71,6 +71,20 @@ def test_a_study_shows_its_derived_gravity_and_its_sweep(tmp_path, capsys):
     assert rc == 0, e
     assert "gamma = q L³/EI: 1 at |g| = 117.6 m/s²" in o
     assert "swept in the study, not shown: derived.gravity_parameter" in o
+    assert "  robot.diameter = 0.006 [m]" in o and "  robot.base_orientation = horizontal" in o
+
+
+def test_nested_parameters_are_printed_by_key_path():
+    """A description-form robot's parameters (nested tables and lists) print one leaf per line."""
+    from workbench.cli_robot import summary_lines
+    from workbench.robot.presets import build_preset
+    from workbench.study.robot_summary import summarize_robot
+
+    params = {"sections": [{"length": 0.2, "tendons": [{"angles": [0.0, 3.14]}]}], "gravity": [0.0, 0.0, -9.81]}
+    lines = summary_lines(summarize_robot(build_preset("steel_rod")), "test", params)
+    assert "  robot.sections[0].length = 0.2" in lines
+    assert "  robot.sections[0].tendons[0].angles = [0.0, 3.14]" in lines
+    assert "  robot.gravity = [0.0, 0.0, -9.81] [m/s²]" in lines
 
 
 def test_override_and_tension(tmp_path, capsys):
