@@ -1,4 +1,4 @@
-"""``workbench robot show <study.toml | preset> [KEY=VALUE ...] [--out robot.png] [--tension T]``.
+"""``workbench robot show <study.toml | preset> [KEY=VALUE ...] [--case N|ID] [--out robot.png] [--tension T]``.
 
 Prints the robot's parameters as resolved (units from :mod:`workbench.units`), the robot as built
 (every section's fields with units), its derived quantities
@@ -10,7 +10,8 @@ A bare name that is a registered preset is that preset with its defaults; anythi
 file (a path, or a bare name found as ``studies/<name>.toml``), loaded by its kind's loader, so every
 problem is the validator's one line (a kind may wrap the sweep :class:`~workbench.study.spec.Study` as
 its ``study`` attribute, as closed_loop does), and its base robot resolved by
-:func:`workbench.study.build.resolve_robot` (``[derived] gravity_parameter`` applied; the sweep is not).
+:func:`workbench.study.build.resolve_robot` (``[derived] gravity_parameter`` applied; the sweep is not,
+unless ``--case`` picks one case of the kind's expansion).
 Runs no simulation.  Checked by ``tests/study/test_robot_show.py`` (every preset and every committed
 study; bad input gives one line and exit code 2).
 """
@@ -38,6 +39,8 @@ def add_robot_arguments(sub) -> None:
     s.add_argument("overrides", nargs="*", metavar="KEY=VALUE",
                    help="settings that override the study file, validated like it (robot.diameter=1e-3)")
     s.add_argument("--out", default="robot.png", help="where the picture goes (default robot.png)")
+    s.add_argument("--case", metavar="N|ID",
+                   help="a study's case (its index in the expansion or its case id) instead of the base robot")
     s.add_argument("--tension", metavar="T",
                    help="command for the stresses [N]: one tension on the first tendon of every section, or one "
                         "per tendon, comma separated (default: the tensions that bend every section by 90 deg in CC)")
@@ -56,9 +59,23 @@ def parse_tension(text: str | None) -> float | tuple[float, ...] | None:
     return vals[0] if len(vals) == 1 else vals
 
 
-def resolve_target(target: str, overrides: tuple[str, ...], find_study: Callable[[str], Path]
-                   ) -> tuple[Any, dict[str, Any], str]:
+def _pick_case(kind, spec, case: str, path: Path):
+    """The case ``case`` (index or case id) of the study ``spec``; StudyError with one line if there is none."""
+    from .study import StudyError
+
+    cases = kind.expand(spec)
+    for c in cases:
+        if case == c.case_id or (case.isdigit() and int(case) == c.index):
+            return c
+    raise StudyError([f"--case {case}: no such case in {path} ({len(cases)} cases: give an index "
+                      f"0..{len(cases) - 1} or a case id)"])
+
+
+def resolve_target(target: str, overrides: tuple[str, ...], find_study: Callable[[str], Path],
+                   case: str | None = None) -> tuple[Any, dict[str, Any], str]:
     """``(robot, its parameters as resolved, where it comes from)`` for a preset name or a study file.
+
+    ``case`` (index or case id) picks one case of the study instead of its base robot.
 
     Raises
     ------
@@ -72,8 +89,9 @@ def resolve_target(target: str, overrides: tuple[str, ...], find_study: Callable
     from .study.spec import Study
 
     if target in registry.PRESETS and not Path(target).exists():
-        if overrides:
-            raise StudyError([f"{overrides[0]}: overrides apply to a study file, not to the preset {target!r}"])
+        if overrides or case is not None:
+            what = overrides[0] if overrides else f"--case {case}"
+            raise StudyError([f"{what}: applies to a study file, not to the preset {target!r}"])
         from .robot.presets import preset_parameters
 
         robot, _ = resolve_robot({"preset": target})
@@ -93,14 +111,21 @@ def resolve_target(target: str, overrides: tuple[str, ...], find_study: Callable
     if not isinstance(base, dict) or "robot" not in base:
         raise StudyError([f"{path}: a {kind.name!r} study has no [robot] section: robot show describes the tendon-"
                           f"driven robots of [robot] (this study's trunk is given by its own sections)"])
+    chosen = None if case is None else _pick_case(kind, spec, str(case), path)
+    given = base if chosen is None else chosen.params
     try:
-        robot, params = resolve_robot(base["robot"], base.get("derived"))
+        robot, params = resolve_robot(given["robot"], given.get("derived"))
     except (ValueError, TypeError, KeyError) as e:
         raise StudyError([f"{path}: robot: {e}"]) from None
-    swept = [k for k in sweep_keys(study.sweep) if k.startswith(("robot.", "derived."))]
     how = f"preset {params['preset']}" if "preset" in params else "described in the file"
+    if chosen is not None:
+        values = ", ".join(f"{k} = {v}" for k, v in chosen.swept.items() if k.startswith(("robot.", "derived.")))
+        return robot, params, (f"study {path}: case {chosen.index} ({chosen.case_id}; {how})"
+                               + (f"; {values}" if values else ""))
+    swept = [k for k in sweep_keys(study.sweep) if k.startswith(("robot.", "derived."))]
     where = f"study {path}: its base robot ({how})"
-    return robot, params, where + (f"; swept in the study, not shown: {', '.join(swept)}" if swept else "")
+    return robot, params, where + (f"; swept in the study, not shown (see --case): {', '.join(swept)}"
+                                   if swept else "")
 
 
 def _g(x: float | None, scale: float = 1.0, fmt: str = ".4g") -> str:
@@ -236,7 +261,7 @@ def robot_command(args, find_study: Callable[[str], Path]) -> int:
         return 2
     try:
         tension = parse_tension(args.tension)
-        robot, params, where = resolve_target(args.target, tuple(args.overrides), find_study)
+        robot, params, where = resolve_target(args.target, tuple(args.overrides), find_study, args.case)
         summary = summarize_robot(robot, tension)
     except StudyError as e:
         for line in e.problems:

@@ -70,8 +70,23 @@ def test_a_study_shows_its_derived_gravity_and_its_sweep(tmp_path, capsys):
     rc, o, e, _ = _show([str(ROOT / "studies/quickstart.toml")], tmp_path, capsys)
     assert rc == 0, e
     assert "gamma = q L³/EI: 1 at |g| = 117.6 m/s²" in o
-    assert "swept in the study, not shown: derived.gravity_parameter" in o
+    assert "swept in the study, not shown (see --case): derived.gravity_parameter" in o
     assert "  robot.diameter = 0.006 [m]" in o and "  robot.base_orientation = horizontal" in o
+
+
+def test_one_case_of_a_study(tmp_path, capsys):
+    """quickstart's sweep: bend angle x gamma in (0.001, 0.01, 0.1, 1, 10); the case with gamma = 10 shows g =
+    10 x 117.57 m/s^2, whichever index it has."""
+    from workbench.study import load_study
+    from workbench.study.expand import expand
+
+    study = load_study(ROOT / "studies/quickstart.toml")
+    case = next(c for c in expand(study) if c.swept.get("derived.gravity_parameter") == 10.0)
+    for pick in (str(case.index), case.case_id):
+        rc, o, e, out = _show([str(ROOT / "studies/quickstart.toml"), "--case", pick], tmp_path, capsys)
+        assert rc == 0, e
+        assert f"case {case.index} ({case.case_id}; preset steel_rod); derived.gravity_parameter = 10.0" in o
+        assert "gamma = q L³/EI: 10 at |g| = 1176 m/s²" in o
 
 
 def test_nested_parameters_are_printed_by_key_path():
@@ -102,7 +117,9 @@ def test_override_and_tension(tmp_path, capsys):
 @pytest.mark.parametrize("args, words", [
     (["no_such_thing"], "not a robot preset (known: steel_rod"),
     (["studies/no_such.toml"], "cannot read file"),
-    (["steel_rod", "robot.length=1"], "overrides apply to a study file, not to the preset"),
+    (["steel_rod", "robot.length=1"], "robot.length=1: applies to a study file, not to the preset"),
+    (["steel_rod", "--case", "0"], "--case 0: applies to a study file, not to the preset"),
+    (["studies/quickstart.toml", "--case", "20"], "--case 20: no such case in studies/quickstart.toml (20 cases"),
     (["studies/quickstart.toml", "robot.diameter=-1"], "robot.diameter: must be > 0"),
     (["studies/quickstart.toml", "robot.lenght=1"], "robot.lenght"),
     (["steel_rod", "--tension", "abc"], "--tension: not a number"),
