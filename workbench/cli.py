@@ -8,6 +8,7 @@
     workbench validate STUDY.toml
     workbench report DIR [--out DIR] [--formats png,svg]
     workbench list models|presets|scenarios|kinds
+    workbench robot show STUDY.toml|PRESET [KEY=VALUE ...] [--out robot.png] [--tension T]
     workbench --version
 
 Executors of ``run``: by default the cases run one after another in a child process that is
@@ -45,6 +46,7 @@ from typing import Sequence
 
 from . import registry
 from .cli_list import TOPICS, list_command
+from .cli_robot import add_robot_arguments, robot_command
 from .report.command import add_report_arguments, report_command
 from .study.cluster_command import add_cluster_arguments
 
@@ -162,6 +164,8 @@ def _parser() -> argparse.ArgumentParser:
     ls = sub.add_parser("list", help="what the registry offers, built-in and plug-ins (with each row's package): "
                                      "models (with capabilities), presets, scenarios, kinds, figures")
     ls.add_argument("topic", choices=TOPICS)
+
+    add_robot_arguments(sub)
 
     v = sub.add_parser("validate", help="check a study file without running it")
     v.add_argument("study", help="study file or bare name (studies/<name>.toml)")
@@ -566,7 +570,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SystemExit as e:  # --help, --version (0) or a usage error (2, one line on stderr)
         return e.code if isinstance(e.code, int) else 2
     commands = {"run": _cmd_run, "show": _cmd_show, "validate": _cmd_validate, "report": _cmd_report,
-                "list": list_command}
+                "list": list_command, "robot": lambda a: robot_command(a, find_study)}
     _err([f"warning: {line}" for line in registry.discover().problems])  # broken plug-ins, one line each
     try:
         code = commands[args.command](args)
