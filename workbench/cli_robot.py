@@ -101,7 +101,7 @@ def resolve_target(target: str, overrides: tuple[str, ...], find_study: Callable
     except StudyError as e:
         if Path(target).name == target:  # a bare name: say both places that were searched
             rest = e.problems[0].removeprefix(f"{target}: ")
-            raise StudyError([f"{target}: not a robot preset (known: {', '.join(registry.table("presets"))}) and {rest}"]
+            raise StudyError([f"{target}: not a robot preset (known: {', '.join(registry.table('presets'))}) and {rest}"]
                              ) from None
         raise
     kind = get_kind(kind_of(path))
