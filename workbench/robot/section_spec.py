@@ -84,11 +84,18 @@ def _poisson(r: Reader, t: Mapping[str, Any], path: str, E: float | None, mat: M
     return nu
 
 
-def _need(r: Reader, value: Any, path: str, key: str, mat: Material | None, t: Mapping[str, Any]) -> None:
-    """A missing material value: one line saying where it could come from."""
-    if value is None and key not in t:
+def _need(r: Reader, values: Mapping[str, Any], path: str, mat: Material | None, t: Mapping[str, Any]) -> None:
+    """Material values neither set nor given by the material: one line naming the first, listing the rest.
+
+    Nothing when a ``material`` is named but unknown or not a string (its own line says so).
+    """
+    if "material" in t and mat is None:
+        return
+    missing = [k for k, v in values.items() if v is None and k not in t]
+    if missing:
         why = f"material {mat.name} gives none" if mat is not None else "no material given"
-        r.add(f"{path}.{key}", f"missing ({why}); set it in the section")
+        more = f"; also missing: {', '.join(missing[1:])}" if len(missing) > 1 else ""
+        r.add(f"{path}.{missing[0]}", f"missing ({why}){more}; set it in the section or name a material")
 
 
 def _diameters(r: Reader, t: Mapping[str, Any], path: str) -> tuple[float | None, float]:
@@ -124,10 +131,10 @@ def _geometry(r: Reader, t: Mapping[str, Any], path: str, sources: dict[str, str
     nu = _poisson(r, t, path, E, mat, sources)
     rho = _value(r, t, "density", path, mat, sources, bound=">=0")
     sy = _value(r, t, "yield_strength", path, mat, sources)
-    for key, v in (("youngs_modulus", E), ("poisson_ratio", nu), ("density", rho)):
-        if key == "poisson_ratio" and "shear_modulus" in t:
-            continue
-        _need(r, v, path, key, mat, t)
+    needed = {"youngs_modulus": E, "poisson_ratio": nu, "density": rho}
+    if "shear_modulus" in t:
+        del needed["poisson_ratio"]
+    _need(r, needed, path, mat, t)
     if sy is not None and "yield_strength" not in t and "youngs_modulus" in t and mat is not None:
         sources[f"{path}.yield_strength"] += f" (youngs_modulus set in the study file; the strength is still {mat.name}'s)"
     if None in (D, E, nu, rho):
@@ -135,8 +142,9 @@ def _geometry(r: Reader, t: Mapping[str, Any], path: str, sources: dict[str, str
     base = CrossSection.tube(D, d, E, rho, nu, yield_strength=sy)
     if "tip" not in t:
         return base, None
+    before = len(r.problems)
     tip_t = r.table(t["tip"], f"{path}.tip", ("diameter", "outer_diameter", "inner_diameter"))
-    if tip_t is None:
+    if tip_t is None or len(r.problems) > before:  # not a table, or a misspelt key (its line says which)
         return base, None
     Dt, dt = _diameters(r, tip_t, f"{path}.tip")
     sources[f"{path}.tip"] = SET_IN_FILE
