@@ -20,7 +20,7 @@ from importlib import resources
 from types import MappingProxyType, SimpleNamespace
 from typing import Any, Mapping
 
-from ..description import Robot
+from ..description import Robot, RobotDescriptionError
 
 __all__ = ["DataPreset", "FILES", "read_data_preset"]
 
@@ -49,10 +49,19 @@ class DataPreset:
     assumed: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
 
     def __call__(self, **overrides: Any) -> Robot:
-        """The robot with description-form ``overrides`` merged in (:func:`workbench.robot.spec.robot_from_params`)."""
-        from ..spec import robot_from_params
+        """The robot with description-form ``overrides`` merged in.
 
-        return robot_from_params({"preset": self.name, **overrides})
+        Raises
+        ------
+        RobotDescriptionError
+            The merged description has problems (one per line, each naming its key path).
+        """
+        from ..describe import parse_description
+
+        robot, problems, _ = parse_description({"preset": self.name, **overrides}, self)
+        if robot is None:
+            raise RobotDescriptionError("\n".join(problems))
+        return robot
 
     def source_of(self, key: str) -> str:
         """``"preset <name>: <text>"`` for relative key path ``key`` (or its nearest enclosing key)."""
