@@ -22,7 +22,7 @@ from .describe import parse_description
 from .description import Robot, RobotDescriptionError
 from .section_spec import SET_IN_FILE
 
-__all__ = ["is_description", "robot_from_params", "robot_problems", "robot_value_sources"]
+__all__ = ["is_description", "robot_description", "robot_from_params", "robot_problems", "robot_value_sources"]
 
 def is_description(params: Mapping[str, Any]) -> bool:
     """``True`` when ``params`` is the description form (no preset, or a data preset), else the preset form."""
@@ -41,6 +41,15 @@ def _parse(params: Any, where: str) -> tuple[Robot | None, list[str], dict[str, 
     if preset is not None and dp is None:
         return None, [f"{where}.preset: not a data preset: {preset!r}"], {}
     return parse_description(params, dp, where)
+
+
+def robot_description(params: Mapping[str, Any], where: str = "robot") -> dict[str, Any]:
+    """The full description a description-form ``params`` stands for (its data preset's values merged in)."""
+    from .describe import merged_description
+    from .presets import data_preset
+
+    preset = params.get("preset")
+    return merged_description(params, data_preset(preset) if isinstance(preset, str) else None, where)[0]
 
 
 def _preset_form_problems(params: Mapping[str, Any], where: str) -> list[str]:
