@@ -50,3 +50,12 @@ def test_a_study_with_per_section_lists_validates_and_keeps_the_lists():
     study = parse_study(raw, source="t.toml")
     assert study.base["robot"]["diameter"] == [6e-3, 4e-3]
     assert study.base["robot"]["first_tendon_angle"] == [0.0, 1.0]  # coerced to the default's type
+
+
+def test_cojocaru_per_section_rod_and_wire():
+    """Section k of the tronconic arm with its own rod and wire equals the scalar preset's section k
+    built with that section's values."""
+    listed = build_preset("cojocaru_tronconic", rod_diameter=[5e-3, 4e-3, 3e-3], wire_diameter=[1.2e-3, 1e-3, 0.8e-3])
+    for k, (d, w) in enumerate(((5e-3, 1.2e-3), (4e-3, 1e-3), (3e-3, 0.8e-3))):
+        scalar = build_preset("cojocaru_tronconic", rod_diameter=d, wire_diameter=w)
+        assert listed.sections[k] == scalar.sections[k]
