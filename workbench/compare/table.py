@@ -198,7 +198,8 @@ def section_ends_from_row(row: Mapping[str, Any]) -> np.ndarray | None:
 def section_ends_with_reason(row: Mapping[str, Any]) -> tuple[np.ndarray | None, str]:
     """Reference section ends [m] of a result row and where they come from (or why they are unknown).
 
-    From a ``section_ends`` list column if present; else by rebuilding the robot preset named
+    From a ``section_ends`` list column if present; else by rebuilding a description-form robot
+    (``p.robot.sections``, :func:`workbench.robot.spec.robot_from_params`) or the robot preset named
     in ``p.robot.preset`` with the row's ``p.robot.*`` parameters (un-flattened by
     :func:`workbench.study.params.section_params`; parameters the preset does not take are
     ignored).  Only the errors a rebuild is documented to raise (``KeyError``: unknown preset;
@@ -215,14 +216,21 @@ def section_ends_with_reason(row: Mapping[str, Any]) -> tuple[np.ndarray | None,
     ends = array_cell(row.get("section_ends"))
     if ends is not None:
         return ends, "section_ends column"
+    from ..robot.presets import build_preset, preset_parameters
+    from ..robot.spec import is_description, robot_from_params
+
     name = row.get("p.robot.preset")
+    params = section_params(row, "robot")
+    if "sections" in params and is_description(params):  # description form (on a data preset or not)
+        try:
+            return np.asarray(robot_from_params(params).section_ends, dtype=float), "robot description"
+        except ValueError as exc:
+            return None, f"robot description not rebuilt ({exc})"
     if not isinstance(name, str) or not name:
         return None, "no section_ends column and no p.robot.preset"
-    from ..robot.presets import build_preset, preset_parameters
-
     try:
         known = preset_parameters(name)
-        params = {k: v for k, v in section_params(row, "robot").items() if k in known}
+        params = {k: v for k, v in params.items() if k in known}
         return np.asarray(build_preset(name, **params).section_ends, dtype=float), f"preset {name}"
     except (KeyError, TypeError, ValueError) as exc:
         msg = str(exc.args[0]) if isinstance(exc, KeyError) and exc.args else str(exc)

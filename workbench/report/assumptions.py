@@ -4,7 +4,10 @@ Gathered from data, never from docstrings: the ``ASSUMED`` tuples of
 :class:`workbench.assumptions.Assumption` (read by :func:`workbench.assumptions.declared_assumptions`) of
 
 * the robot preset's module (``workbench.registry.table("presets")``), values from the rows' ``p.robot.*``
-  when the study sets them, else the preset's default;
+  when the study sets them, else the preset's default; the source reads "set in the study file"
+  where the study sets a value of its own;
+* a robot in the description form (``docs/robot-format.md``): every value with its source
+  (:func:`workbench.robot.spec.robot_value_sources`: the study file, a named material, a data preset);
 * the scenario module (``workbench.registry.table("scenarios")``), values from ``p.scenario.*``;
 * the study kind module (``workbench.registry.table("kinds")``; keys ``"section.key"``, e.g. the
   series-parallel module geometry), values from the rows;
@@ -36,6 +39,8 @@ def _text(v: Any) -> str:
         return fmt(v)
     if isinstance(v, (list, tuple)):
         return "[" + ", ".join(_text(x) for x in v) + "]"
+    if isinstance(v, Mapping):
+        return ", ".join(f"{k} = {_text(x)}" for k, x in v.items())
     return str(v)
 
 
@@ -92,6 +97,9 @@ def _declared_rows(study: ResultSet, section: str, target: str | None,
 
 
 def _preset_rows(study: ResultSet) -> list[Assumption]:
+    """The code preset's ``ASSUMED`` rows, each with its true source: a value the study sets
+    (different from the preset's) reads "set in the study file"; a backbone strength left at the
+    preset's while the study changes the material's stiffness says so."""
     robot = study.spec.get("robot") if isinstance(study.spec.get("robot"), Mapping) else {}
     name = robot.get("preset")
     presets = registry.table("presets")
@@ -100,7 +108,56 @@ def _preset_rows(study: ResultSet) -> list[Assumption]:
     from ..robot.presets import preset_parameters
 
     defaults = preset_parameters(name)
-    return _declared_rows(study, "robot", presets[name], {k: robot.get(k, defaults.get(k)) for k in defaults})
+    rows = _declared_rows(study, "robot", presets[name], {k: robot.get(k, defaults.get(k)) for k in defaults})
+    changed = {k for k in defaults if k in robot and robot[k] != defaults[k] or f"p.robot.{k}" in study.ok
+               and study.ok[f"p.robot.{k}"].nunique() > 1}
+    out = []
+    for r in rows:
+        key = r.key.partition(".")[2]
+        source = "set in the study file" if key in changed else r.source
+        if key == "yield_strength" and key not in changed and changed & {"youngs_modulus", "density"}:
+            source = (f"still the preset's ({r.source}) although the study sets "
+                      f"{' and '.join(sorted(changed & {'youngs_modulus', 'density'}))}: set robot.yield_strength "
+                      "for another material")
+        out.append(Assumption(r.key, source, value=r.value))
+    return out
+
+
+def _description_rows(study: ResultSet) -> list[Assumption]:
+    """Every value of a description-form robot with its source (:func:`workbench.robot.spec.robot_value_sources`)."""
+    from ..robot.materials import material
+    from ..robot.spec import is_description, robot_description, robot_value_sources
+
+    robot = study.spec.get("robot")
+    if not isinstance(robot, Mapping) or not is_description(robot):
+        return []
+    try:
+        sources = robot_value_sources(robot)
+        desc = robot_description(robot)
+    except (ValueError, TypeError, KeyError):  # a table the study's validation refused: nothing to show
+        return []
+    rows = []
+    for key, source in sources.items():
+        value = _leaf(desc, key.partition(".")[2])
+        if value is None and source.startswith("material "):
+            field = key.rpartition(".")[2]
+            value = getattr(material(source[len("material "):].partition(":")[0]),
+                            "tensile_strength" if field == "strength" else field, None)
+        rows.append(Assumption(key, source, value=_text(value) if value is not None else ""))
+    return rows
+
+
+def _leaf(data: Any, path: str) -> Any:
+    """The value at relative key path ``path`` (``sections[1].diameter``) of ``data``; ``None`` when absent."""
+    import re
+
+    node = data
+    for name, index in re.findall(r"([A-Za-z_][A-Za-z0-9_]*)|\[(\d+)\]", path):
+        ok = isinstance(node, Mapping) and name in node if name else isinstance(node, list) and int(index) < len(node)
+        if not ok:
+            return None
+        node = node[name] if name else node[int(index)]
+    return node
 
 
 def _estimate_row(study: ResultSet) -> list[Assumption]:
@@ -121,7 +178,7 @@ def assumption_rows(study: ResultSet) -> list[Assumption]:
     spec = study.spec
     scen = spec.get("scenario") if isinstance(spec.get("scenario"), Mapping) else {}
     kind = (spec.get("study") or {}).get("kind") if isinstance(spec.get("study"), Mapping) else None
-    rows = _preset_rows(study)
+    rows = _preset_rows(study) + _description_rows(study)
     kinds = registry.table("kinds")
     rows += _declared_rows(study, "scenario", registry.table("scenarios").get(scen.get("name", "")))
     rows += _declared_rows(study, "", kinds[kind].target if kind in kinds else None)

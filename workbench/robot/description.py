@@ -190,6 +190,47 @@ class CrossSection:
             yield_strength=yield_strength,
         )
 
+    @classmethod
+    def tube(
+        cls,
+        outer_diameter: float,
+        inner_diameter: float,
+        youngs_modulus: float,
+        density: float,
+        poisson_ratio: float = 0.3,
+        yield_strength: float | None = None,
+    ) -> "CrossSection":
+        """Circular tube (hollow rod) of outer and inner diameter ``D > d >= 0`` [m].
+
+        ``A = pi (D^2 - d^2) / 4``, ``I = pi (D^4 - d^4) / 64``, ``J = 2 I``, ``W = I / (D / 2)``;
+        shear coefficient of the hollow circle (Cowper 1966, "The shear coefficient in Timoshenko's
+        beam theory", J. Appl. Mech. 33:335, Table 1) ``kappa_s = 6 (1 + nu)(1 + m^2)^2 /
+        ((7 + 6 nu)(1 + m^2)^2 + (20 + 12 nu) m^2)`` with ``m = d / D`` (the solid value of
+        :meth:`circular` at ``m = 0``).  ``d = 0`` returns :meth:`circular` itself (bit for bit).
+        Checked by ``tests/robot/test_spec.py``.
+        """
+        D = checked_positive("outer_diameter", outer_diameter)
+        d = checked_positive("inner_diameter", inner_diameter, allow_zero=True)
+        if d == 0.0:
+            return cls.circular(D, youngs_modulus, density, poisson_ratio, yield_strength)
+        if d >= D:
+            raise RobotDescriptionError(f"inner_diameter must be < outer_diameter ({D}), got {d}")
+        E = checked_positive("youngs_modulus", youngs_modulus)
+        rho = checked_positive("density", density, allow_zero=True)
+        nu = float(poisson_ratio)
+        if not (-1.0 < nu < 0.5):
+            raise RobotDescriptionError(f"poisson_ratio must be in (-1, 0.5), got {nu}")
+        area = math.pi * (D**2 - d**2) / 4.0
+        inertia = math.pi * (D**4 - d**4) / 64.0
+        G = E / (2.0 * (1.0 + nu))
+        m2 = (d / D) ** 2
+        kappa_s = 6.0 * (1.0 + nu) * (1.0 + m2) ** 2 / ((7.0 + 6.0 * nu) * (1.0 + m2) ** 2 + (20.0 + 12.0 * nu) * m2)
+        return cls(
+            EI=E * inertia, EA=E * area, GJ=G * 2.0 * inertia, mass_per_length=rho * area,
+            GA=kappa_s * G * area, diameter=D, area=area, section_modulus=inertia / (0.5 * D),
+            yield_strength=yield_strength,
+        )
+
     def scaled(self, factor: float) -> "CrossSection":
         """Return a copy with every stiffness multiplied by ``factor`` (mass unchanged)."""
         f = checked_positive("factor", factor)

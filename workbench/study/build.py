@@ -47,10 +47,11 @@ def gravity_from_parameter(gamma: float, EI: float, mass_per_length: float, leng
 
 def resolve_robot(robot_params: Mapping[str, Any], derived: Mapping[str, Any] | None = None
                   ) -> tuple[Any, dict[str, Any]]:
-    """The robot of a case and the preset parameters it was built with.
+    """The robot of a case and the robot parameters it was built with.
 
-    ``robot_params`` is ``{"preset": name, **preset parameters}`` as configured;
-    ``derived["gravity_parameter"]`` (gamma) replaces the preset's ``gravity`` by
+    ``robot_params`` is the case's ``[robot]`` table in either form of
+    :func:`workbench.robot.spec.robot_from_params` (``{"preset": name, **preset parameters}`` or a
+    description); ``derived["gravity_parameter"]`` (gamma) replaces the robot's ``gravity`` by
     :func:`gravity_from_parameter` of the backbone of a uniform robot (every section the same
     cross-section, no taper; disks and payload are not part of ``q``).  The returned parameters
     are those the robot ran with (gravity included), so ``build_robot(parameters)`` rebuilds the
@@ -62,19 +63,20 @@ def resolve_robot(robot_params: Mapping[str, Any], derived: Mapping[str, Any] | 
     ValueError
         gamma on a non-uniform robot, or invalid gamma (see :func:`gravity_from_parameter`).
     """
-    from ..robot.presets import build_preset
+    from ..robot.spec import is_description, robot_from_params
 
     params = dict(robot_params)
-    name = params.pop("preset")
     gamma = (derived or {}).get("gravity_parameter")
-    robot = build_preset(name, **params)
+    robot = robot_from_params(params)
     if gamma is not None:
         cs = robot.sections[0].cross_section
         if any(s.cross_section != cs or s.cross_section_tip is not None for s in robot.sections):
             raise ValueError("derived.gravity_parameter needs a uniform robot (same cross-section, no taper)")
-        params["gravity"] = gravity_from_parameter(gamma, cs.EI, cs.mass_per_length, robot.length)
-        robot = build_preset(name, **params)
-    return robot, {"preset": name, **params}
+        g = gravity_from_parameter(gamma, cs.EI, cs.mass_per_length, robot.length)
+        # the preset form's gravity is a magnitude along world -z, the description form's a world vector
+        params["gravity"] = g if "preset" in params and not is_description(params) else [0.0, 0.0, -g]
+        robot = robot_from_params(params)
+    return robot, params
 
 
 def build_robot(robot_params: Mapping[str, Any], derived: Mapping[str, Any] | None = None):

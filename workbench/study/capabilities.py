@@ -78,8 +78,13 @@ def case_features(robot: Any, load_case: Any, params: Mapping[str, Any], solver:
         if abs(math.sin(sigma)) > 1e-9:
             planar, why = False, f"the tendon of section {j} at sigma = {sigma:.4g} rad is not in the base x-z plane"
             first = rp.get("first_tendon_angle")
-            key = "robot.first_tendon_angle" if first is not None and abs(math.sin(first)) > 1e-9 else \
-                _first_key(rp, "robot", ("tendon_count", "tendon_angles"), "robot.preset")
+            firsts = first if isinstance(first, list) else [first]  # a per-section list, or one value
+            if "sections" in rp:  # the description form names the section's tendons
+                key = f"robot.sections[{j}].tendons"
+            elif first is not None and any(abs(math.sin(f)) > 1e-9 for f in firsts):
+                key = "robot.first_tendon_angle"
+            else:
+                key = _first_key(rp, "robot", ("tendon_count", "tendon_angles"), "robot.preset")
             break
     F, M = np.asarray(load_case.tip_force, float), np.asarray(load_case.tip_torque, float)
     if planar and abs(F[1]) > _TOL * max(1.0, float(np.linalg.norm(F))):

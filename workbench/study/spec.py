@@ -47,7 +47,7 @@ from .by_model import by_model_problems
 from .keypath import KeyPathError, get_value
 from .report_keys import check_report
 from .sweep_checks import check_sweep, known_paths
-from .checks import check_cases, check_named_params, check_scenario, load_rules
+from .checks import check_cases, check_scenario, load_rules
 from .messages import StudyError, collapse_indexed, pydantic_problems, read_toml, suggest
 from .expand import sweep_keys
 from .outcomes import CaseLimits
@@ -227,35 +227,26 @@ def _check_models(sections: Mapping[str, BaseModel]) -> list[str]:
     return problems
 
 
-def _preset_defaults(preset: Any) -> tuple[dict[str, Any] | None, list[str]]:
-    """The parameters (with defaults) of the preset named in ``robot.preset``, or the problem."""
-    from ..robot.presets import preset_names, preset_parameters
-
-    names = preset_names()
-    if preset is None:
-        return None, ["robot.preset: missing required key (one of: " + ", ".join(names) + ")"]
-    if not isinstance(preset, str):
-        return None, [f"robot.preset: must be a string, got {type(preset).__name__} {preset!r}"]
-    if preset not in names:
-        return None, [f"robot.preset: unknown preset {preset!r}{suggest(preset, list(names))}"
-                      .replace("; known keys:", "; known presets:")]
-    try:
-        return preset_parameters(preset), []
-    except ImportError as e:
-        return None, [f"robot.preset: preset {preset!r} is not available in this installation ({e})"]
-
-
 def _resolve_robot(rraw: Any) -> tuple[dict[str, Any] | None, dict[str, Any], list[str]]:
-    """``[robot]`` -> ``({"preset": name, <every preset parameter>}, preset defaults, problems)``."""
+    """``[robot]`` -> ``(robot parameters of every case, preset defaults, problems)``.
+
+    Preset form: ``{"preset": name, <every preset parameter>}`` and the preset's defaults;
+    description form (no preset, or a data preset): the table as written and ``{}``
+    (:mod:`workbench.robot.spec`; its problems name their key paths).
+    """
+    from ..robot.presets import preset_values
+    from ..robot.spec import is_description, robot_problems
+
     if not isinstance(rraw, dict):
         problems = [f"robot: must be a table [robot], got {type(rraw).__name__}"] if rraw is not None else []
         return None, {}, problems
-    preset = rraw.get("preset")
-    defaults, problems = _preset_defaults(preset)
-    if defaults is None:
+    if "sections" in rraw and "preset" not in rraw or isinstance(rraw.get("preset"), str) and is_description(rraw):
+        problems = robot_problems(rraw, "robot")
+        return (None if problems else dict(rraw)), {}, problems
+    values, defaults, problems = preset_values(rraw, "robot")
+    if values is None:
         return None, {}, problems
-    values, more = check_named_params("robot", rraw, defaults, f"preset {preset!r}", skip="preset")
-    return {"preset": preset, **values}, defaults, problems + more
+    return {"preset": rraw["preset"], **values}, defaults, problems
 
 
 def _robot_check(robot: Mapping[str, Any]) -> tuple[dict[str, Any] | None, list[str]]:

@@ -15,9 +15,10 @@ import math
 from ...assumptions import Assumption
 from ..description import CrossSection, Payload, Robot, Section, TendonGroup
 from ..orientation import base_rotation_for
+from .per_section import per_section
 from .steel_rod import SPRING_STEEL_YIELD
 
-__all__ = ["cojocaru_tronconic", "GIVEN", "ASSUMED", "SETTINGS", "WIRE_STRENGTH_1MM"]
+__all__ = ["cojocaru_tronconic", "GIVEN", "ASSUMED", "SETTINGS", "PER_SECTION", "WIRE_STRENGTH_1MM"]
 
 #: Minimum tensile strength of 1.0 mm (0.040 in) music wire, ASTM A228 Table 1: 315 ksi = 2172 MPa [Pa].
 WIRE_STRENGTH_1MM = 2.17e9
@@ -44,6 +45,10 @@ ASSUMED: tuple[Assumption, ...] = (
     Assumption("disk_mass", "0 (disks massless; gravity is off in the paper's kinematic experiment)"),
 )
 SETTINGS: dict[str, str] = {k: "study choice" for k in ("gravity", "base_orientation", "payload_mass")}
+#: Parameters that take one value per section as a list of ``n_sections`` entries (a scalar: every section).
+PER_SECTION: tuple[str, ...] = ("rod_diameter", "youngs_modulus", "density", "poisson_ratio", "yield_strength",
+                                "wire_diameter", "wire_youngs_modulus", "wire_strength", "first_wire_angle",
+                                "disks_per_section", "disk_mass")
 
 
 def cojocaru_tronconic(
@@ -117,6 +122,9 @@ def cojocaru_tronconic(
     cos(alpha_1)``, Eq 9).  The workbench convention is that a tendon at ``sigma`` pulls
     the robot towards ``phi = sigma`` (tendon on the inside), so the paper's bending
     direction alpha corresponds to ``phi = alpha + pi`` here.
+
+    Every parameter in :data:`PER_SECTION` may also be a list of ``n_sections`` values, one per
+    section; a scalar applies to every section (``tests/robot/test_per_section.py``).
     """
     if int(n_sections) != n_sections or n_sections < 1:
         raise ValueError(f"n_sections must be a positive integer, got {n_sections!r}")
@@ -129,26 +137,33 @@ def cojocaru_tronconic(
         )
     if disk_diameter_step < 0:
         raise ValueError(f"disk_diameter_step must be >= 0 (tronconic: D2 <= D1), got {disk_diameter_step}")
-    rod = CrossSection.circular(rod_diameter, youngs_modulus, density, poisson_ratio, yield_strength=yield_strength)
-    wire_area = math.pi * wire_diameter**2 / 4.0
-    ea_wire = wire_youngs_modulus * math.pi * wire_diameter**2 / 4.0  # same rounding as before the stress fields
+    v = {k: per_section(k, val, n) for k, val in (
+        ("rod_diameter", rod_diameter), ("youngs_modulus", youngs_modulus), ("density", density),
+        ("poisson_ratio", poisson_ratio), ("yield_strength", yield_strength), ("wire_diameter", wire_diameter),
+        ("wire_youngs_modulus", wire_youngs_modulus), ("wire_strength", wire_strength),
+        ("first_wire_angle", first_wire_angle), ("disks_per_section", disks_per_section), ("disk_mass", disk_mass))}
     sections = []
     for k in range(n):
+        rod = CrossSection.circular(v["rod_diameter"][k], v["youngs_modulus"][k], v["density"][k],
+                                    v["poisson_ratio"][k], yield_strength=v["yield_strength"][k])
+        d_w = v["wire_diameter"][k]
+        wire_area = math.pi * d_w**2 / 4.0
+        ea_wire = v["wire_youngs_modulus"][k] * math.pi * d_w**2 / 4.0  # same rounding as before the stress fields
         # every wire runs on the cone's rim from the base plate to its terminating disk:
         # offset linear along its routed length (the TendonGroup convention)
         d_end = base_disk_diameter - (k + 1) * disk_diameter_step
         group = TendonGroup.evenly_spaced(
-            3, base_disk_diameter / 2.0, ea_wire, first_wire_angle,
+            3, base_disk_diameter / 2.0, ea_wire, v["first_wire_angle"][k],
             offset_tip=d_end / 2.0 if d_end != base_disk_diameter else None,
-            area=wire_area, strength=wire_strength,
+            area=wire_area, strength=v["wire_strength"][k],
         )
         sections.append(
             Section(
                 length=section_length,
                 cross_section=rod,
                 tendons=group,
-                n_disks=disks_per_section,
-                disk_mass=disk_mass,
+                n_disks=v["disks_per_section"][k],
+                disk_mass=v["disk_mass"][k],
             )
         )
     return Robot(

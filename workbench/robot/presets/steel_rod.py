@@ -12,8 +12,9 @@ from __future__ import annotations
 from ...assumptions import Assumption
 from ..description import CrossSection, Payload, Robot, Section, TendonGroup
 from ..orientation import base_rotation_for
+from .per_section import per_section
 
-__all__ = ["steel_rod", "GIVEN", "ASSUMED", "SETTINGS", "SPRING_STEEL_YIELD", "WIRE_STRENGTH_05MM"]
+__all__ = ["steel_rod", "GIVEN", "ASSUMED", "SETTINGS", "PER_SECTION", "SPRING_STEEL_YIELD", "WIRE_STRENGTH_05MM"]
 
 #: 0.2 % proof stress of hardened and tempered spring steel 52CrMoV4 (1.7701, DIN 17221 / EN 10089),
 #: Rp0.2 >= 1200 MPa (Saarstahl material data sheet 52CrMoV4) [Pa].
@@ -39,6 +40,12 @@ ASSUMED: tuple[Assumption, ...] = (
 SETTINGS: dict[str, str] = {k: "study choice" for k in (
     "length", "diameter", "n_sections", "tendon_count", "tendon_offset", "first_tendon_angle",
     "disks_per_section", "disk_mass", "gravity", "base_orientation", "payload_mass")}
+
+#: Parameters that take one value per section as a list of ``n_sections`` entries (a scalar: every section).
+PER_SECTION: tuple[str, ...] = (
+    "diameter", "youngs_modulus", "density", "poisson_ratio", "yield_strength", "tendon_count", "tendon_offset",
+    "tendon_stiffness", "tendon_youngs_modulus", "tendon_strength", "first_tendon_angle", "disks_per_section",
+    "disk_mass")
 
 
 def steel_rod(
@@ -97,21 +104,34 @@ def steel_rod(
         Direction the robot points at its base (see :func:`base_rotation_for`).
     payload_mass : float
         Point mass at the tip [kg].
+
+    Every parameter in :data:`PER_SECTION` may also be a list of ``n_sections`` values, one per
+    section (e.g. ``diameter=[1.4e-3, 1.0e-3]``); a scalar applies to every section.  Checked by
+    ``tests/robot/test_per_section.py``.
     """
     if int(n_sections) != n_sections or n_sections < 1:
         raise ValueError(f"n_sections must be a positive integer, got {n_sections!r}")
-    rod = CrossSection.circular(diameter, youngs_modulus, density, poisson_ratio, yield_strength=yield_strength)
+    n = int(n_sections)
+    v = {k: per_section(k, val, n) for k, val in (
+        ("diameter", diameter), ("youngs_modulus", youngs_modulus), ("density", density),
+        ("poisson_ratio", poisson_ratio), ("yield_strength", yield_strength), ("tendon_count", tendon_count),
+        ("tendon_offset", tendon_offset), ("tendon_stiffness", tendon_stiffness),
+        ("tendon_youngs_modulus", tendon_youngs_modulus), ("tendon_strength", tendon_strength),
+        ("first_tendon_angle", first_tendon_angle), ("disks_per_section", disks_per_section),
+        ("disk_mass", disk_mass))}
     sections = tuple(
         Section(
             length=length / n_sections,
-            cross_section=rod,
-            tendons=TendonGroup.evenly_spaced(tendon_count, tendon_offset, tendon_stiffness, first_tendon_angle,
-                                              area=tendon_stiffness / tendon_youngs_modulus,
-                                              strength=tendon_strength),
-            n_disks=disks_per_section,
-            disk_mass=disk_mass,
+            cross_section=CrossSection.circular(v["diameter"][k], v["youngs_modulus"][k], v["density"][k],
+                                                v["poisson_ratio"][k], yield_strength=v["yield_strength"][k]),
+            tendons=TendonGroup.evenly_spaced(v["tendon_count"][k], v["tendon_offset"][k], v["tendon_stiffness"][k],
+                                              v["first_tendon_angle"][k],
+                                              area=v["tendon_stiffness"][k] / v["tendon_youngs_modulus"][k],
+                                              strength=v["tendon_strength"][k]),
+            n_disks=v["disks_per_section"][k],
+            disk_mass=v["disk_mass"][k],
         )
-        for _ in range(int(n_sections))
+        for k in range(n)
     )
     return Robot(
         sections=sections,
