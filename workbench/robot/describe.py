@@ -5,7 +5,7 @@ The parser behind :mod:`workbench.robot.spec` (the public API) and
 (base pose, gravity, payload, ``sections``; each section by :mod:`workbench.robot.section_spec`),
 optionally merged onto a data preset's description.  Imports no preset (the caller passes the
 data preset), so presets and the public API can both use it.  Checked by
-``tests/robot/test_spec.py`` and ``tests/robot/test_spec_malformed.py``.
+``tests/robot/test_robot_spec.py`` and ``tests/robot/test_spec_malformed.py``.
 """
 
 from __future__ import annotations

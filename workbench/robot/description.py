@@ -207,7 +207,7 @@ class CrossSection:
         beam theory", J. Appl. Mech. 33:335, Table 1) ``kappa_s = 6 (1 + nu)(1 + m^2)^2 /
         ((7 + 6 nu)(1 + m^2)^2 + (20 + 12 nu) m^2)`` with ``m = d / D`` (the solid value of
         :meth:`circular` at ``m = 0``).  ``d = 0`` returns :meth:`circular` itself (bit for bit).
-        Checked by ``tests/robot/test_spec.py``.
+        Checked by ``tests/robot/test_robot_spec.py``.
         """
         D = checked_positive("outer_diameter", outer_diameter)
         d = checked_positive("inner_diameter", inner_diameter, allow_zero=True)

@@ -7,7 +7,7 @@ backbone is either a *geometry* (solid rod ``diameter`` or tube ``outer_diameter
 *stiffnesses* (``bending_stiffness``, ``axial_stiffness``, ``torsional_stiffness``, optional
 ``shear_stiffness``, ``mass_per_length``: an equivalent rod without stress geometry).  A value the
 user sets replaces the material's.  Every value's source is recorded (``sources``: key path ->
-text).  Checked by ``tests/robot/test_spec.py`` and ``tests/robot/test_spec_malformed.py``.
+text).  Checked by ``tests/robot/test_robot_spec.py`` and ``tests/robot/test_spec_malformed.py``.
 """
 
 from __future__ import annotations

@@ -10,7 +10,7 @@
 Public API (the seam of issue 29): :func:`robot_from_params` builds the :class:`Robot`,
 :func:`robot_problems` lists every problem in one line each naming its key path, and
 :func:`robot_value_sources` says where each value comes from ("set in the study file", "material
-niti: <source>", "preset rao_2021: <source>").  Checked by ``tests/robot/test_spec.py`` and
+niti: <source>", "preset rao_2021: <source>").  Checked by ``tests/robot/test_robot_spec.py`` and
 ``tests/robot/test_spec_malformed.py``.
 """
 
