@@ -12,7 +12,10 @@ problem is the validator's one line (a kind may wrap the sweep :class:`~workbenc
 its ``study`` attribute, as closed_loop does), and its base robot resolved by
 :func:`workbench.study.build.resolve_robot` (``[derived] gravity_parameter`` applied; the sweep is not,
 unless ``--case`` picks one case of the kind's expansion).
-Runs no simulation.  Checked by ``tests/study/test_robot_show.py`` (every preset and every committed
+A study whose kind registers a ``robot_show`` hook (:class:`workbench.registry.KindInfo`; series_parallel:
+six-rod modules, no ``[robot]``) prints that hook's lines and writes its figure instead (:func:`kind_show`);
+a kind with neither is refused in one line.
+Runs no simulation (a ``robot_show`` hook may solve its trunk's home pose).  Checked by ``tests/study/test_robot_show.py`` (every preset and every committed
 study; bad input gives one line and exit code 2).
 """
 
@@ -26,7 +29,7 @@ from typing import TYPE_CHECKING, Any, Callable
 if TYPE_CHECKING:  # the summary code (numpy, scipy) is imported when the command runs
     from .study.robot_summary import RobotSummary
 
-__all__ = ["add_robot_arguments", "robot_command", "resolve_target", "summary_lines", "parse_tension"]
+__all__ = ["add_robot_arguments", "robot_command", "resolve_target", "summary_lines", "parse_tension", "kind_show"]
 
 
 def add_robot_arguments(sub) -> None:
@@ -110,7 +113,8 @@ def resolve_target(target: str, overrides: tuple[str, ...], find_study: Callable
     base = study.base if isinstance(study, Study) else None
     if not isinstance(base, dict) or "robot" not in base:
         raise StudyError([f"{path}: a {kind.name!r} study has no [robot] section: robot show describes the tendon-"
-                          f"driven robots of [robot] (this study's trunk is given by its own sections)"])
+                          f"driven robots of [robot] (this study's trunk is given by its own sections and its kind registers no "
+                          f"robot_show)"])
     chosen = None if case is None else _pick_case(kind, spec, str(case), path)
     given = base if chosen is None else chosen.params
     try:
@@ -250,6 +254,52 @@ def summary_lines(summary: RobotSummary, where: str, params: dict[str, Any] | No
             + [""] + _stress_lines(summary))
 
 
+def kind_show(target: str, overrides: tuple[str, ...], find_study: Callable[[str], Path], case: str | None,
+              tension: str | None) -> tuple[list[str], Any] | None:
+    """``(lines, figure)`` of the ``robot_show`` hook of the study kind of ``target``, or ``None``.
+
+    ``None`` when ``target`` is a preset, no study file, or a study whose kind has no ``robot_show``
+    (:class:`~workbench.registry.KindInfo`): :func:`resolve_target` then describes its ``[robot]`` or
+    says in one line why it cannot.  Raises StudyError (one line) for an invalid study or for
+    ``--case`` / ``--tension``, which apply to ``[robot]`` studies only.
+    """
+    from . import registry
+    from .study import StudyError, get_kind, kind_of
+
+    if target in registry.table("presets") and not Path(target).exists():
+        return None
+    try:
+        path = find_study(target)
+    except StudyError:
+        return None
+    name = kind_of(path)
+    row = registry.table("kinds").get(name)
+    hook = getattr(row, "robot_show", None)
+    if not hook:
+        return None
+    spec = get_kind(name).load(path, overrides=tuple(overrides))
+    for flag, value in (("--case", case), ("--tension", tension)):
+        if value is not None:
+            raise StudyError([f"{flag} {value}: applies to studies with a [robot], not to the {name!r} study {path}"])
+    return registry.resolve(hook)(spec)
+
+
+def _print_shown(lines: list[str], figure, out: Path) -> int:
+    """Print a kind's ``robot_show`` lines and write its figure to ``out`` (exit 0; 2 if it cannot be written)."""
+    for line in lines:
+        print(line)
+    if figure is None:
+        print("\npicture: none (this study kind draws none)")
+        return 0
+    try:
+        figure.savefig(out, dpi=110, format="png")
+    except OSError as e:
+        print(f"--out {out}: cannot write the picture ({e.strerror or e})", file=sys.stderr)
+        return 2
+    print(f"\npicture: {out}")
+    return 0
+
+
 def robot_command(args, find_study: Callable[[str], Path]) -> int:
     """``workbench robot show``: print the robot and write its picture (exit 0); bad input: one line, exit 2."""
     from .report.robot_picture import save_robot_picture
@@ -260,6 +310,9 @@ def robot_command(args, find_study: Callable[[str], Path]) -> int:
         print(f"--out {args.out!r}: give a file name for the picture, e.g. robot.png", file=sys.stderr)
         return 2
     try:
+        shown = kind_show(args.target, tuple(args.overrides), find_study, args.case, args.tension)
+        if shown is not None:
+            return _print_shown(*shown, Path(args.out))
         tension = parse_tension(args.tension)
         robot, params, where = resolve_target(args.target, tuple(args.overrides), find_study, args.case)
         summary = summarize_robot(robot, tension)

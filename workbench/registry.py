@@ -200,12 +200,19 @@ class KindInfo:
         ``"module:function"`` of ``axes(columns) -> [column]``: the parameter columns that vary
         the kind's cases, used where a sweep study's ``[sweep]`` keys would be (the kind's
         study file has no ``[sweep]``).
+    robot_show : str or None
+        ``"module:function"`` of ``show(spec) -> (lines, figure)`` for a kind whose trunk is not a
+        ``[robot]``: called by ``workbench robot show`` with the loaded study ``spec``; ``lines`` are
+        the text lines of the resolved trunk (parameters with units, derived quantities),
+        ``figure`` a matplotlib ``Figure`` written as the PNG, or ``None``
+        (``tests/study/test_robot_show.py``).
     """
 
     target: str
     units: str | None = None
     lines: str | None = None
     axes: str | None = None
+    robot_show: str | None = None
 
 
 MODELS: Mapping[str, ModelInfo] = {
@@ -302,7 +309,8 @@ KINDS: Mapping[str, KindInfo] = {
     "series_parallel": KindInfo("workbench.experiments.series_parallel.kind:KIND",
                                 units="workbench.experiments.series_parallel.units:QUANTITIES",
                                 lines="workbench.experiments.series_parallel.view:leg_lines",
-                                axes="workbench.experiments.series_parallel.view:pose_columns"),
+                                axes="workbench.experiments.series_parallel.view:pose_columns",
+                                robot_show="workbench.experiments.series_parallel.show:show"),
     "grasp": KindInfo("workbench.experiments.whole_arm_grasp.kind:KIND"),
     "closed_loop": KindInfo("workbench.experiments.closed_loop.kind:KIND"),
 }

@@ -2,8 +2,9 @@
 copies) prints its robot and writes a non-empty PNG without running a simulation; bad input is one line
 on stderr with exit code 2.
 
-A study kind without a ``[robot]`` (series_parallel: six-rod parallel modules, ``[geometry]``) is told
-so in one line (exit 2): its trunk is not a tendon-driven :class:`~workbench.robot.Robot`.
+A study kind without a ``[robot]`` shows its trunk through its ``robot_show`` hook
+(:class:`workbench.registry.KindInfo`; series_parallel: six-rod parallel modules, ``[geometry]``,
+:mod:`workbench.experiments.series_parallel.show`); a kind with neither is told so in one line (exit 2).
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ from workbench.cli import main
 
 ROOT = Path(__file__).parents[2]
 STUDIES = sorted(ROOT.glob("studies/*.toml")) + sorted(ROOT.glob("tests/regression/studies/*.toml"))
-NO_ROBOT = {"series_parallel"}  # study kinds whose trunk is no Robot
+SHOWN_BY_KIND = {"series_parallel"}  # study kinds whose trunk is no Robot: shown by their robot_show hook
 
 
 def _kind(path: Path) -> str:
@@ -56,11 +57,14 @@ def test_there_are_committed_studies():
 @pytest.mark.parametrize("path", STUDIES, ids=[str(p.relative_to(ROOT)) for p in STUDIES])
 def test_every_committed_study(path, tmp_path, capsys):
     rc, o, e, out = _show([str(path)], tmp_path, capsys)
-    if _kind(path) in NO_ROBOT:
-        assert rc == 2 and len(e.strip().splitlines()) == 1 and "has no [robot] section" in e, e
-        assert not out.exists()
-        return
     assert rc == 0, e
+    assert "Traceback" not in o + e
+    if _kind(path) in SHOWN_BY_KIND:
+        for words in ("geometry.rod_diameter = ", "leg rest lengths L_i", "converged)", "EI = E pi d⁴/64",
+                      "axial EA/L_i", "bending 3EI/L_i³", "module(s)"):
+            assert words in o, words
+        _check_picture(out)
+        return
     assert f"study {path}: its base robot" in o and "Traceback" not in o + e
     _check_picture(out)
 
@@ -137,3 +141,56 @@ def test_out_must_be_a_file(tmp_path, capsys):
     rc = main(["robot", "show", "steel_rod", "--out", str(tmp_path)])
     e = capsys.readouterr().err
     assert rc == 2 and e.startswith("--out") and len(e.strip().splitlines()) == 1
+
+
+def test_series_parallel_derived_numbers_by_hand():
+    """d = 6 mm, E = 200 GPa, nu = 0.3, rho = 7850 kg/m^3 (ModuleGeometry defaults), given rest lengths:
+    A = pi 36e-6 / 4 = 2.8274e-5 m^2 -> EA = 5.6549e6 N, rho A = 0.22195 kg/m;
+    I = pi 1.296e-9 / 64 = 6.3617e-11 m^4 -> EI = 12.723 N m^2; G = 200e9 / 2.6 = 76.923e9 Pa,
+    J = 2 I -> GJ = 9.7873 N m^2; leg 0.5 m: EA/L = 1.1310e7 N/m, 3EI/L^3 = 305.36 N/m;
+    leg 0.4 m: 3EI/L^3 = 596.41 N/m; module 0.22195 x (3 x 0.5 + 3 x 0.4) + 0.5 = 1.0993 kg, 2 modules 2.1985 kg."""
+    from workbench.experiments.series_parallel.show import derived_quantities
+    from workbench.physics.series_parallel import ModuleGeometry
+
+    d = derived_quantities(ModuleGeometry(), [0.5, 0.5, 0.5, 0.4, 0.4, 0.4], n_modules=2)
+    rel = 1e-4  # the hand values above carry 5 significant digits
+    assert d.EA == pytest.approx(5.6549e6, rel=rel) and d.EI == pytest.approx(12.723, rel=rel)
+    assert d.GJ == pytest.approx(9.7873, rel=rel) and d.mass_per_length == pytest.approx(0.22195, rel=rel)
+    assert d.axial_stiffness[0] == pytest.approx(1.1310e7, rel=rel)
+    assert d.axial_stiffness[3] == pytest.approx(1.4137e7, rel=rel)
+    assert d.bending_stiffness[0] == pytest.approx(305.36, rel=rel)
+    assert d.bending_stiffness[5] == pytest.approx(596.41, rel=rel)
+    assert d.module_mass == pytest.approx(1.0993, rel=rel) and d.total_mass == pytest.approx(2.1985, rel=rel)
+
+
+def test_series_parallel_home_lengths_and_flags(tmp_path, capsys):
+    """The home rest lengths are the kind's own IK: longer than the 0.5 m height (the legs are S-shaped),
+    and their excess over the height (4.6 mm) within 1 % of that of the Hermite predictor (the IK's start;
+    8 elements: 0.5 % apart); --case / --tension apply to [robot] studies only."""
+    import numpy as np
+
+    from workbench.physics.series_parallel import ModuleGeometry, home_pose, leg_lengths_from_pose_hermite
+
+    rc, o, e, _ = _show([str(ROOT / "studies/series_parallel.toml"), "solver.n_elements=8"], tmp_path, capsys)
+    assert rc == 0, e
+    L = float(re.search(r"L_i \[m\] = ([0-9.]+) \(each leg\)", o).group(1))
+    g = ModuleGeometry()
+    guess = float(np.mean(leg_lengths_from_pose_hermite(g, home_pose(g))))
+    assert g.height < L and abs(L - guess) < 0.01 * (guess - g.height), (L, guess)
+    assert "8 GE-beam elements per leg" in o
+    for flag in (["--case", "0"], ["--tension", "1"]):
+        (tmp_path / "robot.png").unlink(missing_ok=True)
+        rc, o, e, out = _show([str(ROOT / "studies/series_parallel.toml"), *flag], tmp_path, capsys)
+        assert rc == 2 and not out.exists() and len(e.strip().splitlines()) == 1
+        assert f"{flag[0]} {flag[1]}: applies to studies with a [robot]" in e, e
+
+
+def test_a_kind_with_neither_robot_nor_hook_is_refused(tmp_path, capsys, monkeypatch):
+    from dataclasses import replace
+
+    kinds = dict(registry.KINDS)
+    kinds["series_parallel"] = replace(kinds["series_parallel"], robot_show=None)
+    monkeypatch.setattr(registry, "KINDS", kinds)
+    rc, o, e, out = _show([str(ROOT / "studies/series_parallel.toml")], tmp_path, capsys)
+    assert rc == 2 and not out.exists() and len(e.strip().splitlines()) == 1
+    assert "has no [robot] section" in e and "registers no robot_show" in e, e
