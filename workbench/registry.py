@@ -276,7 +276,7 @@ def row_info(name: str) -> ModelInfo | RowLabel | None:
     return table("models").get(name) or LABELS.get(name)
 
 PRESETS: Mapping[str, str] = {
-    "steel_rod": "workbench.robot.presets.steel_rod:steel_rod",
+    "steel_rod": "workbench.robot.presets.data:FILES.steel_rod",
     "hannan_walker": "workbench.robot.presets.hannan_walker:hannan_walker",
     "cojocaru_tronconic": "workbench.robot.presets.cojocaru:cojocaru_tronconic",
     "shao_harvester": "workbench.robot.presets.shao:shao_harvester",

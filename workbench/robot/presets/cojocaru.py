@@ -16,7 +16,6 @@ from ...assumptions import Assumption
 from ..description import CrossSection, Payload, Robot, Section, TendonGroup
 from ..orientation import base_rotation_for
 from .per_section import per_section
-from .steel_rod import SPRING_STEEL_YIELD
 
 __all__ = ["cojocaru_tronconic", "GIVEN", "ASSUMED", "SETTINGS", "PER_SECTION", "WIRE_STRENGTH_1MM"]
 
@@ -64,7 +63,7 @@ def cojocaru_tronconic(
     wire_diameter: float = 1.0e-3,
     wire_youngs_modulus: float = 210e9,
     wire_strength: float = WIRE_STRENGTH_1MM,
-    yield_strength: float = SPRING_STEEL_YIELD,
+    yield_strength: float = 1.2e9,  # spring steel 52CrMoV4, Rp0.2 (ASSUMED below)
     first_wire_angle: float = 0.0,
     disks_per_section: int = 5,
     disk_mass: float = 0.0,
