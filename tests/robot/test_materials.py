@@ -6,7 +6,6 @@ import pytest
 
 from workbench.robot.materials import MATERIAL_FIELDS, material, material_names
 from workbench.robot.presets import preset_parameters
-from workbench.robot.presets.cojocaru import WIRE_STRENGTH_1MM
 
 
 @pytest.mark.parametrize("name", material_names())
@@ -30,13 +29,13 @@ def test_values_are_physical(name):
 
 
 def test_the_presets_cited_values_are_the_materials():
-    """The same data sheets as the presets' defaults (steel_rod.toml, cojocaru.py)."""
+    """The same data sheets as the presets' defaults (steel_rod.toml, cojocaru_tronconic.toml)."""
     steel_rod = preset_parameters("steel_rod")
     assert material("spring_steel").yield_strength == steel_rod["yield_strength"]
     assert material("music_wire_05mm").tensile_strength == steel_rod["tendon_strength"]
     assert (material("steel").youngs_modulus, material("steel").poisson_ratio, material("steel").density) == \
         (steel_rod["youngs_modulus"], steel_rod["poisson_ratio"], steel_rod["density"])
-    assert material("music_wire_1mm").tensile_strength == WIRE_STRENGTH_1MM
+    assert material("music_wire_1mm").tensile_strength == preset_parameters("cojocaru_tronconic")["wire_strength"]
     assert (material("steel").youngs_modulus, material("steel").poisson_ratio, material("steel").density) == \
         (210e9, 0.3, 7850.0)
 

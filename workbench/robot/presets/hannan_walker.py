@@ -34,7 +34,6 @@ from typing import Sequence
 from ...assumptions import Assumption
 from ..description import CrossSection, Payload, Robot, Section, TendonGroup
 from ..orientation import base_rotation_for
-from .cojocaru import WIRE_STRENGTH_1MM
 
 __all__ = ["hannan_walker", "HW_TOTAL_LENGTH", "HW_DIAMETERS", "HW_JOINTS_PER_SECTION", "GIVEN", "ASSUMED",
            "SETTINGS"]
@@ -85,7 +84,7 @@ def hannan_walker(
     section_masses: Sequence[float] = (0.8, 0.6, 0.45, 0.3),
     tendon_stiffness: float = 1.6e5,
     tendon_area: float = 7.85e-7,
-    tendon_strength: float = WIRE_STRENGTH_1MM,
+    tendon_strength: float = 2.17e9,  # music wire ASTM A228, 1.0 mm (ASSUMED above)
     planar: bool = True,
     gravity: float = 9.81,
     base_orientation: str = "vertical",
