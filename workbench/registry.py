@@ -277,7 +277,7 @@ def row_info(name: str) -> ModelInfo | RowLabel | None:
 
 PRESETS: Mapping[str, str] = {
     "steel_rod": "workbench.robot.presets.data:FILES.steel_rod",
-    "hannan_walker": "workbench.robot.presets.hannan_walker:hannan_walker",
+    "hannan_walker": "workbench.robot.presets.data:FILES.hannan_walker",
     "cojocaru_tronconic": "workbench.robot.presets.data:FILES.cojocaru_tronconic",
     "shao_harvester": "workbench.robot.presets.data:FILES.shao_harvester",
     "hannan_walker_3d": "workbench.robot.presets.hannan_walker_3d:hannan_walker_3d",

@@ -20,7 +20,7 @@ PARAMETRIC = [n for n in preset_names()
 
 
 def test_the_built_in_presets_are_parametric_data_presets():
-    assert {"steel_rod", "shao_harvester", "cojocaru_tronconic"} <= set(PARAMETRIC)
+    assert {"steel_rod", "shao_harvester", "cojocaru_tronconic", "hannan_walker"} <= set(PARAMETRIC)
 
 
 @pytest.mark.parametrize("name", PARAMETRIC)

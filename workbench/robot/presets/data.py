@@ -42,7 +42,8 @@ KINDS = ("given", "assumed", "setting")
 
 @dataclass(frozen=True)
 class Parameter:
-    """One parameter of a parametric preset: its default, unit, kind of source and source text."""
+    """One parameter of a parametric preset: its default (a TOML array becomes a tuple), unit, kind of source
+    (one of :data:`KINDS`), source text, and whether a study may give one value per section."""
 
     default: Any
     unit: str
@@ -132,7 +133,8 @@ def _parameters(name: str, table: Any) -> dict[str, Parameter]:
                              f"{sorted(p) if isinstance(p, dict) else p!r}")
         if p["kind"] not in KINDS or not str(p["source"]).strip():
             raise ValueError(f"{where}: kind must be one of {', '.join(KINDS)} and source a non-empty text")
-        out[key] = Parameter(p["default"], str(p["unit"]), p["kind"], str(p["source"]), bool(p.get("per_section")))
+        default = tuple(p["default"]) if isinstance(p["default"], list) else p["default"]  # frozen, as a code default
+        out[key] = Parameter(default, str(p["unit"]), p["kind"], str(p["source"]), bool(p.get("per_section")))
     return out
 
 

@@ -21,17 +21,18 @@ from typing import Sequence
 
 from ..description import Robot
 from ...assumptions import Assumption
-from .hannan_walker import ASSUMED as _HW_ASSUMED
-from .hannan_walker import GIVEN as _HW_GIVEN
-from .hannan_walker import HW_DIAMETERS, HW_TOTAL_LENGTH, hannan_walker
+from .data import FILES
+from .hannan_walker import hannan_walker
+
+_HW = FILES.hannan_walker.parameters
 
 __all__ = ["hannan_walker_3d", "GIVEN", "ASSUMED", "SETTINGS"]
 
 #: Where every parameter comes from (``tests/robot/test_presets_sources.py``): the planar preset's
 #: sources for the shared parameters, the paper for the 16-cable layout.
-GIVEN: dict[str, str] = {k: _HW_GIVEN[k] for k in ("total_length", "diameters")}
-ASSUMED: tuple[Assumption, ...] = tuple(a for a in _HW_ASSUMED if a.key in ("joint_stiffness", "section_masses",
-                                                                            "tendon_stiffness", "axial_stiffness"))
+GIVEN: dict[str, str] = {k: _HW[k].source for k in ("total_length", "diameters")}
+ASSUMED: tuple[Assumption, ...] = tuple(Assumption(k, _HW[k].source) for k in ("joint_stiffness", "section_masses",
+                                                                                "tendon_stiffness", "axial_stiffness"))
 SETTINGS: dict[str, str] = {k: "study choice" for k in ("gravity", "gravity_direction", "base_orientation",
                                                        "payload_mass")}
 
@@ -46,8 +47,8 @@ def _direction(values: Sequence[float]) -> tuple[float, float, float]:
 
 def hannan_walker_3d(
     *,
-    total_length: float = HW_TOTAL_LENGTH,
-    diameters: Sequence[float] = HW_DIAMETERS,
+    total_length: float = _HW["total_length"].default,
+    diameters: Sequence[float] = _HW["diameters"].default,
     joint_stiffness: Sequence[float] = (120.0, 80.0, 50.0, 25.0),
     section_masses: Sequence[float] = (0.8, 0.6, 0.45, 0.3),
     tendon_stiffness: float = 1.6e5,
