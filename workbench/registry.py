@@ -280,7 +280,7 @@ PRESETS: Mapping[str, str] = {
     "hannan_walker": "workbench.robot.presets.data:FILES.hannan_walker",
     "cojocaru_tronconic": "workbench.robot.presets.data:FILES.cojocaru_tronconic",
     "shao_harvester": "workbench.robot.presets.data:FILES.shao_harvester",
-    "hannan_walker_3d": "workbench.robot.presets.hannan_walker_3d:hannan_walker_3d",
+    "hannan_walker_3d": "workbench.robot.presets.data:FILES.hannan_walker_3d",
     # a data preset: the DataPreset of workbench/robot/presets/rao_2021.toml (docs/robot-format.md)
     "rao_2021": "workbench.robot.presets.data:FILES.rao_2021",
 }

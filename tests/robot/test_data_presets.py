@@ -20,7 +20,8 @@ PARAMETRIC = [n for n in preset_names()
 
 
 def test_the_built_in_presets_are_parametric_data_presets():
-    assert {"steel_rod", "shao_harvester", "cojocaru_tronconic", "hannan_walker"} <= set(PARAMETRIC)
+    assert {"steel_rod", "shao_harvester", "cojocaru_tronconic", "hannan_walker", "hannan_walker_3d"} \
+        <= set(PARAMETRIC)
 
 
 @pytest.mark.parametrize("name", PARAMETRIC)
@@ -45,6 +46,13 @@ def test_units_agree_with_the_units_table(name):
         unit = UNITS.get(f"robot.{key}", (None, None))[1]
         if isinstance(unit, str):
             assert p.unit == unit, (name, key)
+
+
+def test_the_3d_trunk_shares_the_planar_trunks_values_and_sources():
+    planar, spatial = get_preset("hannan_walker").parameters, get_preset("hannan_walker_3d").parameters
+    shared = set(planar) & set(spatial)
+    assert len(shared) == 9
+    assert all(planar[k] == spatial[k] for k in shared), [k for k in shared if planar[k] != spatial[k]]
 
 
 def test_a_changed_default_changes_the_robot():
