@@ -129,7 +129,7 @@ def preset_values(params: Mapping[str, Any], where: str = "robot"
                   ) -> tuple[dict[str, Any] | None, dict[str, Any], list[str]]:
     """``(values, defaults, problems)`` of a preset-form table ``{"preset": name, **overrides}``.
 
-    ``values`` are the code preset's defaults with the checked overrides applied (numbers coerced
+    ``values`` are the preset's defaults with the checked overrides applied (numbers coerced
     to the default's type; a ``PER_SECTION`` parameter may be a list of ``n_sections`` values),
     ``None`` when the preset itself is bad; ``problems`` one line each, ``"<where>.<key>: ..."``.
     """
@@ -171,7 +171,7 @@ def preset_problems(params: Mapping[str, Any], where: str = "robot") -> list[str
 
 
 def preset_value_sources(params: Mapping[str, Any], where: str = "robot") -> dict[str, str]:
-    """``<where>.<parameter>`` -> its source, for every parameter of the code preset ``params`` names.
+    """``<where>.<parameter>`` -> its source, for every parameter of the preset-form preset ``params`` names.
 
     A value the study sets and that differs from the default reads "set in the study file"; else
     the preset's declared source ("given by ...", "assumed: ...", "study choice").

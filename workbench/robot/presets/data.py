@@ -20,7 +20,7 @@ A study uses a parametric preset in the preset form ``{"preset": name, **paramet
 
 :data:`FILES` holds one :class:`DataPreset` per file of this folder, so a registry row reads
 ``"workbench.robot.presets.data:FILES.<name>"``; a plug-in's row names its own :class:`DataPreset`.
-Checked by ``tests/robot/test_rao_preset.py``.
+Checked by ``tests/robot/test_rao_preset.py`` and ``tests/robot/test_data_presets.py``.
 """
 
 from __future__ import annotations
