@@ -83,6 +83,8 @@ HEAD = '[preset]\ntitle = "t"\nderive = "m:f"\n[robot]\nname = "x"\n'
     (HEAD + '[parameters.a]\ndefault = 1.0\nunit = "m"\nkind = "given"\nsource = "s"\nper_sectoin = true\n',
      "parameters.a: needs default"),
     (HEAD, r"\[parameters\] and \[preset\] derive go together"),
+    (HEAD + '[preset.assumed]\n"a" = "why"\n[parameters.a]\ndefault = 1.0\nunit = "m"\nkind = "given"\nsource = "s"\n',
+     r"states its sources in \[parameters.<name>\]"),
     ('[preset]\ntitle = "t"\n[robot]\nname = "x"\n[parameters.a]\ndefault = 1.0\nunit = "m"\nkind = "given"\n'
      'source = "s"\n', r"\[parameters\] and \[preset\] derive go together"),
 ])

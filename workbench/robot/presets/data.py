@@ -43,7 +43,9 @@ KINDS = ("given", "assumed", "setting")
 @dataclass(frozen=True)
 class Parameter:
     """One parameter of a parametric preset: its default (a TOML array becomes a tuple), unit, kind of source
-    (one of :data:`KINDS`), source text, and whether a study may give one value per section."""
+    (one of :data:`KINDS`), source text, and whether a study may give one value per section.
+
+    Read by :func:`read_data_preset`; checked by ``tests/robot/test_data_presets.py``."""
 
     default: Any
     unit: str
@@ -149,6 +151,9 @@ def read_data_preset(name: str, text: str) -> DataPreset:
     parameters = _parameters(name, raw["parameters"]) if "parameters" in raw else {}
     if bool(parameters) != bool(head.get("derive")):
         raise ValueError(f"preset file {name}.toml: [parameters] and [preset] derive go together")
+    if parameters and (head.get("given") or head.get("assumed")):
+        raise ValueError(f"preset file {name}.toml: a parametric preset states its sources in [parameters.<name>] "
+                         "(kind, source), not in [preset.given] / [preset.assumed]")
     return DataPreset(name=name, title=str(head.get("title", name)), source=str(head.get("source", "")),
                       description=MappingProxyType(robot),
                       given=MappingProxyType(dict(head.get("given", {}))),
