@@ -283,12 +283,13 @@ def row_info(name: str) -> ModelInfo | RowLabel | None:
     return table("models").get(name) or LABELS.get(name)
 
 PRESETS: Mapping[str, str] = {
-    "steel_rod": "workbench.robot.presets.steel_rod:steel_rod",
-    "hannan_walker": "workbench.robot.presets.hannan_walker:hannan_walker",
-    "cojocaru_tronconic": "workbench.robot.presets.cojocaru:cojocaru_tronconic",
-    "shao_harvester": "workbench.robot.presets.shao:shao_harvester",
-    "hannan_walker_3d": "workbench.robot.presets.hannan_walker_3d:hannan_walker_3d",
-    # a data preset: the DataPreset of workbench/robot/presets/rao_2021.toml (docs/robot-format.md)
+    # parametric data presets: the DataPreset of workbench/robot/presets/<name>.toml, used in the preset form
+    "steel_rod": "workbench.robot.presets.data:FILES.steel_rod",
+    "hannan_walker": "workbench.robot.presets.data:FILES.hannan_walker",
+    "cojocaru_tronconic": "workbench.robot.presets.data:FILES.cojocaru_tronconic",
+    "shao_harvester": "workbench.robot.presets.data:FILES.shao_harvester",
+    "hannan_walker_3d": "workbench.robot.presets.data:FILES.hannan_walker_3d",
+    # a description-form data preset: workbench/robot/presets/rao_2021.toml (docs/robot-format.md)
     "rao_2021": "workbench.robot.presets.data:FILES.rao_2021",
 }
 

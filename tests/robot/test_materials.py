@@ -5,8 +5,7 @@ from __future__ import annotations
 import pytest
 
 from workbench.robot.materials import MATERIAL_FIELDS, material, material_names
-from workbench.robot.presets.cojocaru import WIRE_STRENGTH_1MM
-from workbench.robot.presets.steel_rod import SPRING_STEEL_YIELD, WIRE_STRENGTH_05MM
+from workbench.robot.presets import preset_parameters
 
 
 @pytest.mark.parametrize("name", material_names())
@@ -30,10 +29,13 @@ def test_values_are_physical(name):
 
 
 def test_the_presets_cited_values_are_the_materials():
-    """The same data sheets as the code presets' constants (steel_rod.py, cojocaru.py)."""
-    assert material("spring_steel").yield_strength == SPRING_STEEL_YIELD
-    assert material("music_wire_05mm").tensile_strength == WIRE_STRENGTH_05MM
-    assert material("music_wire_1mm").tensile_strength == WIRE_STRENGTH_1MM
+    """The same data sheets as the presets' defaults (steel_rod.toml, cojocaru_tronconic.toml)."""
+    steel_rod = preset_parameters("steel_rod")
+    assert material("spring_steel").yield_strength == steel_rod["yield_strength"]
+    assert material("music_wire_05mm").tensile_strength == steel_rod["tendon_strength"]
+    assert (material("steel").youngs_modulus, material("steel").poisson_ratio, material("steel").density) == \
+        (steel_rod["youngs_modulus"], steel_rod["poisson_ratio"], steel_rod["density"])
+    assert material("music_wire_1mm").tensile_strength == preset_parameters("cojocaru_tronconic")["wire_strength"]
     assert (material("steel").youngs_modulus, material("steel").poisson_ratio, material("steel").density) == \
         (210e9, 0.3, 7850.0)
 

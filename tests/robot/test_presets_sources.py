@@ -1,22 +1,24 @@
-"""Every code preset parameter declares where it comes from (given by the paper, assumed, or a study setting).
+"""Every parameter of a preset in the preset form declares where it comes from (given by the paper,
+assumed, or a study setting): the built-in parametric preset files' ``[parameters]`` tables, a plug-in's
+code preset module's GIVEN / ASSUMED / SETTINGS.
 
-Data presets state the source of each value in their file; ``tests/robot/test_rao_preset.py`` checks that
-every value of the robot they build has one.
+Description-form data presets (rao_2021) state the source of each value in their file;
+``tests/robot/test_rao_preset.py`` checks that every value of the robot they build has one.
 """
 
 import pytest
 
 from workbench.robot.presets import build_preset, data_preset, preset_parameters, preset_names, preset_sources
 
-CODE_PRESETS = [n for n in preset_names() if data_preset(n) is None]
+PRESET_FORM = [n for n in preset_names() if data_preset(n) is None]
 
 
 def test_every_preset_is_code_or_data():
     assert "rao_2021" in preset_names() and data_preset("rao_2021") is not None
-    assert "steel_rod" in CODE_PRESETS
+    assert {"steel_rod", "shao_harvester", "cojocaru_tronconic", "hannan_walker", "hannan_walker_3d"} <= set(PRESET_FORM)
 
 
-@pytest.mark.parametrize("name", CODE_PRESETS)
+@pytest.mark.parametrize("name", PRESET_FORM)
 def test_every_parameter_has_exactly_one_source(name):
     src = preset_sources(name)
     params = set(preset_parameters(name))

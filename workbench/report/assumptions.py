@@ -97,18 +97,21 @@ def _declared_rows(study: ResultSet, section: str, target: str | None,
 
 
 def _preset_rows(study: ResultSet) -> list[Assumption]:
-    """The code preset's ``ASSUMED`` rows, each with its true source: a value the study sets
-    (different from the preset's) reads "set in the study file"; a backbone strength left at the
+    """The preset's assumed parameters as rows (:func:`~workbench.robot.presets.preset_sources`), each
+    with its true source: a value the study sets (different from the preset's) reads "set in the study file"; a backbone strength left at the
     preset's while the study changes the material's stiffness says so."""
     robot = study.spec.get("robot") if isinstance(study.spec.get("robot"), Mapping) else {}
     name = robot.get("preset")
     presets = registry.table("presets")
     if not name or name not in presets:
         return []
-    from ..robot.presets import preset_parameters
+    from ..robot.presets import data_preset, preset_parameters, preset_sources
 
+    if data_preset(name) is not None:  # the description form: _description_rows
+        return []
     defaults = preset_parameters(name)
-    rows = _declared_rows(study, "robot", presets[name], {k: robot.get(k, defaults.get(k)) for k in defaults})
+    rows = [Assumption(f"robot.{k}", text, value=_value(study, f"robot.{k}", robot.get(k, defaults.get(k))))
+            for k, text in preset_sources(name)["assumed"].items()]
     changed = {k for k in defaults if k in robot and robot[k] != defaults[k] or f"p.robot.{k}" in study.ok
                and study.ok[f"p.robot.{k}"].nunique() > 1}
     out = []

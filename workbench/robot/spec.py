@@ -1,7 +1,8 @@
 """A robot from plain data: the ``[robot]`` table of a study, in either of its two forms.
 
-* **preset form** ``{"preset": name, **parameters}`` for a preset written as code
-  (:mod:`workbench.robot.presets`; a per-section parameter may be a list, one value per section);
+* **preset form** ``{"preset": name, **parameters}`` for a preset with parameters (a parametric
+  preset file or a plug-in's code preset, :mod:`workbench.robot.presets`; a per-section parameter
+  may be a list, one value per section);
 * **description form** ``{"sections": [...], "gravity": [...], ...}`` (``docs/robot-format.md``),
   optionally on top of a *data preset* (``{"preset": "rao_2021", "sections": [{}, {...}]}``): the
   preset file's description with the table's values merged in (tables key by key, lists of tables

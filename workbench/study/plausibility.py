@@ -62,7 +62,7 @@ def _mpa(x: float) -> str:
 def strength_source(robot_params: Mapping[str, Any], value: float, tendon: bool) -> str:
     """Where a declared strength comes from: the preset parameter that holds ``value`` and its source.
 
-    ``"robot.yield_strength of preset 'steel_rod': <its ASSUMED / GIVEN entry>"``, or
+    ``"robot.yield_strength of preset 'steel_rod': <its declared source>"``, or
     ``"robot.<key> set in the study"`` when the study overrides the preset's default, or
     ``"preset '<name>'"`` when no parameter holds the value (a strength the preset fixes).
     """

@@ -1,18 +1,22 @@
-"""Named robot presets: ``get_preset(name)(**params) -> Robot``, written as code or as data.
+"""Named robot presets: ``get_preset(name)(**params) -> Robot``, written as data (or as code by a plug-in).
 
 Presets are the rows of ``workbench.registry.table("presets")`` (built-in and plug-in), imported
-lazily by name.  A **code preset** is a plain function of keyword parameters (SI units) with documented defaults;
-its module declares where each parameter comes from, as data (the report's "Assumptions"
-section reads it): ``GIVEN`` (parameters the source paper gives: name -> where), ``ASSUMED`` (not
-given: a tuple of :class:`workbench.assumptions.Assumption`, key = parameter name, with the
-value's source or reason) and ``SETTINGS`` (chosen by each study); ``PER_SECTION`` names the
-scalar parameters that may also be given as a list, one value per section (its length is the
-``n_sections`` parameter).  ``tests/robot/test_presets_sources.py`` checks that every parameter
-of every preset is in exactly one of the three.
+lazily by name.  Every built-in preset is a TOML file of this folder (:mod:`.data`,
+``docs/robot-format.md``), in one of two forms:
 
-A **data preset** is a TOML file of the description format (:mod:`.data`,
-``docs/robot-format.md``): its row in ``registry.table("presets")`` names a :class:`~.data.DataPreset`,
-a study overrides its values in the description form (:mod:`workbench.robot.spec`).
+* a **parametric** preset file (steel_rod, shao_harvester, ...) declares its parameters as data
+  (``[parameters.<name>]``: default, unit, kind = given / assumed / setting, source, per_section)
+  and names the formula ``derive = "module:function"`` that maps their values to the robot; a
+  study uses it in the preset form ``{"preset": name, **parameters}`` (a per-section parameter
+  may be a list of ``n_sections`` values);
+* a **description** preset file (rao_2021) holds only the robot; a study overrides its values in the
+  description form (:mod:`workbench.robot.spec`).
+
+A plug-in may still register a **code preset**: a plain function of keyword parameters with
+defaults, its module declaring ``GIVEN`` (name -> where the paper gives it), ``ASSUMED`` (a tuple
+of :class:`workbench.assumptions.Assumption`), ``SETTINGS`` and ``PER_SECTION``.
+``tests/robot/test_presets_sources.py`` checks that every parameter of every preset in the preset
+form has exactly one source.
 """
 
 from __future__ import annotations
@@ -46,22 +50,31 @@ def get_preset(name: str) -> Callable[..., Robot]:
 
 
 def data_preset(name: str) -> DataPreset | None:
-    """The :class:`~.data.DataPreset` registered as ``name``; ``None`` for a code preset or an unknown name."""
+    """The description-form :class:`~.data.DataPreset` registered as ``name``.
+
+    ``None`` for a preset used in the preset form (a parametric data preset or a code preset) or an
+    unknown name.
+    """
     if name not in registry.table("presets"):
         return None
     preset = get_preset(name)
-    return preset if isinstance(preset, DataPreset) else None
+    return preset if isinstance(preset, DataPreset) and not preset.parametric else None
 
 
 def preset_parameters(name: str) -> dict[str, Any]:
-    """The keyword parameters of preset ``name`` with their defaults (``{}`` for a data preset)."""
-    sig = inspect.signature(get_preset(name))
+    """The parameters of preset ``name`` with their defaults (``{}`` for a description-form data preset)."""
+    preset = get_preset(name)
+    if isinstance(preset, DataPreset):
+        return {k: p.default for k, p in preset.parameters.items()}
+    sig = inspect.signature(preset)
     return {k: p.default for k, p in sig.parameters.items() if p.kind is p.KEYWORD_ONLY or p.default is not p.empty}
 
 
 def per_section_parameters(name: str) -> tuple[str, ...]:
-    """The parameters of code preset ``name`` that take one value per section (its module's ``PER_SECTION``)."""
+    """The parameters of preset ``name`` that take one value per section (``per_section`` / ``PER_SECTION``)."""
     preset = get_preset(name)
+    if isinstance(preset, DataPreset):
+        return tuple(k for k, p in preset.parameters.items() if p.per_section)
     return tuple(getattr(sys.modules[preset.__module__], "PER_SECTION", ()))
 
 
@@ -82,11 +95,15 @@ def build_preset(name: str, **params: Any) -> Robot:
 def preset_sources(name: str) -> dict[str, dict[str, str]]:
     """``{"given": ..., "assumed": ..., "settings": ...}`` of preset ``name``: parameter -> where it comes from.
 
-    Code preset: its module's ``GIVEN``, ``ASSUMED`` (:func:`workbench.assumptions.declared_assumptions`)
-    and ``SETTINGS``; data preset: its file's ``[preset.given]`` / ``[preset.assumed]`` (keys are
-    relative key paths).  Empty dicts where none is declared.
+    Parametric data preset: its file's ``[parameters.<name>]`` by ``kind``; description-form data
+    preset: its file's ``[preset.given]`` / ``[preset.assumed]`` (keys are relative key paths); code
+    preset: its module's ``GIVEN``, ``ASSUMED`` (:func:`workbench.assumptions.declared_assumptions`)
+    and ``SETTINGS``.  Empty dicts where none is declared.
     """
     preset = get_preset(name)
+    if isinstance(preset, DataPreset) and preset.parametric:
+        return {table: {k: p.source for k, p in preset.parameters.items() if p.kind == kind}
+                for table, kind in (("given", "given"), ("assumed", "assumed"), ("settings", "setting"))}
     if isinstance(preset, DataPreset):
         return {"given": dict(preset.given), "assumed": dict(preset.assumed), "settings": {}}
     mod = sys.modules[preset.__module__]
@@ -112,7 +129,7 @@ def preset_values(params: Mapping[str, Any], where: str = "robot"
                   ) -> tuple[dict[str, Any] | None, dict[str, Any], list[str]]:
     """``(values, defaults, problems)`` of a preset-form table ``{"preset": name, **overrides}``.
 
-    ``values`` are the code preset's defaults with the checked overrides applied (numbers coerced
+    ``values`` are the preset's defaults with the checked overrides applied (numbers coerced
     to the default's type; a ``PER_SECTION`` parameter may be a list of ``n_sections`` values),
     ``None`` when the preset itself is bad; ``problems`` one line each, ``"<where>.<key>: ..."``.
     """
@@ -154,7 +171,7 @@ def preset_problems(params: Mapping[str, Any], where: str = "robot") -> list[str
 
 
 def preset_value_sources(params: Mapping[str, Any], where: str = "robot") -> dict[str, str]:
-    """``<where>.<parameter>`` -> its source, for every parameter of the code preset ``params`` names.
+    """``<where>.<parameter>`` -> its source, for every parameter of the preset-form preset ``params`` names.
 
     A value the study sets and that differs from the default reads "set in the study file"; else
     the preset's declared source ("given by ...", "assumed: ...", "study choice").

@@ -4,75 +4,50 @@ Source: Cojocaru, Boccolato, Dinulescu, Predescu, Manta, Dumitru, "3D Kinematics
 a Hyper Redundant Robot" (``/work/shared/papers/001_*``).  The paper gives the structure
 (elastic steel-rod backbone, three truncated-cone segments, total length > 1 m, three
 wires per segment at 120 degrees, end-disk diameters D1 > D2 per segment) but not the
-dimensions; every number below is a plausible default, documented as such (as data in
-:data:`ASSUMED`, the paper's facts in :data:`GIVEN`).
+dimensions; every number is a plausible default, assumed with its reason.  The parameters
+(defaults, units, and where each value comes from) are data in ``cojocaru_tronconic.toml``
+(``docs/robot-format.md``, "Presets"); this module holds the formula :func:`derive` that maps them
+to the :class:`Robot`, and :data:`cojocaru_tronconic`, the preset itself.  Checked by
+``tests/robot/test_data_presets.py``.
 """
 
 from __future__ import annotations
 
 import math
 
-from ...assumptions import Assumption
 from ..description import CrossSection, Payload, Robot, Section, TendonGroup
 from ..orientation import base_rotation_for
+from .data import FILES
 from .per_section import per_section
-from .steel_rod import SPRING_STEEL_YIELD
 
-__all__ = ["cojocaru_tronconic", "GIVEN", "ASSUMED", "SETTINGS", "PER_SECTION", "WIRE_STRENGTH_1MM"]
-
-#: Minimum tensile strength of 1.0 mm (0.040 in) music wire, ASTM A228 Table 1: 315 ksi = 2172 MPa [Pa].
-WIRE_STRENGTH_1MM = 2.17e9
-
-GIVEN: dict[str, str] = {
-    "n_sections": "paper Sec. 2: three segments",
-    "first_wire_angle": "paper Eq 10: three wires at 120 deg (wire 1 at 0)",
-}
-ASSUMED: tuple[Assumption, ...] = (
-    Assumption("section_length", "0.35 m: the paper says only 'more than one meter' for three segments"),
-    Assumption("rod_diameter", "4 mm steel rod (the paper: an elastic steel rod, no size): EI = 2.64 N m^2"),
-    Assumption("youngs_modulus", "steel, 210 GPa"),
-    Assumption("density", "steel, 7850 kg/m^3"),
-    Assumption("poisson_ratio", "steel, 0.3"),
-    Assumption("yield_strength", "hardened and tempered spring steel 52CrMoV4 (EN 10089): Rp0.2 >= 1200 MPa "
-                                 "(Saarstahl data sheet)"),
-    Assumption("base_disk_diameter", "100 mm (the paper: D1 > D2, no values)"),
-    Assumption("disk_diameter_step", "20 mm per section (disks 100 -> 80 -> 60 -> 40 mm)"),
-    Assumption("wire_diameter", "1 mm steel wire (the paper: control wires, no size): EA_t = 1.65e5 N"),
-    Assumption("wire_youngs_modulus", "steel, 210 GPa"),
-    Assumption("wire_strength", "music wire ASTM A228, 1.0 mm: minimum tensile strength 2172 MPa (315 ksi); a ratio "
-                                "above 1 means the wire breaks (no safety factor)"),
-    Assumption("disks_per_section", "5 spacer disks per section (not given)"),
-    Assumption("disk_mass", "0 (disks massless; gravity is off in the paper's kinematic experiment)"),
-)
-SETTINGS: dict[str, str] = {k: "study choice" for k in ("gravity", "base_orientation", "payload_mass")}
-#: Parameters that take one value per section as a list of ``n_sections`` entries (a scalar: every section).
-PER_SECTION: tuple[str, ...] = ("rod_diameter", "youngs_modulus", "density", "poisson_ratio", "yield_strength",
-                                "wire_diameter", "wire_youngs_modulus", "wire_strength", "first_wire_angle",
-                                "disks_per_section", "disk_mass")
+__all__ = ["derive", "cojocaru_tronconic"]
 
 
-def cojocaru_tronconic(
+def derive(
     *,
-    section_length: float = 0.35,
-    n_sections: int = 3,
-    rod_diameter: float = 4e-3,
-    youngs_modulus: float = 210e9,
-    density: float = 7850.0,
-    poisson_ratio: float = 0.3,
-    base_disk_diameter: float = 0.10,
-    disk_diameter_step: float = 0.02,
-    wire_diameter: float = 1.0e-3,
-    wire_youngs_modulus: float = 210e9,
-    wire_strength: float = WIRE_STRENGTH_1MM,
-    yield_strength: float = SPRING_STEEL_YIELD,
-    first_wire_angle: float = 0.0,
-    disks_per_section: int = 5,
-    disk_mass: float = 0.0,
-    gravity: float = 0.0,
-    base_orientation: str = "vertical",
-    payload_mass: float = 0.0,
+    section_length: float,
+    n_sections: int,
+    rod_diameter: float,
+    youngs_modulus: float,
+    density: float,
+    poisson_ratio: float,
+    base_disk_diameter: float,
+    disk_diameter_step: float,
+    wire_diameter: float,
+    wire_youngs_modulus: float,
+    wire_strength: float,
+    yield_strength: float,
+    first_wire_angle: float,
+    disks_per_section: int,
+    disk_mass: float,
+    gravity: float,
+    base_orientation: str,
+    payload_mass: float,
 ) -> Robot:
-    """Tronconic tentacle arm after Cojocaru et al. (steel rod, 3 sections, 3 wires each).
+    """Tronconic tentacle arm after Cojocaru et al. (the formula of ``cojocaru_tronconic.toml``).
+
+    The parameters, their defaults, units and sources are data in ``cojocaru_tronconic.toml``;
+    :data:`cojocaru_tronconic` is that preset (defaults applied).
 
     Section ``k`` (0-based) is a truncated cone whose end disks have diameters
     ``D1_k = base_disk_diameter - k * disk_diameter_step`` (section base) and
@@ -83,33 +58,30 @@ def cojocaru_tronconic(
     Parameters
     ----------
     section_length : float
-        Length H of each section [m].  Default 0.35 (3 x 0.35 = 1.05 m; the paper only
-        says "more than one meter").
+        Length H of each section [m].
     n_sections : int
         Number of sections (paper: 3).
     rod_diameter : float
-        Diameter of the steel backbone rod [m].  Default 4 mm (plausible; not given):
-        EI = 2.64 N m^2, so bending one section to 45 degrees needs ~150 N of wire tension.
+        Diameter of the steel backbone rod [m].
     youngs_modulus, density, poisson_ratio : float
-        Backbone material [Pa], [kg/m^3], [-] (default structural steel).
+        Backbone material [Pa], [kg/m^3], [-].
     base_disk_diameter : float
-        D1 of the first section [m].  Default 0.10 (plausible; not given).
+        D1 of the first section [m].
     disk_diameter_step : float
         Diameter reduction per section [m] (D2_k = D1_k - step and D1_{k+1} = D2_k).
-        Default 0.02: disks 100 -> 80 -> 60 -> 40 mm.  Must leave D2 > 0.
+        Must leave D2 > 0.
     wire_diameter, wire_youngs_modulus : float
-        Steel control wire [m], [Pa]: ``EA_t = E pi d_w^2 / 4`` (default 1 mm steel wire,
-        EA_t = 1.65e5 N; plausible, not given).
+        Steel control wire [m], [Pa]: ``EA_t = E pi d_w^2 / 4``.
     wire_strength, yield_strength : float
-        Wire tensile strength and backbone 0.2 % proof stress [Pa] (see :data:`ASSUMED`).
+        Wire tensile strength and backbone 0.2 % proof stress [Pa].
     first_wire_angle : float
         Angle sigma of wire 1 [rad]; the others follow at +120 and +240 degrees (paper Eq 10).
     disks_per_section : int
-        Spacer disks (eyelets) per section, the last one at the section end (default 5).
+        Spacer disks (eyelets) per section, the last one at the section end.
     disk_mass : float
-        Mass of each disk [kg] (default 0).
+        Mass of each disk [kg].
     gravity : float
-        Magnitude of gravity [m/s^2] along world -z (default 0).
+        Magnitude of gravity [m/s^2] along world -z.
     base_orientation : {"vertical", "horizontal", "upside_down"}
         Mounting orientation (see :func:`workbench.robot.base_rotation_for`).
     payload_mass : float
@@ -123,7 +95,7 @@ def cojocaru_tronconic(
     the robot towards ``phi = sigma`` (tendon on the inside), so the paper's bending
     direction alpha corresponds to ``phi = alpha + pi`` here.
 
-    Every parameter in :data:`PER_SECTION` may also be a list of ``n_sections`` values, one per
+    Every parameter marked ``per_section`` in the file may also be a list of ``n_sections`` values, one per
     section; a scalar applies to every section (``tests/robot/test_per_section.py``).
     """
     if int(n_sections) != n_sections or n_sections < 1:
@@ -173,3 +145,7 @@ def cojocaru_tronconic(
         base_rotation=base_rotation_for(base_orientation),
         name="cojocaru_tronconic",
     )
+
+
+#: The preset ``cojocaru_tronconic`` (its file's defaults, any parameter overridable by keyword).
+cojocaru_tronconic = FILES.cojocaru_tronconic

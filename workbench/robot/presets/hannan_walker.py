@@ -5,7 +5,9 @@ section diameters 10.16 / 8.89 / 7.62 / 6.35 cm; springs between adjacent segmen
 bending stiffness; per section two antagonistic cable pairs, 90 degrees apart, terminate on the
 section's last (every fourth) segment.
 
-Not given in the paper and chosen here as documented, plausible defaults (all parameters):
+Not given in the paper and chosen as documented, plausible defaults (their values and sources are
+data in ``hannan_walker.toml``, ``docs/robot-format.md`` "Presets"; this module holds the formula
+:func:`derive` and :data:`hannan_walker`, the preset itself):
 
 * equal section lengths (83.82 / 4 cm), joints equally spaced (5.24 cm);
 * per-joint rotational spring stiffness per section ``joint_stiffness`` (120 / 80 / 50 /
@@ -31,41 +33,14 @@ from __future__ import annotations
 import math
 from typing import Sequence
 
-from ...assumptions import Assumption
 from ..description import CrossSection, Payload, Robot, Section, TendonGroup
 from ..orientation import base_rotation_for
-from .cojocaru import WIRE_STRENGTH_1MM
+from .data import FILES
 
-__all__ = ["hannan_walker", "HW_TOTAL_LENGTH", "HW_DIAMETERS", "HW_JOINTS_PER_SECTION", "GIVEN", "ASSUMED",
-           "SETTINGS"]
+__all__ = ["derive", "hannan_walker", "HW_JOINTS_PER_SECTION"]
 
-#: Total backbone length [m] (paper, Sec. 3).
-HW_TOTAL_LENGTH = 0.8382
-#: Section diameters base to tip [m] (paper, Sec. 3).
-HW_DIAMETERS = (0.1016, 0.0889, 0.0762, 0.0635)
-#: Joints per section (paper, Sec. 3: 16 joints, 4 sections).
+#: Joints per section (paper, Sec. 3: 16 joints, 4 sections): the formula's n.
 HW_JOINTS_PER_SECTION = 4
-
-#: Parameters the paper gives (Sec. 3).
-GIVEN: dict[str, str] = {
-    "total_length": "paper Sec. 3: 83.82 cm",
-    "diameters": "paper Sec. 3: 10.16 / 8.89 / 7.62 / 6.35 cm",
-    "planar": "paper Sec. 5: the planar experiments use one antagonistic cable pair per section",
-}
-#: Parameters the paper does not give, with where the value comes from.
-ASSUMED: tuple[Assumption, ...] = (
-    Assumption("joint_stiffness", "120 / 80 / 50 / 25 N m/rad per joint (plausible: under self-weight the "
-                                  "horizontal trunk's joints turn by 0-3.1 deg); the paper: springs between "
-                                  "segments, no values"),
-    Assumption("section_masses", "0.8 / 0.6 / 0.45 / 0.3 kg (hollow conduit segments, springs, plates; not given)"),
-    Assumption("tendon_stiffness", "cable E A_t = 1.6e5 N, a 1 mm steel wire (not given): CC's accuracy under "
-                                   "gravity depends on it (see the hannan_walker study's sensitivity sweep)"),
-    Assumption("tendon_area", "1 mm cable, 0.785 mm^2 (not given)"),
-    Assumption("tendon_strength", "music wire ASTM A228, 1.0 mm: minimum tensile strength 2172 MPa (315 ksi)"),
-    Assumption("axial_stiffness", "1e7 N: the segments do not compress (not given)"),
-)
-#: Parameters each study chooses.
-SETTINGS: dict[str, str] = {k: "study choice" for k in ("gravity", "base_orientation", "payload_mass")}
 
 
 def _four(name: str, values: Sequence[float]) -> tuple[float, ...]:
@@ -77,22 +52,25 @@ def _four(name: str, values: Sequence[float]) -> tuple[float, ...]:
     return v
 
 
-def hannan_walker(
+def derive(
     *,
-    total_length: float = HW_TOTAL_LENGTH,
-    diameters: Sequence[float] = HW_DIAMETERS,
-    joint_stiffness: Sequence[float] = (120.0, 80.0, 50.0, 25.0),
-    section_masses: Sequence[float] = (0.8, 0.6, 0.45, 0.3),
-    tendon_stiffness: float = 1.6e5,
-    tendon_area: float = 7.85e-7,
-    tendon_strength: float = WIRE_STRENGTH_1MM,
-    planar: bool = True,
-    gravity: float = 9.81,
-    base_orientation: str = "vertical",
-    payload_mass: float = 0.0,
-    axial_stiffness: float = 1.0e7,
+    total_length: float,
+    diameters: Sequence[float],
+    joint_stiffness: Sequence[float],
+    section_masses: Sequence[float],
+    tendon_stiffness: float,
+    tendon_area: float,
+    tendon_strength: float,
+    planar: bool,
+    gravity: float,
+    base_orientation: str,
+    payload_mass: float,
+    axial_stiffness: float,
 ) -> Robot:
-    """The Hannan & Walker trunk as a 4-section robot description.
+    """The Hannan & Walker trunk as a 4-section robot (the formula of ``hannan_walker.toml``).
+
+    The parameters, their defaults, units and sources are data in ``hannan_walker.toml``;
+    :data:`hannan_walker` is that preset (defaults applied).
 
     Parameters
     ----------
@@ -107,7 +85,7 @@ def hannan_walker(
     tendon_stiffness : float
         Cable axial stiffness ``EA_t`` [N].
     tendon_area, tendon_strength : float
-        Cable cross-section [m^2] and tensile strength [Pa] for the tendon stress (see :data:`ASSUMED`);
+        Cable cross-section [m^2] and tensile strength [Pa] for the tendon stress;
         the backbone (springs between segments) has no stress geometry: no backbone stress.
     planar : bool
         ``True``: only the antagonistic pair in the base x-z plane (sigma = 0, pi) per section
@@ -156,3 +134,7 @@ def hannan_walker(
         base_rotation=base_rotation_for(base_orientation),
         name="hannan_walker",
     )
+
+
+#: The preset ``hannan_walker`` (its file's defaults, any parameter overridable by keyword).
+hannan_walker = FILES.hannan_walker

@@ -2,10 +2,12 @@
 
 The paper's robot (papers/000_, Sec. 3) has 16 two-DOF joints in 4 sections and, per section, two
 antagonistic cable pairs 90 degrees apart terminating on the section's last segment: 16 cables.
-This preset is the spatial counterpart of :func:`.hannan_walker.hannan_walker` (the planar
-experiments' 8-cable reading): the same sections, springs, masses and cable offsets (every assumed
-value documented there), all four cables per section (sigma = 0, pi/2, pi, 3pi/2), and gravity
-along any direction ``gravity_direction`` of the world frame.
+This preset is the spatial counterpart of the preset ``hannan_walker`` (the planar experiments'
+8-cable reading): the same sections, springs, masses and cable offsets, all four cables per section
+(sigma = 0, pi/2, pi, 3pi/2), and gravity along any direction ``gravity_direction`` of the world
+frame.  Its parameters (defaults, units, sources) are data in ``hannan_walker_3d.toml``
+(``docs/robot-format.md``, "Presets"); this module holds the formula :func:`derive` and
+:data:`hannan_walker_3d`, the preset itself.
 
 The joints' two degrees of freedom are a property of the model, not of the description: the
 Exudyn chain of two-DOF (Cardan, torsion-locked) joints is the registered model
@@ -20,20 +22,10 @@ from dataclasses import replace
 from typing import Sequence
 
 from ..description import Robot
-from ...assumptions import Assumption
-from .hannan_walker import ASSUMED as _HW_ASSUMED
-from .hannan_walker import GIVEN as _HW_GIVEN
-from .hannan_walker import HW_DIAMETERS, HW_TOTAL_LENGTH, hannan_walker
+from .data import FILES
+from .hannan_walker import hannan_walker
 
-__all__ = ["hannan_walker_3d", "GIVEN", "ASSUMED", "SETTINGS"]
-
-#: Where every parameter comes from (``tests/robot/test_presets_sources.py``): the planar preset's
-#: sources for the shared parameters, the paper for the 16-cable layout.
-GIVEN: dict[str, str] = {k: _HW_GIVEN[k] for k in ("total_length", "diameters")}
-ASSUMED: tuple[Assumption, ...] = tuple(a for a in _HW_ASSUMED if a.key in ("joint_stiffness", "section_masses",
-                                                                            "tendon_stiffness", "axial_stiffness"))
-SETTINGS: dict[str, str] = {k: "study choice" for k in ("gravity", "gravity_direction", "base_orientation",
-                                                       "payload_mass")}
+__all__ = ["derive", "hannan_walker_3d"]
 
 
 def _direction(values: Sequence[float]) -> tuple[float, float, float]:
@@ -44,30 +36,34 @@ def _direction(values: Sequence[float]) -> tuple[float, float, float]:
     return (v[0] / n, v[1] / n, v[2] / n)
 
 
-def hannan_walker_3d(
+def derive(
     *,
-    total_length: float = HW_TOTAL_LENGTH,
-    diameters: Sequence[float] = HW_DIAMETERS,
-    joint_stiffness: Sequence[float] = (120.0, 80.0, 50.0, 25.0),
-    section_masses: Sequence[float] = (0.8, 0.6, 0.45, 0.3),
-    tendon_stiffness: float = 1.6e5,
-    gravity: float = 9.81,
-    gravity_direction: Sequence[float] = (0.0, 0.0, -1.0),
-    base_orientation: str = "vertical",
-    payload_mass: float = 0.0,
-    axial_stiffness: float = 1.0e7,
+    total_length: float,
+    diameters: Sequence[float],
+    joint_stiffness: Sequence[float],
+    section_masses: Sequence[float],
+    tendon_stiffness: float,
+    gravity: float,
+    gravity_direction: Sequence[float],
+    base_orientation: str,
+    payload_mass: float,
+    axial_stiffness: float,
 ) -> Robot:
-    """The 32-DOF, 16-cable Hannan & Walker trunk.
+    """The 32-DOF, 16-cable Hannan & Walker trunk (the formula of ``hannan_walker_3d.toml``).
+
+    The preset :data:`~.hannan_walker.hannan_walker` with ``planar=False`` (its cable area and
+    strength at their defaults) and gravity along ``gravity_direction``; the parameters, their
+    defaults, units and sources are data in ``hannan_walker_3d.toml``.
 
     Parameters
     ----------
     total_length, diameters, joint_stiffness, section_masses, tendon_stiffness, payload_mass, axial_stiffness
-        As in :func:`.hannan_walker.hannan_walker` (the paper's length and diameters; assumed
+        As in :func:`.hannan_walker.derive` (the paper's length and diameters; assumed
         springs, masses and cable stiffness).
     gravity : float
         Magnitude of gravity [m/s^2].
     gravity_direction : sequence of 3 float
-        Direction of gravity in the **world** frame (normalised here; default world -z).  With
+        Direction of gravity in the **world** frame (normalised here).  With
         ``base_orientation`` it sets gravity in the base frame, e.g. ``"horizontal"`` and
         ``(0, 1, -1)`` is a horizontal trunk with gravity at 45 degrees to both cable planes.
     base_orientation : {"vertical", "horizontal", "upside_down"}
@@ -86,3 +82,7 @@ def hannan_walker_3d(
                           axial_stiffness=axial_stiffness)
     g = float(gravity)
     return replace(robot, gravity=(g * d[0], g * d[1], g * d[2]), name="hannan_walker_3d")
+
+
+#: The preset ``hannan_walker_3d`` (its file's defaults, any parameter overridable by keyword).
+hannan_walker_3d = FILES.hannan_walker_3d

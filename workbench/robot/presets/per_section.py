@@ -1,4 +1,4 @@
-"""Per-section values of a code preset's parameter: a scalar for every section, or one value per section.
+"""Per-section values of a preset's parameter: a scalar for every section, or one value per section.
 
 Used by the presets whose module declares ``PER_SECTION`` (:mod:`workbench.robot.presets`);
 checked by ``tests/robot/test_per_section.py``.

@@ -1,70 +1,42 @@
-"""The fruit-harvesting continuum section of Shao et al. (paper 002_) as an equivalent rod."""
+"""Shao et al.'s harvester section (paper 002_): the formula of the parametric preset ``shao_harvester.toml``.
+
+Its parameters (defaults, units, and where each value comes from: the paper's length and mass, the
+assumed stiffnesses) are data in ``shao_harvester.toml`` (``docs/robot-format.md``, "Presets"); this
+module holds the formula :func:`derive` that maps them to the :class:`Robot`, and
+:data:`shao_harvester`, the preset itself.  Checked by ``tests/robot/test_data_presets.py``.
+"""
 
 from __future__ import annotations
 
-from ...assumptions import Assumption
 from ..description import CrossSection, Payload, Robot, Section, TendonGroup
 from ..orientation import base_rotation_for
+from .data import FILES
 
-__all__ = ["shao_harvester", "GIVEN", "ASSUMED", "SETTINGS"]
-
-#: Parameters the paper gives (Sec. 4).
-GIVEN: dict[str, str] = {
-    "length": "paper Sec. 4: section II is 400 mm long",
-    "total_mass": "paper Sec. 4: 230 g",
-    "n_plates": "paper Sec. 4: actuator groups between five plates (4 intervals)",
-}
-#: Parameters the paper does not give, with where the value comes from.
-ASSUMED: tuple[Assumption, ...] = (
-    Assumption("bending_stiffness", "EI = 0.3 N m^2 (plausible for a silicone/FPA section: gamma = q L^3 / EI = "
-                                    "1.2, visible sag as in the photos); the fruit_harvester study's sensitivity "
-                                    "sweep varies it"),
-    Assumption("axial_stiffness", "EA = 2 kN (not given)"),
-    Assumption("torsional_stiffness", "GJ = 0.2 N m^2 (not given)"),
-    Assumption("outer_diameter", "60 mm (drawing only; not given)"),
-    Assumption("actuator_offset", "22 mm: the equivalent tendons stand in for the pneumatic actuator groups (not "
-                                  "given)"),
-    Assumption("actuator_stiffness", "2 kN equivalent tendon stiffness (not given)"),
-)
-#: Parameters each study chooses.
-SETTINGS: dict[str, str] = {k: "study choice" for k in ("gravity", "base_orientation", "payload_mass")}
+__all__ = ["derive", "shao_harvester"]
 
 
-def shao_harvester(
+def derive(
     *,
-    length: float = 0.4,
-    total_mass: float = 0.23,
-    bending_stiffness: float = 0.3,
-    axial_stiffness: float = 2.0e3,
-    torsional_stiffness: float = 0.2,
-    outer_diameter: float = 0.06,
-    actuator_offset: float = 0.022,
-    actuator_stiffness: float = 2.0e3,
-    n_plates: int = 4,
-    gravity: float = 9.81,
-    base_orientation: str = "upside_down",
-    payload_mass: float = 0.0,
+    length: float,
+    total_mass: float,
+    bending_stiffness: float,
+    axial_stiffness: float,
+    torsional_stiffness: float,
+    outer_diameter: float,
+    actuator_offset: float,
+    actuator_stiffness: float,
+    n_plates: int,
+    gravity: float,
+    base_orientation: str,
+    payload_mass: float,
 ) -> Robot:
-    """Section II of Shao et al.'s harvester: 400 mm, 230 g (paper 002_, Sec. 4).
+    """Section II of Shao et al.'s harvester as a uniform rod with three equivalent tendons at 120 deg.
 
-    The prototype bends with twelve pneumatic actuators (FPAs) in three groups at 120 deg
-    between five plates.  The workbench represents it as a uniform elastic rod driven by
-    three equivalent tendons at 120 deg whose tension produces the same bending moment as
-    the pressurised actuator groups; only the kinematic comparison (CC vs an elastic
-    backbone under its own weight and a payload) is taken from the paper.
-
-    Values the paper gives: ``length`` (400 mm) and ``total_mass`` (230 g, spread uniformly);
-    objects up to 200 g and 100 mm.  **Assumed** (the paper does not state them; plausible
-    for a silicone/FPA section of this size, exposed so studies can sweep them):
-    ``bending_stiffness`` EI = 0.3 N m^2 (gives a gravity parameter
-    gamma = q L^3 / EI = 1.2, i.e. visible sag, as the photos show),
-    ``axial_stiffness`` 2 kN, ``torsional_stiffness`` 0.2 N m^2, ``outer_diameter`` 60 mm,
-    actuator offset 22 mm, equivalent actuator stiffness 2 kN, 4 plate intervals.
-
-    The default mounting is ``"upside_down"`` (the harvester hangs from its base and scoops
-    fruit below it).  No stresses: the rod and its tendons are equivalents of pneumatic
-    actuators (no stress geometry, no strengths; the admissible load is an actuator pressure the
-    paper does not give).
+    The stiffness form of the cross-section (EI, EA, GJ given directly); the mass is spread
+    uniformly (mass per length = ``total_mass / length``); ``n_plates`` plate intervals carry the
+    tendons; gravity acts along world -z with magnitude ``gravity``; ``base_orientation`` as
+    :func:`~workbench.robot.orientation.base_rotation_for`.  No stresses: the rod and its tendons
+    are equivalents of pneumatic actuators (no stress geometry, no strengths).
     """
     m_per_l = float(total_mass) / float(length)
     cs = CrossSection(
@@ -87,3 +59,7 @@ def shao_harvester(
         base_rotation=base_rotation_for(base_orientation),
         name="shao_harvester",
     )
+
+
+#: The preset ``shao_harvester`` (its file's defaults, any parameter overridable by keyword).
+shao_harvester = FILES.shao_harvester
