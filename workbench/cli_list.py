@@ -53,8 +53,12 @@ def list_lines(topic: str) -> list[str]:
 def _what(topic: str, name: str, row: Any) -> str:
     """What a row of ``topic`` offers: a preset's or scenario's parameters, a kind's or figure set's code."""
     if topic == "presets":
-        from .robot.presets import preset_parameters
+        from .robot.presets import data_preset, preset_parameters
 
+        described = data_preset(name)
+        if described is not None:  # a description-form data preset: no scalar parameters, changed by key path
+            return (f"{described.title}; a robot description, changed with [[robot.sections]] tables "
+                    f"(docs/robot-format.md)")
         return _params(preset_parameters(name))
     if topic == "scenarios":
         from .study.scenarios import scenario_parameters

@@ -190,8 +190,8 @@ def test_version_list_and_bare_study_names(capsys, monkeypatch, tmp_path):
     assert main(["list", "models"]) == 0
     out = capsys.readouterr().out
     assert "beam3d" in out and "tendons: tension/length via eyelets" in out and "ancf3d" in out
-    for topic, name in (("presets", "steel_rod: length=0.8"), ("scenarios", "wire_delay: theta="),
-                        ("kinds", "series_parallel: ")):
+    for topic, name in (("presets", "steel_rod: length=0.8"), ("presets", "rao_2021: Rao et al. 2021"),
+                        ("scenarios", "wire_delay: theta="), ("kinds", "series_parallel: ")):
         assert main(["list", topic]) == 0 and name in capsys.readouterr().out
     monkeypatch.chdir(ROOT)
     assert main(["validate", "example"]) == 0
