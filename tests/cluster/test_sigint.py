@@ -42,6 +42,8 @@ def test_loading_the_jobqueue_class_keeps_the_sigint_handler(scheduler, monkeypa
 
 _CHILD = """
 import os, signal
+# Python's own handler, whatever the parent left (a shell's background job starts with SIGINT ignored)
+signal.signal(signal.SIGINT, signal.default_int_handler)
 from workbench.study.cluster import job_script
 from workbench.study.cluster_config import resolve_cluster
 script = job_script(resolve_cluster("slurm", {}, "c.toml", {"jobs": 1}))  # what --dry-run prints
