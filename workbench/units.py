@@ -63,6 +63,9 @@ UNITS: dict[str, tuple[str | None, str | UnitBy | None]] = {
     "robot.torsional_stiffness": ("torsional stiffness GJ", "N m²"), "robot.joint_stiffness": ("joint stiffness", "N m/rad"),
     "robot.wire_diameter": ("wire diameter", "m"), "robot.preset": ("robot preset", None),
     "robot.planar": ("planar", None),
+    "robot.inner_diameter": ("inner diameter", "m"), "robot.shear_modulus": ("shear modulus G", "Pa"),
+    "robot.shear_stiffness": ("shear stiffness GA", "N"), "robot.mass_per_length": ("mass per length", "kg/m"),
+    "robot.yield_strength": ("yield strength", "Pa"),
     # load
     "load.bend_angle": ("bending angle θ", "rad"), "load.bend_plane": ("bending plane φ", "rad"),
     "load.pretension": ("pretension", "N"), "load.duration": ("duration", "s"), "load.ramp_time": ("ramp time", "s"),

@@ -17,6 +17,7 @@ from typing import Any, Mapping
 
 from .description import CrossSection, Section, TendonGroup
 from .fields import Reader
+from ..units import unit_of
 from .materials import Material, material, material_names
 
 __all__ = ["SECTION_KEYS", "TENDON_KEYS", "read_section", "SET_IN_FILE"]
@@ -32,9 +33,6 @@ SECTION_KEYS = ("length", *GEOMETRY_KEYS, *STIFFNESS_KEYS, "disks", "tendons")
 #: The keys of one tendon group table.
 TENDON_KEYS = ("angles", "count", "first_angle", "offset", "tip_offset", "axial_stiffness", "material",
                "youngs_modulus", "area", "diameter", "strength")
-_UNITS = {"length": "m", "diameter": "m", "outer_diameter": "m", "inner_diameter": "m", "youngs_modulus": "Pa",
-          "shear_modulus": "Pa", "density": "kg/m^3", "yield_strength": "Pa", "bending_stiffness": "N m^2",
-          "axial_stiffness": "N", "torsional_stiffness": "N m^2", "shear_stiffness": "N", "mass_per_length": "kg/m"}
 
 
 def _material(r: Reader, table: Mapping[str, Any], path: str) -> Material | None:
@@ -52,7 +50,7 @@ def _value(r: Reader, t: Mapping[str, Any], key: str, path: str, mat: Material |
            *, bound: str = ">0", upper: float | None = None, mat_key: str | None = None) -> float | None:
     """The user's value of ``key``, else the material's (``mat_key``), recording the source."""
     if key in t:
-        v = r.number(t, key, path, _UNITS.get(key, ""), bound=bound, upper=upper)
+        v = r.number(t, key, path, unit_of(f"robot.{key}") or "", bound=bound, upper=upper)
         sources[f"{path}.{key}"] = SET_IN_FILE
         return v
     mk = mat_key or key
@@ -161,7 +159,7 @@ def _stiffness(r: Reader, t: Mapping[str, Any], path: str, sources: dict[str, st
     vals = {}
     for k in STIFFNESS_KEYS:
         if k in t:
-            vals[k] = r.number(t, k, path, _UNITS[k], bound=">=0" if k == "mass_per_length" else ">0")
+            vals[k] = r.number(t, k, path, unit_of(f"robot.{k}"), bound=">=0" if k == "mass_per_length" else ">0")
             sources[f"{path}.{k}"] = SET_IN_FILE
         elif k in ("bending_stiffness", "axial_stiffness", "torsional_stiffness"):
             r.add(f"{path}.{k}", "missing (a section given by its stiffnesses needs bending, axial and torsional)")

@@ -22,13 +22,11 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
+from ...units import unit_of
+
 __all__ = ["show", "derived_quantities", "LegDerived", "home_figure"]
 
 #: ``[geometry]`` key -> unit printed (angles in degrees, as the study file gives them)
-_UNITS = {"base_radius": "m", "platform_radius": "m", "base_angles_deg": "deg", "platform_angles_deg": "deg",
-          "height": "m", "rod_diameter": "m", "youngs_modulus": "Pa", "poisson_ratio": "-",
-          "density": "kg/m³", "platform_mass": "kg", "mount_offset": "m", "mount_twist_deg": "deg",
-          "yield_strength": "Pa"}
 
 
 @dataclass(frozen=True)
@@ -90,7 +88,7 @@ def _lines(spec, geometry, ik, d: LegDerived, n: int) -> list[str]:
     L = ik.lengths
     out = [f"series-parallel trunk of study {spec.path}: {n} module(s) of six rods (Huang et al. 2022)",
            "geometry (as resolved: [geometry] with the ModuleGeometry defaults)"]
-    out += [f"  geometry.{k} = {_text(v)} [{_UNITS.get(k, '-')}]" for k, v in spec.geometry.items()]
+    out += [f"  geometry.{k} = {_text(v)} [{unit_of(f'geometry.{k}') or '-'}]" for k, v in spec.geometry.items()]
     out += ["", f"home pose: platform {geometry.height:.4g} m above the base, no rotation; leg rest lengths L_i "
                 f"(inverse kinematics, {spec.solver['n_elements']} GE-beam elements per leg; "
                 f"{'converged' if ik.success else 'NOT converged: ' + ik.reason})",

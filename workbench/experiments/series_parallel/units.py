@@ -24,4 +24,12 @@ QUANTITIES = {
     "x.min_leg_gap": ("smallest gap between legs", "m"), "x.fk_position_error": ("FK position error", "m"),
     "x.fk_rotation_error": ("FK rotation error", "rad"), "x.cc_rms_error": ("CC fit RMS error", "m"),
     "x.cc_max_error": ("CC fit max error", "m"), "x.cc_curvature": ("CC fit curvature", "1/m"),
+    # the module geometry ([geometry] of the study file)
+    "geometry.base_radius": ("base hole circle radius", "m"), "geometry.platform_radius": ("platform radius", "m"),
+    "geometry.base_angles_deg": ("base hole angles", "deg"), "geometry.platform_angles_deg": ("platform angles", "deg"),
+    "geometry.height": ("module height", "m"), "geometry.rod_diameter": ("rod diameter", "m"),
+    "geometry.youngs_modulus": ("Young's modulus E", "Pa"), "geometry.poisson_ratio": ("Poisson ratio", ""),
+    "geometry.density": ("density", "kg/m³"), "geometry.platform_mass": ("platform mass", "kg"),
+    "geometry.mount_offset": ("mount offset", "m"), "geometry.mount_twist_deg": ("mount twist", "deg"),
+    "geometry.yield_strength": ("yield strength", "Pa"),
 }
