@@ -251,6 +251,19 @@ def _initial_step(y, f, t, interval, rtol, atol,  # noqa: ANN001, ANN202, PLR091
 
 
 @njit(cache=True)
+def _stage_state(y, K, a, s, h):  # noqa: ANN001, ANN202
+    """The state of a Runge-Kutta stage: ``y + h sum_j a[j] K[j]`` over the first ``s`` stages (zeros skipped)."""
+    ys = y.copy()
+    n = y.shape[0]
+    for j in range(s):
+        aj = a[j] * h
+        if aj != 0.0:
+            for i in range(n):
+                ys[i] += aj * K[j, i]
+    return ys
+
+
+@njit(cache=True)
 def _rk_step(K, y, f, t, h, A, Bw, C, y_new,  # noqa: ANN001, ANN202, PLR0913
              n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr, idx):
     """One explicit Runge-Kutta step (scipy's ``rk_step``): stages into ``K``, ``y_new``; returns ``f(t+h, y_new)``."""
@@ -258,12 +271,7 @@ def _rk_step(K, y, f, t, h, A, Bw, C, y_new,  # noqa: ANN001, ANN202, PLR0913
     n_stages = C.shape[0]
     K[0, :] = f
     for s in range(1, n_stages):
-        ys = y.copy()
-        for j in range(s):
-            aj = A[s, j] * h
-            if aj != 0.0:
-                for i in range(n):
-                    ys[i] += aj * K[j, i]
+        ys = _stage_state(y, K, A[s], s, h)
         K[s, :] = segment_rhs(t + C[s] * h, ys, n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr, idx)
     for i in range(n):
         acc = 0.0
@@ -368,12 +376,7 @@ def _dense(K, y, y_new, f, f_new, t, h, stations, js, at, A_extra, C_extra, D, n
     n = y.shape[0]
     for e in range(C_extra.shape[0]):
         s = n_stages + 1 + e
-        ys = y.copy()
-        for j in range(s):
-            aj = A_extra[e, j] * h
-            if aj != 0.0:
-                for i in range(n):
-                    ys[i] += aj * K[j, i]
+        ys = _stage_state(y, K, A_extra[e], s, h)
         K[s, :] = segment_rhs(t + C_extra[e] * h, ys, n_state, s0, ls, k0, k1, mu0, mu1, g, c, d0, d1, se, ta, dr,
                               idx)
     F = np.empty((3 + D.shape[0], n))
