@@ -102,7 +102,22 @@ def _alarm(signum, frame):  # pragma: no cover - only on a hung solve
     raise _Timeout()
 
 
+@functools.cache
+def _compiled(model: str) -> None:
+    """Run one small solve of ``model`` outside the timeout, once per process: a fresh install compiles the
+    cosserat numba kernel on its first solve (26-28 s CPU, once), which is not the case's solving time."""
+    if model != "cosserat":
+        return
+    from workbench.robot import LoadCase
+    from workbench.robot.actuation import TendonActuation
+    from workbench.robot.presets import build_preset
+
+    robot = build_preset("rao_2021")
+    get_model(model)(robot, LoadCase(actuation=TendonActuation("tension", (1.0, 0.0, 0.0, 0.0, 0.0, 0.0))), SolverOptions())
+
+
 def _run(model: str, robot, load, opts: SolverOptions):
+    _compiled(model)
     old = signal.signal(signal.SIGALRM, _alarm)
     _FIRED[0] = False
     signal.setitimer(signal.ITIMER_REAL, TIMEOUT)
