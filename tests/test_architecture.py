@@ -21,7 +21,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 PKG = ROOT / "workbench"
-GENERIC = ("study", "report", "physics", "models", "compare", "kinematics", "robot", "reference")
+GENERIC = ("study", "report", "physics", "models", "compare", "kinematics", "robot", "reference", "measure")
 
 
 def _modules() -> dict[str, tuple[Path, ast.Module]]:
