@@ -37,7 +37,7 @@ from ..units import si_factor
 from .types import Measurements
 
 __all__ = ["MAX_LINES", "QUATERNION_TOLERANCE", "MeasurementsTable", "quaternion_matrices", "read_measurements",
-           "table_problems"]
+           "schema_problems", "table_problems"]
 
 #: Most problem lines one data file reports (then "... and N more problems")
 MAX_LINES = 20
@@ -108,6 +108,29 @@ class MeasurementsTable(BaseModel):
     tip_force: ForceColumns | None = None
     tip_orientation: OrientationColumns | None = None
     backbone: BackboneColumns | None = None
+
+
+def schema_problems(model: type[BaseModel], raw: Mapping[str, Any], where: tuple) -> tuple[Any, list[str]]:
+    """``(validated model or None, problems)``: :func:`~workbench.study.messages.pydantic_problems` of
+    ``raw``, with a misspelt key reported once ("unknown key; did you mean 'k'?", not also "k: missing")."""
+    try:
+        return model.model_validate(dict(raw)), []
+    except ValidationError as e:
+        lines = pydantic_problems(e, where, model)
+    typos = set()
+    for line in lines:
+        head, _, rest = line.partition(": unknown key; did you mean '")
+        if rest:
+            typos.add(f"{head.rpartition('.')[0]}.{rest.partition(chr(39))[0]}: missing required key")
+    return None, [line for line in lines if line not in typos]
+
+
+def _suggest_column(col: str, header: list[str]) -> str:
+    """"; did you mean 'X'?" -- a header name equal but for case first, else the closest one."""
+    same = [h for h in header if h.lower() == col.lower()]
+    if same:
+        return f"; did you mean {same[0]!r}?"
+    return suggest(col, header).replace("; known keys:", "; columns in the file:")
 
 
 def _si_unit(t: MeasurementsTable, group: str) -> str:
@@ -202,6 +225,8 @@ def _read_file(path: Path, delimiter: str) -> tuple[list[str], Any]:
     try:
         with path.open(encoding="utf-8", newline="") as fh:
             header = next(csv.reader(fh, delimiter=delimiter), [])
+        if not header:
+            raise pd.errors.EmptyDataError
         frame = pd.read_csv(path, dtype=str, keep_default_na=False, skip_blank_lines=False, sep=delimiter,
                             encoding="utf-8") if len(set(header)) == len(header) and header else None
     except UnicodeDecodeError as e:
@@ -297,10 +322,10 @@ def _row_rules(t: MeasurementsTable, values: Mapping[str, np.ndarray], data: str
 def _validated(table: Any, src: str, where: str) -> MeasurementsTable:
     if not isinstance(table, Mapping):
         raise StudyError([f"{src}: {where}: must be a table [{where}], got {type(table).__name__}"])
-    try:
-        return MeasurementsTable.model_validate(dict(table))
-    except ValidationError as e:
-        raise StudyError([f"{src}: {p}" for p in pydantic_problems(e, (where,), MeasurementsTable)]) from None
+    t, problems = schema_problems(MeasurementsTable, table, (where,))
+    if t is None:
+        raise StudyError([f"{src}: {p}" for p in problems])
+    return t
 
 
 def _measurements(t: MeasurementsTable, values: Mapping[str, np.ndarray], robot: Any, n: int) -> Measurements:
@@ -350,6 +375,8 @@ def read_measurements(table: Mapping[str, Any], study_dir: str | Path, robot: An
     problems = [f"{source_label}: {p}" for p in table_problems(t, robot, where)]
     path = Path(study_dir) / t.file
     data = str(path)
+    if path.suffix.lower() not in SUFFIXES:
+        raise StudyError(problems)
     try:
         header, frame = _read_file(path, t.delimiter)
     except ValueError as e:
@@ -358,13 +385,16 @@ def read_measurements(table: Mapping[str, Any], study_dir: str | Path, robot: An
     if dup:
         raise StudyError(problems + [f"{data}: duplicate column names in the header: {', '.join(map(repr, dup))}"])
     missing = [(key, col) for key, col in _mapped(t) if col not in header]
+    if missing and len(missing) == len(_mapped(t)):
+        shown = ", ".join(map(repr, header[:8])) + (", ..." if len(header) > 8 else "")
+        raise StudyError(problems + [f"{data}: none of the columns {where} maps is in the file (header: {shown}); "
+                                     f"is the delimiter {t.delimiter!r} right (measurements.delimiter)?"])
     for key, col in missing:
-        problems.append(f"{data}: column {col!r} ({where}.{key}): not in the file"
-                        f"{suggest(col, header)}".replace("; known keys:", "; columns in the file:"))
+        problems.append(f"{data}: column {col!r} ({where}.{key}): not in the file{_suggest_column(col, header)}")
     if not missing and len(frame) == 0:
         problems.append(f"{data}: no data rows (only the header line)")
     if problems:
-        raise StudyError(problems)
+        raise StudyError(_cap(problems, data))
     values, cells = _columns(frame, t, data, where)
     if cells:
         raise StudyError(_cap(cells, data))

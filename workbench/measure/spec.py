@@ -35,13 +35,14 @@ import math
 from pathlib import Path
 from typing import Any, Literal, Mapping, Sequence
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import BaseModel, ConfigDict, Field
 
 from ..study.keypath import KeyPathError, get_value, parse_key_path
-from ..study.messages import StudyError, pydantic_problems, read_toml, suggest
+from ..study.messages import StudyError, read_toml, suggest
 from ..study.params import canonical_json
 from ..study.schema import ReportSection, LoadSection, SolverSection
 from ..units import unit_of
+from .datafile import schema_problems
 from .types import CalibrationSettings, CalibrationStudy, FitParameter, Measurements, Split
 
 __all__ = ["CALIBRATION_SECTIONS", "KIND_NAME", "LOAD_KEYS", "load_calibration_study"]
@@ -113,11 +114,9 @@ def _schema(model: type[BaseModel], raw: Any, where: tuple, problems: list[str])
     if not isinstance(raw, Mapping):
         problems.append(f"{where[0]}: must be a table [{where[0]}], got {type(raw).__name__}")
         return None
-    try:
-        return model.model_validate(dict(raw))
-    except ValidationError as e:
-        problems += pydantic_problems(e, where, model)
-        return None
+    out, lines = schema_problems(model, raw, where)
+    problems += lines
+    return out
 
 
 def _sections(raw: Mapping[str, Any]) -> list[str]:
@@ -279,10 +278,12 @@ def _vector(name: str, lo: Any, hi: Any, init: Any, n: int, unit: str, where: st
                         f"got {len(v)}"]
         vals[label] = [float(x) for x in v] if isinstance(v, list) else [float(0.0 if v is None else v)] * n
     out, problems = [], []
+    scalar = not any(isinstance(v, list) for v in (lo, hi, init))
     for i in range(n):
         l, u, x = vals["lower"][i], vals["upper"][i], vals["initial"][i]
-        if not l < x < u:
-            problems.append(f"{where}: entry {i}: need lower < initial < upper, got {l:g} < {x:g} < {u:g} {unit}"
+        if not l < x < u and not (scalar and problems):
+            entry = "" if scalar else f"entry {i}: "
+            problems.append(f"{where}: {entry}need lower < initial < upper, got {l:g} < {x:g} < {u:g} {unit}"
                             + ("" if init is not None else " (initial defaults to 0; set initial)"))
         out.append(FitParameter(f"{name}[{i}]", x, l, u, unit,
                                 "set in the study file" if init is not None else "default: 0"))
