@@ -468,7 +468,8 @@ def load_calibration_study(path: str | Path, max_cases: int | None = None,
                          params, split)
     settings = CalibrationSettings(models=tuple(cal.models), parameters=tuple(params), split=split,
                                    confidence=cal.confidence, max_evaluations=cal.max_evaluations)
-    digest = hashlib.sha256(canonical_json({k: v for k, v in resolved.items() if k != "report"}).encode())
+    payload = {"kind": KIND_NAME, **{k: v for k, v in resolved.items() if k not in ("study", "report")}}
+    digest = hashlib.sha256(canonical_json(payload).encode())  # name, description, report: not results
     return CalibrationStudy(path=src, name=st.name, config_hash=digest.hexdigest()[:16], robot=table,
                             load=resolved["load"], solver=solver, report=resolved["report"], measurements=meas,
                             calibration=settings, overrides=tuple(overrides), raw=resolved)
