@@ -113,3 +113,19 @@ def test_a_semicolon_file_needs_its_delimiter(tmp_path):
                                    f"b3y;b3z'); is the delimiter ',' right (measurements.delimiter)?"]
     m = read_measurements({**_table(), "delimiter": ";"}, tmp_path, ROBOT, "s.toml")
     np.testing.assert_array_equal(m.commands, read_measurements(_table(), FIX, ROBOT, "s.toml").commands)
+
+
+def test_spaces_around_names_and_blank_lines(tmp_path):
+    """Spaces after the delimiter are not part of a name; blank lines at the end are no samples, inside one line each."""
+    from workbench.study.messages import StudyError
+
+    lines = (FIX / "measured.csv").read_text(encoding="utf-8").splitlines()
+    (tmp_path / "measured.csv").write_text(", ".join(lines[0].split(",")) + "\n" + "\n".join(lines[1:]) + "\n\n\n",
+                                           encoding="utf-8")
+    m = read_measurements(_table(), tmp_path, ROBOT, "s.toml")
+    assert m.n == 40
+    np.testing.assert_array_equal(m.tip_position, read_measurements(_table(), FIX, ROBOT, "s.toml").tip_position)
+    (tmp_path / "measured.csv").write_text("\n".join(lines[:6] + [""] + lines[6:]) + "\n", encoding="utf-8")
+    with pytest.raises(StudyError) as info:
+        read_measurements(_table(), tmp_path, ROBOT, "s.toml")
+    assert info.value.problems == [f"{tmp_path / 'measured.csv'}: row 6: an empty line (every mapped column empty)"]

@@ -60,6 +60,7 @@ CASES = [
      "{study}: measurements.file: cannot read {data}: the file is empty (a header line with the column names and "
      "one line per sample)"),
     ("header_only", [], _keep(0), "{data}: no data rows (only the header line)"),
+    ("header_and_blank_lines", [], lambda rows: rows[:1] + [[]] * 3, "{data}: no data rows (only the header line)"),
     ("not_utf8", [], b"T1,T2\n\xff\xfe,1\n",
      "{study}: measurements.file: cannot read {data}: not UTF-8 text (byte 0xff at offset 6)"),
     ("unknown_column", [], _header("z", "Z"),

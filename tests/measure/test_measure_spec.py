@@ -132,3 +132,14 @@ def test_a_base_frame_study_needs_no_registration_and_may_give_tip_forces(tmp_pa
     s = load_calibration_study(path)
     assert len(s.calibration.parameters) == 8 and s.measurements.frame == "base"
     np.testing.assert_allclose(s.measurements.tip_force[7], [0.0, 0.0, -0.02])
+
+
+def test_a_load_value_and_a_list_element_can_be_calibrated(tmp_path):
+    path = _copy(tmp_path, [("pretension = 0.0", "pretension = 0.2"),
+                            ('"robot.sections[1].length" = { lower = 0.18, upper = 0.22, initial = 0.2 }',
+                             '"load.pretension" = { lower = 0.0, upper = 1.0 }\n'
+                             '"robot.sections[1].tendons[0].angles[1]" = { lower = -0.6, upper = -0.4 }')])
+    p = load_calibration_study(path).calibration.parameters
+    assert (p[1].name, p[1].initial, p[1].unit, p[1].source) == ("load.pretension", 0.2, "N", "set in the study file")
+    assert (p[2].initial, p[2].unit) == (pytest.approx(-np.pi / 6), "rad")
+    assert p[2].source.startswith("preset rao_2021: 3 tendons per section")

@@ -227,15 +227,31 @@ def _read_file(path: Path, delimiter: str) -> tuple[list[str], Any]:
             header = next(csv.reader(fh, delimiter=delimiter), [])
         if not header:
             raise pd.errors.EmptyDataError
-        frame = pd.read_csv(path, dtype=str, keep_default_na=False, skip_blank_lines=False, sep=delimiter,
-                            encoding="utf-8") if len(set(header)) == len(header) and header else None
+        header = [h.strip() for h in header]
+        frame = _csv(path, delimiter) if len(set(header)) == len(header) else None
     except UnicodeDecodeError as e:
         raise ValueError(f"not UTF-8 text (byte 0x{e.object[e.start]:02x} at offset {e.start})") from None
     except pd.errors.EmptyDataError:
         raise ValueError("the file is empty (a header line with the column names and one line per sample)") from None
     except (pd.errors.ParserError, OSError, csv.Error) as e:
         raise ValueError(f"not a readable CSV file ({' '.join(str(e).split())[:160]})") from None
-    return [h.strip() for h in header], frame
+    return header, frame
+
+
+def _csv(path: Path, delimiter: str, text: bool = False) -> Any:
+    """The CSV file as a frame: numbers parsed by pandas' C reader, or (``text``) every cell as its text."""
+    import pandas as pd
+
+    kw = {"dtype": str, "keep_default_na": False} if text else {}
+    frame = pd.read_csv(path, skip_blank_lines=False, sep=delimiter, encoding="utf-8", **kw)
+    frame.columns = [str(c).strip() for c in frame.columns]
+    if not text:
+        return frame
+    empty = (frame == "").all(axis=1)
+    keep = len(frame)
+    while keep and empty.iloc[keep - 1]:  # blank lines at the end of the file are no samples
+        keep -= 1
+    return frame.iloc[:keep]
 
 
 def _cell_problem(text: str) -> str:
@@ -248,11 +264,20 @@ def _cell_problem(text: str) -> str:
     return "NaN (not a number)" if math.isnan(v) else f"must be finite, got {text.strip()}"
 
 
-def _numbers(frame: Any, col: str) -> tuple[np.ndarray, list[tuple[int, str]]]:
-    """Column ``col`` as floats and ``(row, reason)`` of every cell that is not a finite number."""
+def _finite(s: Any) -> np.ndarray | None:
+    """The column as floats when it is numeric and every value finite, else ``None``."""
     import pandas as pd
 
-    s = frame[col]
+    if s.dtype == bool or not pd.api.types.is_numeric_dtype(s.dtype):
+        return None
+    v = s.to_numpy(dtype=float)
+    return v if np.all(np.isfinite(v)) else None
+
+
+def _numbers(s: Any) -> tuple[np.ndarray, list[tuple[int, str]]]:
+    """A column as floats and ``(row, reason)`` of every cell that is not a finite number."""
+    import pandas as pd
+
     if s.dtype == bool:
         return np.zeros(len(s)), [(1, f"a boolean column, not numbers ({s.dtype})")]
     if pd.api.types.is_numeric_dtype(s.dtype):
@@ -282,15 +307,30 @@ def _cap(lines: list[str], data: str) -> list[str]:
     return lines[:MAX_LINES] + [f"{data}: ... and {len(lines) - MAX_LINES} more problems in this file"]
 
 
-def _columns(frame: Any, t: MeasurementsTable, data: str, where: str) -> tuple[dict[str, np.ndarray], list[str]]:
-    """Every mapped column as floats, and one line per bad cell (row order, then column order)."""
-    values: dict[str, np.ndarray] = {}
+def _columns(frame: Any, t: MeasurementsTable, path: Path, where: str) -> tuple[dict[str, np.ndarray], list[str]]:
+    """Every mapped column as floats, and one line per bad cell (row order, then column order).
+
+    A CSV column that pandas' C reader did not parse as finite numbers is read again as text, so
+    that each bad cell is named by what it holds.
+    """
+    data = str(path)
+    values = {col: _finite(frame[col]) for _, col in _mapped(t)}
+    if all(v is not None for v in values.values()):
+        return values, []
+    if path.suffix.lower() == ".csv":
+        frame = _csv(path, t.delimiter, text=True)
     bad: list[tuple[int, int, str]] = []
+    empty: dict[int, int] = {}
     for k, (key, col) in enumerate(_mapped(t)):
-        v, problems = _numbers(frame, col)
+        v, problems = _numbers(frame[col])
         values[col] = v
         group = key.partition(".")[0]
         bad += [(row, k, f"{data}: row {row}, column {col!r} ({where}.{group}): {why}") for row, why in problems]
+        for row, why in problems:
+            empty[row] = empty.get(row, 0) + (why == "empty cell")
+    blank = {row for row, count in empty.items() if count == len(values) > 1}
+    bad = [b for b in bad if b[0] not in blank] + [(row, -1, f"{data}: row {row}: an empty line (every mapped "
+                                                               f"column empty)") for row in blank]
     return values, [line for _, _, line in sorted(bad)]
 
 
@@ -395,10 +435,13 @@ def read_measurements(table: Mapping[str, Any], study_dir: str | Path, robot: An
         problems.append(f"{data}: no data rows (only the header line)")
     if problems:
         raise StudyError(_cap(problems, data))
-    values, cells = _columns(frame, t, data, where)
+    values, cells = _columns(frame, t, path, where)
     if cells:
         raise StudyError(_cap(cells, data))
+    n = len(next(iter(values.values())))
+    if n == 0:
+        raise StudyError([f"{data}: no data rows (only the header line)"])
     rows = _row_rules(t, values, data, where)
     if rows:
         raise StudyError(_cap(rows, data))
-    return _measurements(t, values, robot, len(frame))
+    return _measurements(t, values, robot, n)

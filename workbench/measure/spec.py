@@ -37,7 +37,7 @@ from typing import Any, Literal, Mapping, Sequence
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from ..study.keypath import KeyPathError, get_value, parse_key_path
+from ..study.keypath import KeyPathError, format_key_path, get_value, parse_key_path
 from ..study.messages import StudyError, read_toml, suggest
 from ..study.params import canonical_json
 from ..study.schema import ReportSection, LoadSection, SolverSection
@@ -218,15 +218,26 @@ def _unit(path: str) -> str:
     return u
 
 
+def _source(path: str, sources: Mapping[str, str]) -> str:
+    """Where the value at ``path`` comes from: its own entry, else that of the list it is an element of."""
+    parts = parse_key_path(path)
+    while parts:
+        text = sources.get(format_key_path(parts))
+        if text is not None:
+            return text
+        parts = parts[:-1] if isinstance(parts[-1], int) else ()
+    return "default"
+
+
 def _nominal(path: str, case: Mapping[str, Any], sources: Mapping[str, str]) -> tuple[Any, str]:
     """The value a key path names in the case parameters, or a material's value the robot uses there.
 
     Raises :class:`KeyPathError` naming the path and why.
     """
     try:
-        return get_value(case, path), sources.get(path, "set in the study file")
+        return get_value(case, path), _source(path, sources)
     except KeyPathError:
-        src = sources.get(path, "")
+        src = _source(path, sources)
         if not src.startswith("material "):
             raise
     from ..robot.materials import material
@@ -391,7 +402,7 @@ def _read(raw: Mapping[str, Any], study_dir: Path, robot: Any, src: str) -> tupl
     try:
         return read_measurements(raw["measurements"], study_dir, robot, src), []
     except StudyError as e:
-        return None, [p[len(src) + 2:] if p.startswith(f"{src}: ") else f"\0{p}" for p in e.problems]
+        return None, list(e.problems)
 
 
 def _resolved(st: StudyTable, table: dict, load: dict, solver: dict, report: Any, meas_raw: Mapping[str, Any],
@@ -450,7 +461,8 @@ def load_calibration_study(path: str | Path, max_cases: int | None = None,
         case = {"robot": table, "load": load or {}}
         from ..robot.spec import robot_value_sources
 
-        sources = robot_value_sources(raw["robot"])
+        lraw = raw.get("load") if isinstance(raw.get("load"), Mapping) else {}
+        sources = {**robot_value_sources(raw["robot"]), **{f"load.{k}": "set in the study file" for k in lraw}}
         params, lines = _parameters(cal, case, sources, robot.n_tendons, meas, frame)
         problems += lines
         if meas is not None and not lines:
@@ -461,7 +473,7 @@ def load_calibration_study(path: str | Path, max_cases: int | None = None,
         n_cases = len(cal.models) * (cal.folds or 1)
         if max_cases is not None and n_cases > max_cases:
             problems.append(f"calibration: {n_cases} cases (models x folds) exceed max_cases = {max_cases}")
-    out = [f"{src}: {p}" for p in problems] + [p[1:] if p.startswith("\0") else f"{src}: {p}" for p in file_lines]
+    out = [f"{src}: {p}" for p in problems] + file_lines
     if out or st is None or split is None:
         raise StudyError(out or [f"{src}: invalid calibration study"])
     resolved = _resolved(st, table, load, solver, report, mraw, _file_digest(Path(path).parent, mraw), meas, cal,
