@@ -184,6 +184,13 @@ CASES = [
      "{study}: calibration.command_zero: need lower < initial < upper, got 0.1 < 0 < 0.5 N (initial "
      "defaults to 0; set initial)"),
     ("calibration_key_typo", [("test_fraction = 0.25", "test_fracton = 0.25")], None, None),
+    ("command_zero_key_typo", [("lower = -0.5\nupper = 0.5", "lowr = -0.5\nupper = 0.5")], None,
+     "{study}: calibration.command_zero.lowr: unknown key; did you mean 'lower'?"),
+    ("registration_key_typo", [("translation = { lower", "translation = { inital = [0, 0, 0], lower")], None,
+     "{study}: calibration.registration.translation.inital: unknown key; did you mean 'initial'?"),
+    ("force_key_typo", [("[calibration]\n", '[measurements.tip_force]\ncolumns = ["T1", "T2", "T3"]\nunit = "N"\n'
+                         'frme = "base"\n\n[calibration]\n')], None,
+     "{study}: measurements.tip_force.frme: unknown key; did you mean 'frame'?"),
     ("missing_robot", [('[robot]\npreset = "rao_2021"\n', "")], None, "{study}: robot: missing section [robot]"),
 ]
 

@@ -27,12 +27,12 @@ from __future__ import annotations
 import csv
 import math
 from pathlib import Path
-from typing import Any, Literal, Mapping
+from typing import Any, Literal, Mapping, get_args
 
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
-from ..study.messages import StudyError, pydantic_problems, suggest
+from ..study.messages import StudyError, fmt_loc, pydantic_problems, suggest
 from ..units import si_factor
 from .types import Measurements
 
@@ -117,12 +117,28 @@ def schema_problems(model: type[BaseModel], raw: Mapping[str, Any], where: tuple
         return model.model_validate(dict(raw)), []
     except ValidationError as e:
         lines = pydantic_problems(e, where, model)
+        for err in e.errors():  # an optional sub-table's unknown key: suggest its fields too
+            plain = f"{fmt_loc(where + tuple(err['loc']))}: unknown key"
+            if err["type"] == "extra_forbidden" and plain in lines:
+                lines[lines.index(plain)] = plain + suggest(str(err["loc"][-1]), _fields_at(model, err["loc"][:-1]))
     typos = set()
     for line in lines:
         head, _, rest = line.partition(": unknown key; did you mean '")
         if rest:
             typos.add(f"{head.rpartition('.')[0]}.{rest.partition(chr(39))[0]}: missing required key")
     return None, [line for line in lines if line not in typos]
+
+
+def _fields_at(model: type[BaseModel], loc: tuple) -> list[str]:
+    """Field names of the (nested, possibly optional) pydantic model at ``loc`` (``[]`` when none)."""
+    m: Any = model
+    for part in loc:
+        f = m.model_fields.get(str(part)) if m is not None and not isinstance(part, int) else None
+        if f is None:
+            return []
+        m = next((a for a in (f.annotation, *get_args(f.annotation))
+                  if isinstance(a, type) and issubclass(a, BaseModel)), None)
+    return list(m.model_fields) if m is not None else []
 
 
 def _suggest_column(col: str, header: list[str]) -> str:
