@@ -45,6 +45,15 @@ def _keep(n: int):
     return lambda rows: rows[: n + 1]
 
 
+def _forces(rows: list[list[str]]) -> list[list[str]]:
+    """Add tip-force columns fx, fy, fz (0, 0, -0.1 N: in the base x-z plane)."""
+    return [r + (["fx", "fy", "fz"] if i == 0 else ["0.0", "0.0", "-0.1"]) for i, r in enumerate(rows)]
+
+
+PLANAR = 'preset = "rao_2021"\nsections = [{tendons = [{angles = [0.0, 3.141592653589793]}]}, ' \
+         '{tendons = [{angles = [0.0, 3.141592653589793]}]}]'
+
+
 def _ragged(rows: list[list[str]]) -> list[list[str]]:
     rows[5] = rows[5] + ["1.0"]
     return rows
@@ -144,6 +153,12 @@ CASES = [
     ("no_tendon_model", [('models = ["cc", "cosserat"]', 'models = ["ancf3d"]')], None,
      "{study}: measurements.commands: model 'ancf3d' cannot carry tendon loads (tendon commands must be zero, "
      "no pretension); change the key or drop the model"),
+    ("tip_force_model", [('preset = "rao_2021"', PLANAR), ('"T4", "T5", "T6"]', '"T4"]'),
+                         ('models = ["cc", "cosserat"]', 'models = ["cc", "contact"]'),
+                         ("lower = -0.5\nupper = 0.5", "lower = -0.5\nupper = 0.5\n\n[measurements.tip_force]\n"
+                                                      'columns = ["fx", "fy", "fz"]\nunit = "N"\nframe = "base"')],
+     _forces, "{study}: measurements.tip_force: model 'contact' cannot carry a tip force; change the key or drop the "
+              "model"),
     ("unknown_parameter", [('"robot.sections[1].length"', '"robot.sections[1].lenght"')], None,
      "{study}: calibration.parameters[\"robot.sections[1].lenght\"]: not a value of the case: unknown field "
      "'lenght' of robot.sections[1]; did you mean 'length'?"),
@@ -152,6 +167,8 @@ CASES = [
      "robot.sections[1].material is str 'niti'"),
     ("solver_parameter", [('"robot.sections[1].length"', '"solver.n_elements"')], None,
      "{study}: calibration.parameters[\"solver.n_elements\"]: only robot.* and load.* values can be calibrated"),
+    ("parameter_not_a_table", [("lower = 30e9, upper = 80e9 }", "lower = 30e9, upper = 80e9 }\n\"load.pretension\" = 0.1")],
+     None, "{study}: calibration.parameters[\"load.pretension\"]: must be a table, got float 0.1"),
     ("bounds_reversed", [("lower = 0.18, upper = 0.22", "lower = 0.22, upper = 0.18")], None,
      "{study}: calibration.parameters[\"robot.sections[1].length\"]: lower must be < upper, got lower = 0.22 m, "
      "upper = 0.18 m"),

@@ -64,6 +64,8 @@ def test_the_config_hash_follows_the_data_and_the_settings_not_the_name(tmp_path
     assert load_calibration_study(_copy(tmp_path)).config_hash == a
     renamed = _copy(tmp_path, [('name = "measured_fixture"', 'name = "other"')])
     assert load_calibration_study(renamed).config_hash == a
+    limited = _copy(tmp_path, [("n_elements = 16", "n_elements = 16\nmax_case_seconds = 60.0")])
+    assert load_calibration_study(limited).config_hash == a  # a limit does not change a result
     assert load_calibration_study(_copy(tmp_path), overrides=["calibration.seed=2"]).config_hash != a
     path = _copy(tmp_path)
     df = pd.read_csv(tmp_path / "measured.csv")

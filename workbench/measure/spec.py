@@ -38,9 +38,9 @@ from typing import Any, Literal, Mapping, Sequence
 from pydantic import BaseModel, ConfigDict, Field
 
 from ..study.keypath import KeyPathError, format_key_path, get_value, parse_key_path
-from ..study.messages import StudyError, read_toml, suggest
+from ..study.messages import StudyError, fmt_loc, read_toml, suggest
 from ..study.params import canonical_json
-from ..study.schema import ReportSection, LoadSection, SolverSection
+from ..study.schema import LIMIT_KEYS, LoadSection, ReportSection, SolverSection
 from ..units import unit_of
 from .datafile import schema_problems
 from .types import CalibrationSettings, CalibrationStudy, FitParameter, Measurements, Split
@@ -112,7 +112,7 @@ class CalibrationTable(BaseModel):
 def _schema(model: type[BaseModel], raw: Any, where: tuple, problems: list[str]) -> Any:
     """``raw`` validated by ``model`` (``None`` and its problems, one line each, when it fails)."""
     if not isinstance(raw, Mapping):
-        problems.append(f"{where[0]}: must be a table [{where[0]}], got {type(raw).__name__}")
+        problems.append(f"{fmt_loc(where)}: must be a table, got {type(raw).__name__} {raw!r}"[:200])
         return None
     out, lines = schema_problems(model, raw, where)
     problems += lines
@@ -480,8 +480,9 @@ def load_calibration_study(path: str | Path, max_cases: int | None = None,
                          params, split)
     settings = CalibrationSettings(models=tuple(cal.models), parameters=tuple(params), split=split,
                                    confidence=cal.confidence, max_evaluations=cal.max_evaluations)
-    payload = {"kind": KIND_NAME, **{k: v for k, v in resolved.items() if k not in ("study", "report")}}
-    digest = hashlib.sha256(canonical_json(payload).encode())  # name, description, report: not results
+    payload = {"kind": KIND_NAME, **{k: v for k, v in resolved.items() if k not in ("study", "report")},
+               "solver": {k: v for k, v in solver.items() if k not in LIMIT_KEYS}}
+    digest = hashlib.sha256(canonical_json(payload).encode())  # name, description, report, limits: not results
     return CalibrationStudy(path=src, name=st.name, config_hash=digest.hexdigest()[:16], robot=table,
                             load=resolved["load"], solver=solver, report=resolved["report"], measurements=meas,
                             calibration=settings, overrides=tuple(overrides), raw=resolved)
