@@ -129,3 +129,10 @@ def test_spaces_around_names_and_blank_lines(tmp_path):
     with pytest.raises(StudyError) as info:
         read_measurements(_table(), tmp_path, ROBOT, "s.toml")
     assert info.value.problems == [f"{tmp_path / 'measured.csv'}: row 6: an empty line (every mapped column empty)"]
+
+
+def test_a_spreadsheet_export_with_a_byte_order_mark_and_crlf(tmp_path):
+    text = (FIX / "measured.csv").read_text(encoding="utf-8")
+    (tmp_path / "measured.csv").write_bytes(b"\xef\xbb\xbf" + text.replace("\n", "\r\n").encode("utf-8"))
+    m = read_measurements(_table(), tmp_path, ROBOT, "s.toml")
+    np.testing.assert_array_equal(m.commands, read_measurements(_table(), FIX, ROBOT, "s.toml").commands)

@@ -239,7 +239,7 @@ def _read_file(path: Path, delimiter: str) -> tuple[list[str], Any]:
             raise ValueError(f"not a readable Parquet file ({' '.join(str(e).split())[:160]})") from None
         return header, frame
     try:
-        with path.open(encoding="utf-8", newline="") as fh:
+        with path.open(encoding="utf-8-sig", newline="") as fh:
             header = next(csv.reader(fh, delimiter=delimiter), [])
         if not header:
             raise pd.errors.EmptyDataError
@@ -259,7 +259,7 @@ def _csv(path: Path, delimiter: str, text: bool = False) -> Any:
     import pandas as pd
 
     kw = {"dtype": str, "keep_default_na": False} if text else {}
-    frame = pd.read_csv(path, skip_blank_lines=False, sep=delimiter, encoding="utf-8", **kw)
+    frame = pd.read_csv(path, skip_blank_lines=False, sep=delimiter, encoding="utf-8-sig", **kw)
     frame.columns = [str(c).strip() for c in frame.columns]
     if not text:
         return frame
