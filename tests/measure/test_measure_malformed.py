@@ -162,6 +162,10 @@ CASES = [
     ("unknown_parameter", [('"robot.sections[1].length"', '"robot.sections[1].lenght"')], None,
      "{study}: calibration.parameters[\"robot.sections[1].lenght\"]: not a value of the case: unknown field "
      "'lenght' of robot.sections[1]; did you mean 'length'?"),
+    ("robot_level_section_key", [('"robot.sections[0].youngs_modulus"', '"robot.youngs_modulus"')], None,
+     "{study}: calibration.parameters[\"robot.youngs_modulus\"]: not a value of the case: unknown field "
+     "'youngs_modulus' of robot; known fields: name, preset, sections (a section's value: "
+     "robot.sections[i].youngs_modulus, i = 0..1, one parameter per section)"),
     ("text_parameter", [('"robot.sections[1].length"', '"robot.sections[1].material"')], None,
      "{study}: calibration.parameters[\"robot.sections[1].material\"]: must name a number, "
      "robot.sections[1].material is str 'niti'"),

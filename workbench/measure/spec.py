@@ -250,6 +250,22 @@ def _nominal(path: str, case: Mapping[str, Any], sources: Mapping[str, str]) -> 
     return value, src
 
 
+def _hint(key: str, case: Mapping[str, Any]) -> str:
+    """For ``robot.<section key>`` of a description-form robot: where a section's value is."""
+    from ..robot.section_spec import SECTION_KEYS, TENDON_KEYS
+
+    parts = parse_key_path(key)
+    sections = case.get("robot", {}).get("sections")
+    if len(parts) != 2 or parts[0] != "robot" or not isinstance(sections, list):
+        return ""
+    n = len(sections)
+    if parts[1] in SECTION_KEYS:
+        return f" (a section's value: robot.sections[i].{parts[1]}, i = 0..{n - 1}, one parameter per section)"
+    if parts[1] in TENDON_KEYS:
+        return f" (a tendon group's value: robot.sections[i].tendons[0].{parts[1]}, i = 0..{n - 1})"
+    return ""
+
+
 def _parameter(key: str, body: Any, case: Mapping[str, Any], sources: Mapping[str, str]
                ) -> tuple[FitParameter | None, list[str]]:
     where = f'calibration.parameters["{key}"]'
@@ -264,7 +280,7 @@ def _parameter(key: str, body: Any, case: Mapping[str, Any], sources: Mapping[st
     try:
         value, source = _nominal(key, case, sources)
     except KeyPathError as e:
-        return None, problems + [f"{where}: not a value of the case: {str(e).partition(': ')[2]}"]
+        return None, problems + [f"{where}: not a value of the case: {str(e).partition(': ')[2]}{_hint(key, case)}"]
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         return None, problems + [f"{where}: must name a number, {key} is {type(value).__name__} {value!r}"]
     if b is None:
