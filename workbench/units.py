@@ -20,8 +20,12 @@ field metadata (:mod:`workbench.study.columns`), the study messages
 (:mod:`workbench.report.units`).  Imports only the registry (data), so validation stays free
 of execution code.
 
-Checked by ``tests/test_unit_table.py``, ``tests/report/test_units.py`` and
-``tests/study/test_messages.py``.
+A data file read by the workbench (a calibration study's measured columns) may give a length in
+``mm`` or a force in ``mN``: :data:`CONVERSIONS` and :func:`si_factor` convert the spellings it
+accepts to the SI unit of the table above.
+
+Checked by ``tests/test_unit_table.py``, ``tests/report/test_units.py``,
+``tests/study/test_messages.py`` and ``tests/measure/test_measure_data_units.py``.
 """
 
 from __future__ import annotations
@@ -29,7 +33,7 @@ from __future__ import annotations
 from functools import lru_cache
 from typing import Mapping, NamedTuple
 
-__all__ = ["Quantity", "UNITS", "UnitBy", "quantity", "unit_of"]
+__all__ = ["CONVERSIONS", "Quantity", "UNITS", "UnitBy", "quantity", "si_factor", "unit_of"]
 
 
 class UnitBy(NamedTuple):
@@ -128,3 +132,30 @@ def unit_of(key: str) -> str | None:
     """The fixed unit of ``key``: ``""`` dimensionless; ``None`` unknown, a category or set by another column."""
     q = quantity(key)
     return q.unit if q is not None and isinstance(q.unit, str) else None
+
+
+#: unit spelling a data file may use -> (the SI unit of its kind, factor: value in SI = factor * value)
+CONVERSIONS: dict[str, tuple[str, float]] = {
+    "m": ("m", 1.0), "cm": ("m", 1e-2), "mm": ("m", 1e-3), "um": ("m", 1e-6), "µm": ("m", 1e-6),
+    "in": ("m", 0.0254),
+    "N": ("N", 1.0), "mN": ("N", 1e-3), "kN": ("N", 1e3),
+    "rad": ("rad", 1.0), "deg": ("rad", 0.017453292519943295),
+}
+
+
+def si_factor(unit: str, si_unit: str) -> float:
+    """The factor that turns a value in ``unit`` into ``si_unit`` (one of the SI units of :data:`CONVERSIONS`).
+
+    Raises
+    ------
+    ValueError
+        ``unit`` is unknown (the message lists the units of that kind) or of another kind
+        (``"N"`` for a length); one line, for the caller to prefix with its key path.
+    """
+    known = [u for u, (si, _) in CONVERSIONS.items() if si == si_unit]
+    if unit not in CONVERSIONS:
+        raise ValueError(f"unknown unit {unit!r}; {si_unit} units: {', '.join(known)}")
+    si, factor = CONVERSIONS[unit]
+    if si != si_unit:
+        raise ValueError(f"{unit!r} is a unit of {si}, not of {si_unit}; {si_unit} units: {', '.join(known)}")
+    return factor

@@ -2,7 +2,7 @@
 
 Every entry of :data:`CASES` is a ``[robot]`` table with one mistake and the key path (and a
 fragment of the reason) its one problem line must name.  :func:`workbench.robot.spec.robot_problems`
-is what ``workbench validate`` calls for ``[robot]`` (``workbench/study/spec.py::_resolve_robot``);
+is what ``workbench validate`` calls for ``[robot]`` (``workbench/study/spec.py::resolve_robot_table``);
 the last test runs three of them through ``workbench validate`` itself.  The count is asserted
 (issue 29: at least 40).
 """

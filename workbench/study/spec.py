@@ -59,6 +59,7 @@ __all__ = [
     "StudyError",
     "load_study",
     "parse_study",
+    "resolve_robot_table",
     "DEFAULT_MAX_CASES",
     "SWEEP_SECTIONS",
 ]
@@ -227,12 +228,14 @@ def _check_models(sections: Mapping[str, BaseModel]) -> list[str]:
     return problems
 
 
-def _resolve_robot(rraw: Any) -> tuple[dict[str, Any] | None, dict[str, Any], list[str]]:
+def resolve_robot_table(rraw: Any) -> tuple[dict[str, Any] | None, dict[str, Any], list[str]]:
     """``[robot]`` -> ``(robot parameters of every case, preset defaults, problems)``.
 
     Preset form: ``{"preset": name, <every preset parameter>}`` and the preset's defaults;
     description form (no preset, or a data preset): the table as written and ``{}``
-    (:mod:`workbench.robot.spec`; its problems name their key paths).
+    (:mod:`workbench.robot.spec`; its problems name their key paths).  Public: the sweep loader and
+    the calibration study (:mod:`workbench.measure.spec`) read ``[robot]`` through it.  Checked by
+    ``tests/study/test_spec.py`` and ``tests/robot/test_spec_malformed.py``.
     """
     from ..robot.presets import preset_values
     from ..robot.spec import is_description, robot_problems
@@ -251,8 +254,8 @@ def _resolve_robot(rraw: Any) -> tuple[dict[str, Any] | None, dict[str, Any], li
 
 def _robot_check(robot: Mapping[str, Any]) -> tuple[dict[str, Any] | None, list[str]]:
     """The ``[robot]`` validator of a swept value (:func:`~workbench.study.sweep_checks.check_sweep`): the
-    resolved table with the value applied, checked by :func:`_resolve_robot` like the file's."""
-    resolved, _, problems = _resolve_robot(dict(robot))
+    resolved table with the value applied, checked by :func:`resolve_robot_table` like the file's."""
+    resolved, _, problems = resolve_robot_table(dict(robot))
     return resolved, problems
 
 
@@ -376,7 +379,7 @@ def parse_study(raw: Mapping[str, Any], *, source: str = "<study>", max_cases: i
     if not run_models and "solver" in usable and usable["solver"].by_model:
         problems.append("solver.by_model: this study kind computes its rows with its own tasks, not with the models' "
                         "run(); per-model settings would not apply (set the options in [solver])")
-    robot_base, preset_defaults, robot_problems = _resolve_robot(raw.get("robot"))
+    robot_base, preset_defaults, robot_problems = resolve_robot_table(raw.get("robot"))
     problems += robot_problems
     unset = problem_keys(problems)
     later = _load_and_derived_rules(usable, raw.get("robot"), preset_defaults, raw.get("sweep"))
