@@ -1,0 +1,187 @@
+"""The report of a calibration study (``workbench/report/measurements.py``): a fake result folder in the row
+schema of issue 30 (one row per model and fold), written with the runner's store, then the report.
+
+The fake folder: 40 measured samples of a 0.2 m robot; CC's predictions miss the measurement by an error
+that grows with the command magnitude, Cosserat's by 0.2 mm noise, and a GE-beam calibration failed.  The
+test computes the findings numbers from the stored sample arrays (not from the ``err.*`` cells the
+report reads) and checks the sentence, the Measurements section, the viewer's markers, that no sweep
+figure is drawn, and that the failed model is named with its reason.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from workbench.report.build import build_report
+from workbench.report.measurements import cell, points, texts
+from workbench.report.style import fmt
+from workbench.study.store import MANIFEST, ResultStore
+
+L = 0.2
+N, M = 40, 4
+FAIL_REASON = "least_squares: the model did not solve at the start values (fold 0)"
+
+
+def _errors(pred, meas, idx):
+    e = np.linalg.norm(pred[idx] - meas[idx], axis=1)
+    return {"rms": float(np.sqrt(np.mean(e**2))), "median": float(np.median(e)), "p95": float(np.percentile(e, 95)),
+            "max": float(np.max(e))}
+
+
+def _row(model, rows, split, cmd, meas, pred, common, view_rows, backbone_pts):
+    """One calibration row of the issue-30 schema for the samples ``rows`` (indices into the data)."""
+    e_train, e_test = _errors(pred, meas, rows[split == 0]), _errors(pred, meas, rows[split == 1])
+    k = len(view_rows)
+    tips = pred[view_rows]
+    s = np.linspace(0.0, 1.0, 11)[None, :, None]
+    view = s * tips[:, None, :] + (1 - s) * np.array([0.0, 0.0, 0.01])  # a line from the base to the predicted tip
+    row = {
+        "case_id": f"{model}-fold0", "model": model, "status": "ok", "error": "", "failure": "", "wall_time": 1.5,
+        "fold": 0, "robot_length": L,
+        "calib.converged": True, "calib.message": "`ftol` termination condition is satisfied.",
+        "calib.evaluations": 17 if model == "cc" else 9, "calib.seconds_per_evaluation": 0.002 if model == "cc" else 0.8,
+        "calib.names": json.dumps(["robot.youngs_modulus", "command_zero[0]", "registration.translation[0]"]),
+        "calib.units": json.dumps(["Pa", "N", "m"]),
+        "calib.sources": json.dumps(["preset rao_2021", "0 (no slack)", "0"]),
+        "calib.initial": [6.0e10, 0.0, 0.0], "calib.lower": [3.0e10, -0.5, -0.1], "calib.upper": [8.0e10, 0.5, 0.1],
+        "calib.values": [5.1e10, 0.21, 0.1] if model == "cc" else [5.4e10, 0.2, 0.0123],
+        "calib.ci_low": [4.9e10, 0.18, 0.1] if model == "cc" else [5.3e10, 0.19, 0.0121],
+        "calib.ci_high": [5.3e10, 0.24, 0.1] if model == "cc" else [5.5e10, 0.21, 0.0125],
+        "calib.at_bound": [0.0, 0.0, 1.0] if model == "cc" else [0.0, 0.0, 0.0], "calib.confidence": 0.95,
+        **{f"err.train_{k2}": v for k2, v in e_train.items()}, **{f"err.test_{k2}": v for k2, v in e_test.items()},
+        "err.common_test_rms": _errors(pred, meas, common)["rms"],
+        "sample.file_row": (rows + 1).tolist(), "sample.split": split.tolist(),
+        "sample.commands": cmd[rows].reshape(-1).tolist(), "sample.measured": meas[rows].reshape(-1).tolist(),
+        "sample.predicted": pred[rows].reshape(-1).tolist(),
+        "view.file_row": (view_rows + 1).tolist(), "view.positions": view.reshape(-1).tolist(),
+        "view.measured_backbone": backbone_pts[view_rows].reshape(-1).tolist() if backbone_pts is not None else [],
+        "_shapes": {"sample.commands": [-1, M], "sample.measured": [-1, 3], "sample.predicted": [-1, 3],
+                    "view.positions": [-1, 11, 3], "view.measured_backbone": [-1, 3, 3]},
+    }
+    return row
+
+
+def make_calibration_folder(folder: Path) -> dict:
+    """Write the fake calibration result folder; return what the test needs to check it independently."""
+    rng = np.random.default_rng(3)
+    cmd = rng.uniform(0.0, 3.0, (N, M))
+    mag = np.linalg.norm(cmd, axis=1)
+    meas = np.column_stack([0.02 * (cmd[:, 0] - cmd[:, 2]), 0.02 * (cmd[:, 1] - cmd[:, 3]), L - 0.003 * mag])
+    backbone = meas[:, None, :] * np.array([0.25, 0.5, 0.75])[None, :, None]
+    pred_cc = meas + 0.002 * mag[:, None] * np.array([0.6, -0.3, 0.74])
+    pred_cos = meas + rng.normal(0.0, 0.2e-3 / np.sqrt(3), (N, 3))
+    order = rng.permutation(N)
+    test, train = np.sort(order[:10]), np.sort(order[10:])
+    p_train, p_test = np.sort(train[:8]), np.sort(test[:6])
+    view_rows = p_test[:4]
+    all_rows = np.arange(N)
+    cc_split = np.isin(all_rows, test).astype(int)
+    cos_rows = np.concatenate([p_train, p_test])
+    cos_split = np.r_[np.zeros(len(p_train), int), np.ones(len(p_test), int)]
+    folder.mkdir(parents=True)
+    study_dir = folder.parent / "study"
+    study_dir.mkdir()
+    data = "T1,T2,T3,T4,x,y,z\n" + "".join(",".join(f"{v:.6g}" for v in [*cmd[i], *meas[i]]) + "\n" for i in range(N))
+    (study_dir / "measured.csv").write_text(data)
+    store = ResultStore(folder)
+    store.add([_row("cc", all_rows, cc_split, cmd, meas, pred_cc, p_test, view_rows, None),
+               _row("cosserat", cos_rows, cos_split, cmd, meas, pred_cos, p_test, view_rows, backbone),
+               {"case_id": "beam3d-fold0", "model": "beam3d", "status": "failed", "error": FAIL_REASON,
+                "failure": "model", "wall_time": 3.0, "fold": 0, "robot_length": L}])
+    store.close()
+    spec = {"study": {"name": "measured_fake", "kind": "calibration", "models": ["cc", "cosserat", "beam3d"],
+                      "description": "Does CC explain the measured robot?"},
+            "robot": {"preset": "rao_2021"},
+            "measurements": {"file": "measured.csv", "mode": "tension", "frame": "measurement"},
+            "calibration": {"models": ["cc", "cosserat", "beam3d"], "seed": 1, "test_fraction": 0.25,
+                            "physics_rows": 8}}
+    man = {"study": spec, "study_file": str(study_dir / "measured.toml"), "config_hash": "ab12", "n_cases": 3,
+           "versions": {"workbench": "0.1.0"}, "git": {"commit": "0" * 40, "dirty": False},
+           "runs": [{"host": "testhost", "start": "2026-01-01T10:00:00+00:00", "end": "2026-01-01T10:01:00+00:00",
+                     "wall_time": 60.0}]}
+    (folder / MANIFEST).write_text(json.dumps(man))
+    return {"meas": meas, "pred": {"cc": pred_cc, "cosserat": pred_cos}, "common": p_test, "test": test,
+            "view_rows": view_rows,
+            "backbone": backbone, "sha": hashlib.sha256(data.encode()).hexdigest()}
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory):
+    base = tmp_path_factory.mktemp("calib")
+    truth = make_calibration_folder(base / "data")
+    html = build_report(base / "data", base / "report", formats=("png",))
+    return truth, html, html.read_text(encoding="utf-8")
+
+
+def _scenes(page: str) -> dict:
+    m = re.search(r'<script type="application/json" id="wb-scenes">(.*?)</script>', page, re.S)
+    return json.loads(m.group(1).replace("<\\/", "</").replace(":\\/\\/", "://"))
+
+
+def test_findings_line_numbers_from_the_samples(built):
+    truth, _, page = built
+    meas, common = truth["meas"], truth["common"]
+    rms = {m: float(np.sqrt(np.mean(np.sum((p[common] - meas[common]) ** 2, axis=1)))) for m, p in truth["pred"].items()}
+    assert rms["cc"] > 5 * rms["cosserat"]  # the fake is built so: the line must name cosserat the better model
+    expected = (f"On {len(common)} held-out rows, Cosserat rod explains the measurements to {fmt(1e3 * rms['cosserat'])} mm "
+                f"RMS ({fmt(100 * rms['cosserat'] / L)} % L); CC's error is {fmt(1e3 * rms['cc'])} mm "
+                f"({fmt(100 * rms['cc'] / L)} % L), {fmt(rms['cc'] / rms['cosserat'])}x larger.")
+    findings = page.split("<ul class='findings'>", 1)[1].split("</ul>", 1)[0]
+    assert expected in findings.replace("&#x27;", "'")
+
+
+def test_failed_model_named_with_its_reason(built):
+    _, _, page = built
+    findings = page.split("<ul class='findings'>", 1)[1].split("</ul>", 1)[0]
+    assert "No verdict on GE beam: its calibration failed on every fold (fold 0: " + FAIL_REASON in findings
+    section = page.split("id='measurements'", 1)[1] if "id='measurements'" in page else page.split('id="measurements"', 1)[1]
+    assert "failed: fold 0: " + FAIL_REASON in section
+
+
+def test_measurements_section_tables_and_provenance(built):
+    truth, _, page = built
+    assert re.search(r"<h2[^>]*>Measurements</h2>", page)
+    sec = page.split(">Measurements</h2>", 1)[1]
+    assert "robot.youngs_modulus" in sec and "at bound" in sec and "preset rao_2021" in sec
+    assert sec.count("at bound</td>") == 1  # only CC's registration.translation[0] sits at its bound
+    assert "95 % interval" in sec
+    assert "measured.csv" in sec and truth["sha"] in sec and "seed 1" in sec
+    e = np.linalg.norm(truth["pred"]["cc"] - truth["meas"], axis=1)
+    # CC's held-out max over all its test rows (not only the common ones), in mm and % L, as the error table prints it
+    table = page.split("<table class='errors'>", 1)[1].split("</table>", 1)[0]
+    worst = float(np.max(e[truth["test"]]))
+    assert f"{fmt(1e3 * worst)} mm ({fmt(100 * worst / L)} % L)" in table
+
+
+def test_no_sweep_figure_only_measurement_figures(built):
+    _, html, page = built
+    drawn = set(re.findall(r"data-figure='([^']+)'", page))
+    assert drawn == {"measured_error_vs_command", "measured_residual_maps", "measured_vs_predicted"}
+    assert {p.stem for p in (html.parent / "figures").iterdir()} == drawn
+    assert "<h2>Summary</h2>" not in page
+
+
+def test_viewer_draws_predicted_backbones_and_measured_markers(built):
+    truth, _, page = built
+    scenes = _scenes(page)
+    assert scenes["frame"] == "measurement"
+    assert [c["id"] for c in scenes["cases"]] == [f"row-{r + 1}" for r in sorted(truth["view_rows"])]
+    for c, r in zip(scenes["cases"], sorted(truth["view_rows"])):
+        assert set(c["models"]) == {"cc", "cosserat"}
+        marks = {m["label"]: np.array(m["points"]) for m in c["markers"]}
+        np.testing.assert_allclose(marks["measured tip"][0], truth["meas"][r], atol=1e-6)
+        np.testing.assert_allclose(marks["measured backbone"], truth["backbone"][r], atol=1e-6)
+        tip = np.array(c["models"]["cosserat"]["frames"][0][1])[-1]
+        np.testing.assert_allclose(tip, truth["pred"]["cosserat"][r], atol=1e-6)
+
+
+def test_cells_read_as_stored():
+    assert texts('["a", "b"]') == ["a", "b"] and texts(np.array(["a"], dtype=object)) == ["a"]
+    assert cell(None).size == 0 and cell(float("nan")).size == 0 and cell("[1, 2]").tolist() == [1.0, 2.0]
+    assert points(list(range(12)), leading=2).shape == (2, 2, 3) and points([], leading=3).shape == (3, 0, 3)
