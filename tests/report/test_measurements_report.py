@@ -34,7 +34,7 @@ def _errors(pred, meas, idx):
             "max": float(np.max(e))}
 
 
-def _row(model, rows, split, cmd, meas, pred, common, view_rows, backbone_pts):
+def _row(model, rows, split, cmd, meas, pred, common, view_rows, backbone_pts, fold=0):
     """One calibration row of the issue-30 schema for the samples ``rows`` (indices into the data)."""
     e_train, e_test = _errors(pred, meas, rows[split == 0]), _errors(pred, meas, rows[split == 1])
     k = len(view_rows)
@@ -42,8 +42,8 @@ def _row(model, rows, split, cmd, meas, pred, common, view_rows, backbone_pts):
     s = np.linspace(0.0, 1.0, 11)[None, :, None]
     view = s * tips[:, None, :] + (1 - s) * np.array([0.0, 0.0, 0.01])  # a line from the base to the predicted tip
     row = {
-        "case_id": f"{model}-fold0", "model": model, "status": "ok", "error": "", "failure": "", "wall_time": 1.5,
-        "fold": 0, "robot_length": L,
+        "case_id": f"{model}-fold{fold}", "model": model, "status": "ok", "error": "", "failure": "", "wall_time": 1.5,
+        "fold": fold, "robot_length": L,
         "calib.converged": True, "calib.message": "`ftol` termination condition is satisfied.",
         "calib.evaluations": 17 if model == "cc" else 9, "calib.seconds_per_evaluation": 0.002 if model == "cc" else 0.8,
         "calib.names": json.dumps(["robot.youngs_modulus", "command_zero[0]", "registration.translation[0]"]),
@@ -67,15 +67,38 @@ def _row(model, rows, split, cmd, meas, pred, common, view_rows, backbone_pts):
     return row
 
 
-def make_calibration_folder(folder: Path) -> dict:
-    """Write the fake calibration result folder; return what the test needs to check it independently."""
-    rng = np.random.default_rng(3)
+def _fake_data(rng):
+    """Commands, measured tips, measured backbone points and the two models' predictions (module docstring)."""
     cmd = rng.uniform(0.0, 3.0, (N, M))
     mag = np.linalg.norm(cmd, axis=1)
     meas = np.column_stack([0.02 * (cmd[:, 0] - cmd[:, 2]), 0.02 * (cmd[:, 1] - cmd[:, 3]), L - 0.003 * mag])
     backbone = meas[:, None, :] * np.array([0.25, 0.5, 0.75])[None, :, None]
     pred_cc = meas + 0.002 * mag[:, None] * np.array([0.6, -0.3, 0.74])
     pred_cos = meas + rng.normal(0.0, 0.2e-3 / np.sqrt(3), (N, 3))
+    return cmd, meas, backbone, pred_cc, pred_cos
+
+
+def _manifest(spec_models, study_dir: Path, folds=None) -> dict:
+    cal = {"models": spec_models, "seed": 1, "physics_rows": 8, **({"folds": folds} if folds else {"test_fraction": 0.25})}
+    spec = {"study": {"name": "measured_fake", "kind": "calibration", "models": spec_models,
+                      "description": "Does CC explain the measured robot?"},
+            "robot": {"preset": "rao_2021"},
+            "measurements": {"file": "measured.csv", "mode": "tension", "frame": "measurement"}, "calibration": cal}
+    return {"study": spec, "study_file": str(study_dir / "measured.toml"), "config_hash": "ab12", "n_cases": 3,
+            "versions": {"workbench": "0.1.0"}, "git": {"commit": "0" * 40, "dirty": False},
+            "runs": [{"host": "testhost", "start": "2026-01-01T10:00:00+00:00", "end": "2026-01-01T10:01:00+00:00",
+                      "wall_time": 60.0}]}
+
+
+def _failed_row(model, fold, reason=FAIL_REASON):
+    return {"case_id": f"{model}-fold{fold}", "model": model, "status": "failed", "error": reason,
+            "failure": "model", "wall_time": 3.0, "fold": fold, "robot_length": L}
+
+
+def make_calibration_folder(folder: Path) -> dict:
+    """Write the fake calibration result folder; return what the test needs to check it independently."""
+    rng = np.random.default_rng(3)
+    cmd, meas, backbone, pred_cc, pred_cos = _fake_data(rng)
     order = rng.permutation(N)
     test, train = np.sort(order[:10]), np.sort(order[10:])
     p_train, p_test = np.sort(train[:8]), np.sort(test[:6])
@@ -92,20 +115,9 @@ def make_calibration_folder(folder: Path) -> dict:
     store = ResultStore(folder)
     store.add([_row("cc", all_rows, cc_split, cmd, meas, pred_cc, p_test, view_rows, None),
                _row("cosserat", cos_rows, cos_split, cmd, meas, pred_cos, p_test, view_rows, backbone),
-               {"case_id": "beam3d-fold0", "model": "beam3d", "status": "failed", "error": FAIL_REASON,
-                "failure": "model", "wall_time": 3.0, "fold": 0, "robot_length": L}])
+               _failed_row("beam3d", 0)])
     store.close()
-    spec = {"study": {"name": "measured_fake", "kind": "calibration", "models": ["cc", "cosserat", "beam3d"],
-                      "description": "Does CC explain the measured robot?"},
-            "robot": {"preset": "rao_2021"},
-            "measurements": {"file": "measured.csv", "mode": "tension", "frame": "measurement"},
-            "calibration": {"models": ["cc", "cosserat", "beam3d"], "seed": 1, "test_fraction": 0.25,
-                            "physics_rows": 8}}
-    man = {"study": spec, "study_file": str(study_dir / "measured.toml"), "config_hash": "ab12", "n_cases": 3,
-           "versions": {"workbench": "0.1.0"}, "git": {"commit": "0" * 40, "dirty": False},
-           "runs": [{"host": "testhost", "start": "2026-01-01T10:00:00+00:00", "end": "2026-01-01T10:01:00+00:00",
-                     "wall_time": 60.0}]}
-    (folder / MANIFEST).write_text(json.dumps(man))
+    (folder / MANIFEST).write_text(json.dumps(_manifest(["cc", "cosserat", "beam3d"], study_dir)))
     return {"meas": meas, "pred": {"cc": pred_cc, "cosserat": pred_cos}, "common": p_test, "test": test,
             "view_rows": view_rows,
             "backbone": backbone, "sha": hashlib.sha256(data.encode()).hexdigest()}
@@ -185,3 +197,73 @@ def test_cells_read_as_stored():
     assert texts('["a", "b"]') == ["a", "b"] and texts(np.array(["a"], dtype=object)) == ["a"]
     assert cell(None).size == 0 and cell(float("nan")).size == 0 and cell("[1, 2]").tolist() == [1.0, 2.0]
     assert points(list(range(12)), leading=2).shape == (2, 2, 3) and points([], leading=3).shape == (3, 0, 3)
+
+
+def _three_folds(folder: Path) -> tuple[np.ndarray, dict]:
+    """Folds 0 and 2 with both models, fold 1 with CC only (Cosserat's calibration failed there)."""
+    rng = np.random.default_rng(5)
+    cmd, meas, _, pred_cc, pred_cos = _fake_data(rng)
+    parts = np.array_split(rng.permutation(N), 3)
+    rows, common = [], {}
+    for f, test in enumerate(parts):
+        test = np.sort(test)
+        train = np.setdiff1d(np.arange(N), test)
+        p_train, p_test = train[:6], test[:4]
+        common[f] = p_test
+        rows.append(_row("cc", np.arange(N), np.isin(np.arange(N), test).astype(int), cmd, meas, pred_cc, p_test,
+                         p_test[:2], None, fold=f))
+        if f == 1:
+            rows.append(_failed_row("cosserat", 1, "least_squares: maximum number of evaluations reached"))
+        else:
+            rows.append(_row("cosserat", np.r_[p_train, p_test], np.r_[np.zeros(6, int), np.ones(4, int)], cmd, meas,
+                             pred_cos, p_test, p_test[:2], None, fold=f))
+    folder.mkdir(parents=True)
+    store = ResultStore(folder)
+    store.add(rows)
+    store.close()
+    (folder / MANIFEST).write_text(json.dumps(_manifest(["cc", "cosserat"], folder.parent, folds=3)))
+    return meas, {"cc": pred_cc, "cosserat": pred_cos, "common": np.concatenate([common[0], common[2]])}
+
+
+def test_folds_pool_only_the_folds_every_model_solved(tmp_path):
+    from workbench.report.load import load_results
+    from workbench.report.measurements import calibration_findings
+
+    meas, t = _three_folds(tmp_path / "data")
+    rows = t["common"]  # the rows of folds 0 and 2; pooled RMS = RMS over their union
+    rms = {m: float(np.sqrt(np.mean(np.sum((t[m][rows] - meas[rows]) ** 2, axis=1)))) for m in ("cc", "cosserat")}
+    lines = calibration_findings(load_results(tmp_path / "data"))
+    assert lines[0] == (f"On {len(rows)} held-out rows (folds 0, 2 of 3, where every model succeeded), Cosserat rod "
+                        f"explains the measurements to {fmt(1e3 * rms['cosserat'])} mm RMS "
+                        f"({fmt(100 * rms['cosserat'] / L)} % L); CC's error is {fmt(1e3 * rms['cc'])} mm "
+                        f"({fmt(100 * rms['cc'] / L)} % L), {fmt(rms['cc'] / rms['cosserat'])}x larger.")
+    assert ("Cosserat rod: the calibration failed on 1 of 3 folds (fold 1: least_squares: maximum number of "
+            "evaluations reached); its numbers are over the other folds.") in lines
+
+
+def test_every_calibration_failed_no_verdict(tmp_path):
+    folder = tmp_path / "data"
+    folder.mkdir()
+    store = ResultStore(folder)
+    store.add([_failed_row("cc", 0, "robot.sections[1].length: bounds hold no valid robot"), _failed_row("cosserat", 0)])
+    store.close()
+    (folder / MANIFEST).write_text(json.dumps(_manifest(["cc", "cosserat"], tmp_path)))
+    page = build_report(folder, tmp_path / "report", formats=("png",)).read_text(encoding="utf-8")
+    findings = page.split("<ul class='findings'>", 1)[1].split("</ul>", 1)[0]
+    assert "No verdict: no model has a held-out error (every calibration failed)." in findings
+    assert "No verdict on CC: its calibration failed on every fold (fold 0: robot.sections[1].length: bounds" in findings
+    assert "No verdict on Cosserat rod: its calibration failed on every fold (fold 0: " + FAIL_REASON in findings
+    assert "data-figure=" not in page
+
+
+@pytest.mark.browser
+def test_calibration_report_in_headless_chromium(built, tmp_path):
+    from browser import CHROMIUM, open_report
+
+    if CHROMIUM is None:
+        pytest.skip("headless Chromium not installed (apt-get install chromium)")
+    truth, html, _ = built
+    selftest, other = open_report(html, tmp_path / "calibration.png", height=3000)
+    assert other == []  # no script error: the viewer drew the markers without failing
+    assert selftest["cases"] == len(truth["view_rows"]) and selftest["figures"] == 3
+    assert selftest["pixels"] > 1000 and selftest["rows"] == 3

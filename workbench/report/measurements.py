@@ -8,8 +8,9 @@ CC-vs-physics figures for them (:func:`is_calibration`, read by :mod:`.build`); 
 
 * :func:`calibration_findings`: the findings line -- which model explains the measurements and by
   how much, on the rows every model predicted (``err.common_test_rms``, the fold's physics
-  held-out rows; over several folds the RMS pooled over the folds' rows); a model whose calibration
-  failed is named with its reason, and gets no verdict when it failed on every fold;
+  held-out rows; over several folds the RMS pooled over the rows of the folds on which every
+  model with a result succeeded); a model whose calibration failed is named with its reason, and
+  gets no verdict when it failed on every fold;
 * :func:`measurements_section`: per model the calibrated values of fold 0 with their confidence
   intervals (linearised, from the Jacobian at the optimum), units, start-value sources and "at
   bound" flags; the train / held-out tip errors (RMS, median, 95th percentile, max in mm and % L;
@@ -137,10 +138,18 @@ def common_rows(study: ResultSet, fold: int) -> int:
     return physics[0] if physics else next(iter(counts.values()), 0)
 
 
-def _pooled(study: ResultSet, s: FitSummary, col: str) -> tuple[float, int]:
-    """RMS of ``col`` pooled over the ok folds' common held-out rows, and the number of those rows."""
+def _common_folds(sums: list[FitSummary]) -> set[int]:
+    """The folds on which every model with a result succeeded (the models are compared on these only)."""
+    judged = [{_fold(r) for r in s.rows} for s in sums if s.rows]
+    return set.intersection(*judged) if judged else set()
+
+
+def _pooled(study: ResultSet, s: FitSummary, col: str, folds: set[int]) -> tuple[float, int]:
+    """RMS of ``col`` pooled over the common held-out rows of ``folds``, and the number of those rows."""
     num, n_all = 0.0, 0
     for r in s.rows:
+        if _fold(r) not in folds:
+            continue
         n = common_rows(study, _fold(r))
         v = float(r.get(col, np.nan))
         if n and np.isfinite(v):
@@ -172,17 +181,23 @@ def calibration_findings(study: ResultSet) -> list[str]:
     sums = fit_summaries(study)
     n_folds = len({_fold(r) for s in sums for r in s.rows} | {f for s in sums for f, _ in s.failed}) or 1
     L = _length(study)
+    common = _common_folds(sums)
     scored = []
     for s in sums:
         if s.rows:
-            rms, n = _pooled(study, s, "err.common_test_rms")
+            rms, n = _pooled(study, s, "err.common_test_rms", common)
             if np.isfinite(rms):
                 scored.append((rms, n, s))
     out = []
-    if scored:
+    if any(s.rows for s in sums) and not common:
+        out.append("No verdict: no fold on which every model with a result succeeded (the models' held-out errors "
+                   "would be on different rows).")
+    elif scored:
         scored.sort(key=lambda t: t[0])
         best_rms, n, best = scored[0]
-        folds = f" ({n_folds} folds)" if n_folds > 1 else ""
+        folds = (f" ({len(common)} folds)" if len(common) == n_folds else
+                 f" (folds {', '.join(map(str, sorted(common)))} of {n_folds}, where every model succeeded)")
+        folds = folds if n_folds > 1 else ""
         text = (f"On {n} held-out rows{folds}, {model_label(best.model)} explains the measurements to "
                 f"{_mm_pct(best_rms, L).replace(' mm', ' mm RMS', 1)}")
         for rms, _, s in scored[1:]:
@@ -270,9 +285,9 @@ def _error_table(study: ResultSet, sums: list[FitSummary], L: float) -> str:
 
 
 def _common_table(study: ResultSet, sums: list[FitSummary], L: float) -> str:
-    rows = []
+    rows, common = [], _common_folds(sums)
     for s in sums:
-        rms, n = _pooled(study, s, "err.common_test_rms") if s.rows else (np.nan, 0)
+        rms, n = _pooled(study, s, "err.common_test_rms", common) if s.rows else (np.nan, 0)
         rows.append((s.model, rms, n))
     best = min((r for r in rows if np.isfinite(r[1])), key=lambda r: r[1], default=None)
     body = "".join(
