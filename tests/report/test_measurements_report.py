@@ -42,7 +42,7 @@ def _row(model, rows, split, cmd, meas, pred, common, view_rows, backbone_pts, f
     s = np.linspace(0.0, 1.0, 11)[None, :, None]
     view = s * tips[:, None, :] + (1 - s) * np.array([0.0, 0.0, 0.01])  # a line from the base to the predicted tip
     row = {
-        "case_id": f"{model}-fold{fold}", "model": model, "status": "ok", "error": "", "failure": "", "wall_time": 1.5,
+        "case_id": f"fold{fold}", "model": model, "status": "ok", "error": "", "failure": "", "wall_time": 1.5,
         "fold": fold, "robot_length": L,
         "calib.converged": True, "calib.message": "`ftol` termination condition is satisfied.",
         "calib.evaluations": 17 if model == "cc" else 9, "calib.seconds_per_evaluation": 0.002 if model == "cc" else 0.8,
@@ -78,12 +78,14 @@ def _fake_data(rng):
     return cmd, meas, backbone, pred_cc, pred_cos
 
 
-def _manifest(spec_models, study_dir: Path, folds=None) -> dict:
+def _manifest(spec_models, study_dir: Path, folds=None, sha=None) -> dict:
+    """A runner manifest as the calibration kind writes it (the data file's SHA-256 in ``[measurements]``)."""
     cal = {"models": spec_models, "seed": 1, "physics_rows": 8, **({"folds": folds} if folds else {"test_fraction": 0.25})}
     spec = {"study": {"name": "measured_fake", "kind": "calibration", "models": spec_models,
                       "description": "Does CC explain the measured robot?"},
             "robot": {"preset": "rao_2021"},
-            "measurements": {"file": "measured.csv", "mode": "tension", "frame": "measurement"}, "calibration": cal}
+            "measurements": {"file": "measured.csv", "mode": "tension", "frame": "measurement",
+                             **({"sha256": sha} if sha else {})}, "calibration": cal}
     return {"study": spec, "study_file": str(study_dir / "measured.toml"), "config_hash": "ab12", "n_cases": 3,
             "versions": {"workbench": "0.1.0"}, "git": {"commit": "0" * 40, "dirty": False},
             "runs": [{"host": "testhost", "start": "2026-01-01T10:00:00+00:00", "end": "2026-01-01T10:01:00+00:00",
@@ -91,7 +93,7 @@ def _manifest(spec_models, study_dir: Path, folds=None) -> dict:
 
 
 def _failed_row(model, fold, reason=FAIL_REASON):
-    return {"case_id": f"{model}-fold{fold}", "model": model, "status": "failed", "error": reason,
+    return {"case_id": f"fold{fold}", "model": model, "status": "failed", "error": reason,
             "failure": "model", "wall_time": 3.0, "fold": fold, "robot_length": L}
 
 
@@ -117,10 +119,11 @@ def make_calibration_folder(folder: Path) -> dict:
                _row("cosserat", cos_rows, cos_split, cmd, meas, pred_cos, p_test, view_rows, backbone),
                _failed_row("beam3d", 0)])
     store.close()
-    (folder / MANIFEST).write_text(json.dumps(_manifest(["cc", "cosserat", "beam3d"], study_dir)))
+    sha = hashlib.sha256(data.encode()).hexdigest()
+    (folder / MANIFEST).write_text(json.dumps(_manifest(["cc", "cosserat", "beam3d"], study_dir, sha=sha)))
     return {"meas": meas, "pred": {"cc": pred_cc, "cosserat": pred_cos}, "common": p_test, "test": test,
             "view_rows": view_rows,
-            "backbone": backbone, "sha": hashlib.sha256(data.encode()).hexdigest()}
+            "backbone": backbone, "sha": sha}
 
 
 @pytest.fixture(scope="module")
@@ -247,8 +250,11 @@ def test_every_calibration_failed_no_verdict(tmp_path):
     store = ResultStore(folder)
     store.add([_failed_row("cc", 0, "robot.sections[1].length: bounds hold no valid robot"), _failed_row("cosserat", 0)])
     store.close()
+    (tmp_path / "measured.csv").write_text("T1,x\n1,2\n")  # the run recorded no SHA-256: the report hashes the file
     (folder / MANIFEST).write_text(json.dumps(_manifest(["cc", "cosserat"], tmp_path)))
     page = build_report(folder, tmp_path / "report", formats=("png",)).read_text(encoding="utf-8")
+    sha = hashlib.sha256(b"T1,x\n1,2\n").hexdigest()
+    assert f"SHA-256 <code>{sha} (not recorded by the run: hashed now)</code>" in page
     findings = page.split("<ul class='findings'>", 1)[1].split("</ul>", 1)[0]
     assert "No verdict: no model has a held-out error (every calibration failed)." in findings
     assert "No verdict on CC: its calibration failed on every fold (fold 0: robot.sections[1].length: bounds" in findings

@@ -240,13 +240,20 @@ def _parameter_table(row: Mapping[str, Any]) -> str:
         flag = "<td class='bad'>at bound</td>" if at else "<td></td>"
         src = sources[i] if i < len(sources) else ""
         body.append(f"<tr><td><code>{esc(name)}</code></td><td>{esc(unit)}</td><td class='num'>{esc(fmt(v('values')))}"
-                    f"</td><td class='num'>[{esc(fmt(v('ci_low')))}, {esc(fmt(v('ci_high')))}]</td>{flag}"
+                    f"</td><td class='num'>{esc(_interval(v('ci_low'), v('ci_high')))}</td>{flag}"
                     f"<td class='num'>{esc(fmt(v('initial')))}</td><td>{esc(src)}</td>"
                     f"<td class='num'>[{esc(fmt(v('lower')))}, {esc(fmt(v('upper')))}]</td></tr>")
     pct = f"{fmt(100 * level)} %" if np.isfinite(level) else "n/a"
     head = ("<tr><th>parameter</th><th>unit</th><th>calibrated</th><th>" + esc(pct) + " interval</th><th></th>"
             "<th>start</th><th>start from</th><th>bounds</th></tr>")
     return f"<table class='calibrated'><thead>{head}</thead><tbody>{''.join(body)}</tbody></table>"
+
+
+def _interval(lo: float, hi: float) -> str:
+    """``[lo, hi]``; an infinite side: the data do not determine the value (a singular Jacobian direction)."""
+    if np.isinf(lo) or np.isinf(hi):
+        return "not identifiable (unbounded)"
+    return f"[{fmt(lo)}, {fmt(hi)}]"
 
 
 _ERRORS = (("rms", "RMS"), ("median", "median"), ("p95", "95th pct."), ("max", "max"))
@@ -331,8 +338,9 @@ def _provenance(study: ResultSet) -> str:
 _HOW = ("<p class='note'>Each model's unknown parameters are fitted by nonlinear least squares (scipy "
         "<code>least_squares</code>) to the measured tip positions of the training rows, then the model predicts "
         "the held-out rows. The intervals are linearised: from the Jacobian at the optimum and the residual "
-        "variance, with a t-quantile; they are not exact for a nonlinear model. <em>at bound</em>: the value "
-        "ended within 1e-6 of the bounds' span from a bound, so the bound, not the data, set it. The parameter "
+        "variance, with a t-quantile; they are not exact for a nonlinear model, and may reach past the bounds. "
+        "<em>not identifiable</em>: the training rows do not determine the value (the Jacobian at the optimum is "
+        "singular in its direction), whatever the fit returned. <em>at bound</em>: the value ended within 1e-6 of the bounds' span from a bound, so the bound, not the data, set it. The parameter "
         "values are fold 0's (the first fold that succeeded); errors over several folds are the mean over the "
         "folds followed by the smallest and largest fold's value.</p>")
 

@@ -21,6 +21,7 @@ from typing import Any, Mapping
 import numpy as np
 from matplotlib.colors import LogNorm, Normalize
 from matplotlib.figure import Figure
+from matplotlib.ticker import FuncFormatter, NullFormatter
 
 from .load import ResultSet
 from .measurements import cell, fit_summaries, points
@@ -102,7 +103,9 @@ def _residual_maps(study: ResultSet, data) -> ReportFigure:
         ax.set_xlabel(f"PC 1 of the commands [{unit}]")
         ax.set_ylabel(f"PC 2 [{unit}]")
     if sc is not None:
-        fig.colorbar(sc, ax=list(axs), label="tip error [mm]" + (" (log scale)" if log else ""))
+        cb = fig.colorbar(sc, ax=list(axs), label="tip error [mm]" + (" (log scale)" if log else ""))
+        cb.ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: fmt(v)))
+        cb.ax.yaxis.set_minor_formatter(NullFormatter())
     return ReportFigure("measured_residual_maps", "Held-out tip error over the input space", fig,
                         "Each held-out sample at its commands' coordinates along the two leading principal "
                         "components of all evaluated samples' commands (centred, not scaled; they carry "
