@@ -273,3 +273,25 @@ def test_calibration_report_in_headless_chromium(built, tmp_path):
     assert other == []  # no script error: the viewer drew the markers without failing
     assert selftest["cases"] == len(truth["view_rows"]) and selftest["figures"] == 3
     assert selftest["pixels"] > 1000 and selftest["rows"] == 3
+
+
+def test_cc_alone_is_judged_on_all_its_held_out_rows(tmp_path):
+    """Without a physics result there are no common rows: CC's verdict is on every held-out row it predicted."""
+    from workbench.report.load import load_results
+    from workbench.report.measurements import calibration_findings
+
+    rng = np.random.default_rng(3)
+    cmd, meas, _, pred_cc, _ = _fake_data(rng)
+    test = np.sort(rng.permutation(N)[:10])
+    folder = tmp_path / "data"
+    folder.mkdir()
+    store = ResultStore(folder)
+    store.add([_row("cc", np.arange(N), np.isin(np.arange(N), test).astype(int), cmd, meas, pred_cc, test[:4],
+                    test[:2], None), _failed_row("cosserat", 0)])
+    store.close()
+    (folder / MANIFEST).write_text(json.dumps(_manifest(["cc", "cosserat"], tmp_path)))
+    rms = float(np.sqrt(np.mean(np.sum((pred_cc[test] - meas[test]) ** 2, axis=1))))
+    lines = calibration_findings(load_results(folder))
+    assert lines[0] == (f"On {len(test)} held-out rows, CC explains the measurements to {fmt(1e3 * rms)} mm RMS "
+                        f"({fmt(100 * rms / L)} % L).")
+    assert lines[1].startswith("No verdict on Cosserat rod: its calibration failed on every fold (fold 0: ")

@@ -126,16 +126,23 @@ def fit_summaries(study: ResultSet) -> list[FitSummary]:
     return out
 
 
-def common_rows(study: ResultSet, fold: int) -> int:
+def common_rows(sums: list[FitSummary], fold: int) -> int:
     """Held-out rows every model of ``fold`` predicted: the ``physics_test`` rows (a physics row's test
-    samples), else -- a study of CC only -- the CC row's test samples."""
+    samples), else -- no physics model has a result -- the CC row's test samples (:func:`_verdict_column`)."""
     counts = {}
-    for s in fit_summaries(study):
+    for s in sums:
         for r in s.rows:
             if _fold(r) == fold:
                 counts[s.model] = int(np.sum(cell(r.get("sample.split")) == 1))
     physics = [n for m, n in counts.items() if m not in _CC]
     return physics[0] if physics else next(iter(counts.values()), 0)
+
+
+def _verdict_column(sums: list[FitSummary]) -> str:
+    """The error the models are judged by: on the common held-out rows, or -- no physics model has a result,
+    so CC is alone -- on all its held-out rows."""
+    physics = any(s.rows for s in sums if s.model not in _CC)
+    return "err.common_test_rms" if physics else "err.test_rms"
 
 
 def _common_folds(sums: list[FitSummary]) -> set[int]:
@@ -144,13 +151,13 @@ def _common_folds(sums: list[FitSummary]) -> set[int]:
     return set.intersection(*judged) if judged else set()
 
 
-def _pooled(study: ResultSet, s: FitSummary, col: str, folds: set[int]) -> tuple[float, int]:
+def _pooled(sums: list[FitSummary], s: FitSummary, col: str, folds: set[int]) -> tuple[float, int]:
     """RMS of ``col`` pooled over the common held-out rows of ``folds``, and the number of those rows."""
     num, n_all = 0.0, 0
     for r in s.rows:
         if _fold(r) not in folds:
             continue
-        n = common_rows(study, _fold(r))
+        n = common_rows(sums, _fold(r))
         v = float(r.get(col, np.nan))
         if n and np.isfinite(v):
             num += n * v * v
@@ -158,8 +165,9 @@ def _pooled(study: ResultSet, s: FitSummary, col: str, folds: set[int]) -> tuple
     return (float(np.sqrt(num / n_all)) if n_all else np.nan), n_all
 
 
-def _length(study: ResultSet) -> float:
-    L = [float(r.get("robot_length", np.nan)) for s in fit_summaries(study) for r in s.rows]
+def _length(sums: list[FitSummary]) -> float:
+    """The nominal robot's length [m] (``robot_length`` of the first ok row)."""
+    L = [float(r.get("robot_length", np.nan)) for s in sums for r in s.rows]
     L = [x for x in L if np.isfinite(x) and x > 0]
     return L[0] if L else np.nan
 
@@ -180,12 +188,12 @@ def calibration_findings(study: ResultSet) -> list[str]:
     """The findings of a calibration study (module docstring), numbers from the rows."""
     sums = fit_summaries(study)
     n_folds = len({_fold(r) for s in sums for r in s.rows} | {f for s in sums for f, _ in s.failed}) or 1
-    L = _length(study)
+    L = _length(sums)
     common = _common_folds(sums)
     scored = []
     for s in sums:
         if s.rows:
-            rms, n = _pooled(study, s, "err.common_test_rms", common)
+            rms, n = _pooled(sums, s, _verdict_column(sums), common)
             if np.isfinite(rms):
                 scored.append((rms, n, s))
     out = []
@@ -268,7 +276,7 @@ def _over_folds(rows, col: str, L: float) -> str:
     return text if v.size == 1 else f"{text}; {fmt(1e3 * v.min())}–{fmt(1e3 * v.max())} mm"
 
 
-def _error_table(study: ResultSet, sums: list[FitSummary], L: float) -> str:
+def _error_table(sums: list[FitSummary], L: float) -> str:
     head = ("<tr><th>model</th><th>set</th>" + "".join(f"<th>{t}</th>" for _, t in _ERRORS)
             + "<th>samples</th><th>evaluations</th><th>s / evaluation</th></tr>")
     body = []
@@ -291,17 +299,19 @@ def _error_table(study: ResultSet, sums: list[FitSummary], L: float) -> str:
     return f"<table class='errors'><thead>{head}</thead><tbody>{''.join(body)}</tbody></table>"
 
 
-def _common_table(study: ResultSet, sums: list[FitSummary], L: float) -> str:
-    rows, common = [], _common_folds(sums)
+def _common_table(sums: list[FitSummary], L: float) -> str:
+    """Each model's verdict error (:func:`_verdict_column`), its ratio to the best and its number of rows."""
+    rows, common, col = [], _common_folds(sums), _verdict_column(sums)
     for s in sums:
-        rms, n = _pooled(study, s, "err.common_test_rms", common) if s.rows else (np.nan, 0)
-        rows.append((s.model, rms, n))
+        rms, n = _pooled(sums, s, col, common) if s.rows else (np.nan, 0)
+        rows.append((s.model, rms, n, "failed" if not s.rows else "n/a (no common fold)"))
     best = min((r for r in rows if np.isfinite(r[1])), key=lambda r: r[1], default=None)
     body = "".join(
-        f"<tr><td>{esc(model_label(m))}</td><td class='num'>{esc(_mm_pct(rms, L) if np.isfinite(rms) else 'failed')}"
+        f"<tr><td>{esc(model_label(m))}</td><td class='num'>{esc(_mm_pct(rms, L) if np.isfinite(rms) else why)}"
         f"</td><td class='num'>{esc(fmt(rms / best[1]) + 'x' if best and np.isfinite(rms) and best[1] > 0 else '')}"
-        f"</td><td class='num'>{n}</td></tr>" for m, rms, n in rows)
-    return ("<table class='common'><thead><tr><th>model</th><th>RMS tip error on the common held-out rows</th>"
+        f"</td><td class='num'>{n}</td></tr>" for m, rms, n, why in rows)
+    where = "the common held-out rows" if col == "err.common_test_rms" else "all held-out rows (no physics result)"
+    return (f"<table class='common'><thead><tr><th>model</th><th>RMS tip error on {where}</th>"
             f"<th>/ best</th><th>rows</th></tr></thead><tbody>{body}</tbody></table>")
 
 
@@ -351,11 +361,11 @@ def measurements_section(ctx: PageContext) -> Section | None:
     if not is_calibration(study):
         return None
     sums = fit_summaries(study)
-    L = _length(study)
+    L = _length(sums)
     parts = [_provenance(study), "<h3>Which model explains the measurements</h3>",
              "<p class='note'>RMS tip error on the held-out rows every model predicted (the physics models' "
              "subsample; CC predicts every held-out row, its error on all of them is in the next table).</p>",
-             _common_table(study, sums, L), "<h3>Tip errors</h3>", _error_table(study, sums, L),
+             _common_table(sums, L), "<h3>Tip errors</h3>", _error_table(sums, L),
              "<h3>Calibrated values</h3>", _HOW]
     for s in sums:
         if s.first is None:
