@@ -4,7 +4,9 @@
 (:func:`workbench.compare.compare_table`) and draws, inside one ``matplotlib.rc_context(STYLE)``,
 first the study-specific figure sets of ``workbench.registry.table("figures")`` whose ``matches(results)``
 is true (in registry order; the report names no study), then the generic builders of
-:data:`.figures.GENERIC_FIGURES`; then the per-case table (:mod:`.casetable`), the 3-D view's
+:data:`.figures.GENERIC_FIGURES` -- for a calibration study (:func:`.measurements.is_calibration`: rows per
+model and fold, no sweep quantities) none of these but the Measurements section's figures
+(:mod:`.measurements_figures`); then the per-case table (:mod:`.casetable`), the 3-D view's
 data (:mod:`.viewer`) and the page (:mod:`.page`, sections in :mod:`.sections`).  The report is
 written into a temporary folder and swapped in.  :mod:`.command` holds the one report command
 line (``workbench report`` and ``python -m workbench.report``).
@@ -32,6 +34,8 @@ from .figures import GENERIC_FIGURES
 from .findings import opening_sections
 from .headline import baseline_cases, summary_columns
 from .load import ResultSet, load_results, numeric
+from .measurements import is_calibration
+from .measurements_figures import measurement_figures
 from .context import PageContext
 from .page import render_page
 from .sections import esc
@@ -266,14 +270,17 @@ def build_report(data_dir: str | Path, out_dir: str | Path | None = None, *, for
         with matplotlib.rc_context(STYLE):
             # Question / Findings / Assumptions / Sensitivity (findings.py), then the figures
             opening = opening_sections(study, cmp, lambda f: _write_figures([f], tmp / "figures", formats)[0])
-            figs = _all_figures(study, code_categories(study, cmp))
+            calibration = is_calibration(study)  # its rows have no sweep quantities: no sweep figures
+            figs = [] if calibration else _all_figures(study, code_categories(study, cmp))
             figure_html = _write_figures(figs, tmp / "figures", formats)
+            measured = _write_figures(measurement_figures(study), tmp / "figures", formats) if calibration else []
         scenes = viewer_scenes(study)
         table = case_table(study, cmp, figs, [c["id"] for c in scenes["cases"]])
         ctx = PageContext(study=study, cmp=cmp, summary=summary, failed=failed, failed_columns=tuple(fcols),
                           figures_html=tuple(figure_html), figure_names=tuple(f.name for f in figs),
                           downloads=tuple(downloads), viewer_cases=len(scenes["cases"]),
-                          viewer_left_out=scenes["left_out"], extra={"opening": opening})
+                          viewer_left_out=scenes["left_out"],
+                          extra={"opening": opening, "measurement_figures": tuple(measured)})
         page = render_page(ctx, _banners(study), {"wb-cases": table, "wb-scenes": scenes})
         (tmp / "report.html").write_text(page, encoding="utf-8")
         _swap_in(tmp, out)

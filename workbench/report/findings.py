@@ -32,6 +32,7 @@ from .errorbars import sensitivity_figures
 from .headline import Headline, baseline_cases, headlines, sensitivity_keys
 from .path_events import path_event_findings
 from .load import ResultSet, numeric
+from .measurements import calibration_findings, is_calibration
 from .style import ReportFigure, case_title, fmt, model_label, pair_label
 
 __all__ = ["opening_sections", "findings_list", "stress_findings", "question_section", "findings_section",
@@ -125,7 +126,10 @@ def stress_findings(study: ResultSet) -> list[str]:
 
 def findings_list(study: ResultSet, cmp: pd.DataFrame) -> list[str]:
     """The Findings sentences (see the module docstring)."""
-    items = [_headline_sentence(study, h) for h in headlines(study, cmp)]
+    if is_calibration(study):  # rows per model and fold: the verdict on the held-out measurements
+        items = calibration_findings(study)
+    else:
+        items = [_headline_sentence(study, h) for h in headlines(study, cmp)]
     if not items:
         items.append("Nothing to compare (one model, or no case with two successful models).")
     items += stress_findings(study)

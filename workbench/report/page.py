@@ -28,7 +28,7 @@ __all__ = ["PageContext", "SECTIONS", "Section", "asset_text", "json_block", "re
 SECTIONS: tuple[str, ...] = (
     "workbench.report.findings:question_section", "workbench.report.findings:findings_section",
     "workbench.report.findings:assumptions_section", "workbench.report.findings:sensitivity_section",
-    "provenance", "failed", "summary", "cases", "viewer", "figures", "spec",
+    "provenance", "failed", "workbench.report.measurements:measurements_section", "summary", "cases", "viewer", "figures", "spec",
 )
 
 

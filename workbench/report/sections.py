@@ -19,6 +19,7 @@ import numpy as np
 import pandas as pd
 
 from .load import ResultSet, numeric
+from .measurements import is_calibration
 from .context import PageContext, Section
 from .style import fmt, model_label, short_label
 from .viewer import NOT_PHYSICS, disk_model
@@ -149,7 +150,9 @@ def failed_section(ctx: PageContext) -> Section:
     return Section("failed", "Failed cases", _failed_html(ctx.failed, list(ctx.failed_columns)), heading=False)
 
 
-def summary_section(ctx: PageContext) -> Section:
+def summary_section(ctx: PageContext) -> Section | None:
+    if is_calibration(ctx.study):  # no model pairs per case: its comparison is the Measurements section
+        return None
     if ctx.summary.empty:
         body = ("<p class='note'>Only one model (or no case with two successful models): "
                 "there is nothing to compare, the figures show the results alone.</p>")
@@ -188,6 +191,8 @@ def _disk_backbone(ctx: PageContext) -> str:
 def viewer_section(ctx: PageContext) -> Section | None:
     if not ctx.viewer_cases:
         return None
+    if is_calibration(ctx.study):
+        return Section("viewer", "3-D view", _MEASURED_VIEW + _viewer_html())
     frame = ctx.study.frame
     left = (f" The view holds the first {ctx.viewer_cases} cases in parameter order; {ctx.viewer_left_out} more are in "
             "the downloads." if ctx.viewer_left_out else "")
@@ -196,7 +201,21 @@ def viewer_section(ctx: PageContext) -> Section | None:
         + (" (z up, gravity as the blue arrow)" if frame == "world" else " (backbone along base +z)")
         + f"; disks (grey) and tendons (brown) on {_disk_backbone(ctx)}, drawn with a rotation-minimising "
         "frame (the backbone's twist is not stored). Drag to rotate, wheel to zoom, double click to reset. "
-        f"Dynamic cases: the time slider steps through the stored backbone frames.{left}</p>"
+        f"Dynamic cases: the time slider steps through the stored backbone frames.{left}</p>" + _viewer_html()
+    )
+    return Section("viewer", "3-D view", body)
+
+
+_MEASURED_VIEW = (
+    "<p class='note'>Held-out samples the calibration chose for the view (spread over the commands): each model's "
+    "predicted backbone after its calibration (its first successful fold), in the measurement frame (the tracker's "
+    "axes; gravity is not drawn), the measured tip as a black cross and measured backbone points, where the data "
+    "file has them, as magenta crosses. Drag to rotate, wheel to zoom, double click to reset.</p>")
+
+
+def _viewer_html() -> str:
+    """The viewer's controls and canvas (``assets/viewer.js`` fills them)."""
+    return (
         "<div id='wb-viewer'><div class='controls'><label>case <select class='wb-case'></select></label>"
         "<button type='button' data-view='iso'>3-D</button><button type='button' data-view='xz'>x-z</button>"
         "<button type='button' data-view='yz'>y-z</button><button type='button' data-view='xy'>x-y</button>"
@@ -207,10 +226,11 @@ def viewer_section(ctx: PageContext) -> Section | None:
         "<span class='wb-tlabel'></span></div>"
         "<canvas width='900' height='560' data-drawn-pixels='0'></canvas><div class='wb-info note'></div></div>"
     )
-    return Section("viewer", "3-D view", body)
 
 
-def figures_section(ctx: PageContext) -> Section:
+def figures_section(ctx: PageContext) -> Section | None:
+    if not ctx.figures_html and is_calibration(ctx.study):  # its figures are in the Measurements section
+        return None
     toc = " · ".join(f"<a href='#fig-{esc(n)}'>{esc(n)}</a>" for n in ctx.figure_names)
     return Section("figures", "Figures", f"<p class='note'>{toc} — click a figure to see it at full size.</p>"
                    + "".join(ctx.figures_html))

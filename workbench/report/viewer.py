@@ -8,7 +8,8 @@ routing of the case's robot (:func:`.scene.case_scene`, drawn on the backbone of
 study kind registers (its ``lines`` hook, :mod:`.kind_hooks`).  Coordinates are rounded to 1 µm to
 keep the page small.  The viewer is a small vendored canvas script (no library, no network):
 an orthographic view of a few polylines needs nothing more, and it keeps every report one
-offline file of modest size.  Checked by ``tests/report/test_viewer.py`` and the browser tests.
+offline file of modest size.  A calibration study's view (:func:`measured_scenes`) draws the
+models' predicted backbones of its ``view.*`` held-out samples and the measured points as markers.  Checked by ``tests/report/test_viewer.py`` and the browser tests.
 """
 
 from __future__ import annotations
@@ -19,12 +20,13 @@ import numpy as np
 
 from ..compare.table import array_cell, row_positions
 from .kind_hooks import kind_hook
-from .load import ResultSet
+from .load import ResultSet, numeric
+from .measurements import cell, fit_summaries, is_calibration, points
 from .scene import base_vectors_in, case_scene, gravity_in, to_frame
 from .shapes import backbone_frames
 from .style import case_title, model_color, model_label
 
-__all__ = ["MAX_VIEWER_CASES", "NOT_PHYSICS", "disk_model", "viewer_scenes"]
+__all__ = ["MAX_VIEWER_CASES", "NOT_PHYSICS", "disk_model", "measured_scenes", "viewer_scenes"]
 
 #: cases the viewer carries at most (in canonical order); more are left out with a note
 MAX_VIEWER_CASES = 400
@@ -107,8 +109,64 @@ def _extra_lines(lines: list, scene, frame: str) -> list:
     return out
 
 
+def _measured_view(study: ResultSet) -> dict[int, dict[str, Any]]:
+    """Per ``view.file_row`` of a calibration study: each model's predicted backbone and tip, the measured tip
+    and measured backbone points (measurement frame) -- from each model's first successful fold."""
+    out: dict[int, dict[str, Any]] = {}
+    for s in fit_summaries(study):
+        r = s.first
+        rows = cell(r.get("view.file_row")).astype(int) if r is not None else np.zeros(0, int)
+        if not rows.size:
+            continue
+        P, MB = points(r.get("view.positions"), rows.size), points(r.get("view.measured_backbone"), rows.size)
+        srow = cell(r.get("sample.file_row")).astype(int)
+        meas, pred = points(r.get("sample.measured")), points(r.get("sample.predicted"))
+        for i, fr in enumerate(rows):
+            c = out.setdefault(int(fr), {"models": {}, "tip": None, "backbone": None, "errors": {}})
+            c["models"][s.model] = P[i]
+            hit = np.nonzero(srow == fr)[0]
+            if hit.size and len(meas) == srow.size == len(pred):
+                c["tip"] = meas[hit[0]]
+                c["errors"][s.model] = float(np.linalg.norm(pred[hit[0]] - meas[hit[0]]))
+            if MB.shape[1]:
+                c["backbone"] = MB[i]
+    return out
+
+
+def measured_scenes(study: ResultSet) -> dict[str, Any]:
+    """The 3-D view of a calibration study: per held-out ``view.*`` sample the models' predicted backbones and
+    the measured tip (and backbone points) as markers, in the measurement frame (``assets/viewer.js``)."""
+    cases = []
+    lengths = numeric(study.ok["robot_length"]) if "robot_length" in study.ok else np.zeros(0)
+    L0 = float(lengths[np.isfinite(lengths)][0]) if np.isfinite(lengths).any() else 0.0
+    for fr, c in sorted(_measured_view(study).items()):
+        markers = []
+        if c["tip"] is not None:
+            markers.append({"label": "measured tip", "color": "#000000", "size": 7, "points": [_r(c["tip"])]})
+        if c["backbone"] is not None and len(c["backbone"]):
+            markers.append({"label": "measured backbone", "color": "#e6007e", "size": 5, "points": _r(c["backbone"])})
+        allp = np.vstack([*c["models"].values(), *[np.asarray(m["points"]) for m in markers]])
+        lo, hi = allp.min(axis=0), allp.max(axis=0)
+        base = next(iter(c["models"].values()))[0]
+        L = L0 or float(np.ptp(allp, axis=0).max()) or 1.0
+        err = ", ".join(f"{model_label(m)} {1e3 * e:.3g} mm" for m, e in c["errors"].items())
+        cases.append({
+            "id": f"row-{fr}", "title": f"held-out file row {fr}" + (f" · tip error {err}" if err else ""),
+            "L": L, "extent": float(max(np.max(hi - lo), 1e-3 * L)), "center": _r(0.5 * (lo + hi)), "base": _r(base),
+            "gravity": [0.0, 0.0, 0.0], "note": "measurement frame (gravity not drawn)", "main": None,
+            "e0": [1.0, 0.0, 0.0], "disks": [], "tendons": [], "lines": [], "markers": markers,
+            "models": {m: {"label": model_label(m), "color": model_color(m, study.models),
+                           "reference": m == study.baseline, "stations": [], "frames": [[0.0, _r(P)]]}
+                       for m, P in c["models"].items()},
+        })
+    return {"frame": "measurement", "cases": cases, "left_out": 0}
+
+
 def viewer_scenes(study: ResultSet) -> dict[str, Any]:
-    """``{"frame", "cases": [...], "left_out": n}`` for ``assets/viewer.js`` (ok rows, canonical order)."""
+    """``{"frame", "cases": [...], "left_out": n}`` for ``assets/viewer.js`` (ok rows, canonical order);
+    a calibration study's view is :func:`measured_scenes`."""
+    if is_calibration(study):
+        return measured_scenes(study)
     ok = study.ok
     ids = list(dict.fromkeys(ok["case_id"]))
     hook = kind_hook(study.spec, "lines")

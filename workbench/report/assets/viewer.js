@@ -1,6 +1,7 @@
 /* trunk-workbench 3-D backbone viewer: a small dependency-free canvas viewer (orthographic view).
  * Data: the JSON block #wb-scenes ({frame, cases: [{id, title, gravity, L, disks, tendons, main,
- * models: {name: {label, color, reference, stations, frames: [[t, [[x, y, z], ...]], ...]}}}]}),
+ * models: {name: {label, color, reference, stations, frames: [[t, [[x, y, z], ...]], ...]}},
+ * optional markers: [{label, color, size, points}] (measured points, drawn as crosses), note}]}),
  * points already in the report's frame (world by default, z up).  Drag: rotate; wheel: zoom;
  * double click: reset.  Disks and tendons are drawn on the main model's backbone with a
  * rotation-minimising frame (the backbone twist is not stored).  Checked by tests/report/.
@@ -97,7 +98,7 @@
       ctx.lineTo(ex - 10 * Math.cos(ang + 0.4), ey - 10 * Math.sin(ang + 0.4)); ctx.fill();
       ctx.fillText("gravity " + gn.toPrecision(3) + " m/s\u00b2", W - 150, 20);
     } else {
-      ctx.fillText("no gravity", W - 90, 20);
+      ctx.textAlign = "right"; ctx.fillText(cs.note || "no gravity", W - 10, 20); ctx.textAlign = "left";
     }
     // disks and tendons on the main model's backbone
     var main = cs.models[cs.main];
@@ -126,6 +127,13 @@
       poly(ml[1], m.color, m.reference ? 2.0 : 3.5, m.reference ? [6, 4] : []);
       var e = scr(ml[1][ml[1].length - 1]); ctx.fillStyle = m.color; ctx.beginPath(); ctx.arc(e[0], e[1], 3.5, 0, 2 * Math.PI); ctx.fill();
     });
+    // measured points (calibration studies): a cross per point
+    var markers = cs.markers || [];
+    function markCross(s, r) { ctx.beginPath(); ctx.moveTo(s[0] - r, s[1] - r); ctx.lineTo(s[0] + r, s[1] + r); ctx.moveTo(s[0] - r, s[1] + r); ctx.lineTo(s[0] + r, s[1] - r); ctx.stroke(); }
+    markers.forEach(function (mk) {
+      ctx.strokeStyle = mk.color; ctx.lineWidth = 2;
+      mk.points.forEach(function (p) { markCross(scr(p), mk.size || 5); });
+    });
     var b = scr(o); ctx.fillStyle = "#555"; ctx.fillRect(b[0] - 4, b[1] - 4, 8, 8);
     // legend
     ctx.font = "12px sans-serif";
@@ -133,6 +141,11 @@
       var m = cs.models[ml[0]];
       ctx.fillStyle = m.color; ctx.fillRect(10, 12 + 16 * i, 18, 3);
       ctx.fillStyle = "#222"; ctx.fillText(m.label, 34, 17 + 16 * i);
+    });
+    markers.forEach(function (mk, j) {
+      var y = 17 + 16 * (lines.length + j);
+      ctx.strokeStyle = mk.color; ctx.lineWidth = 2; markCross([19, y - 4], 4);
+      ctx.fillStyle = "#222"; ctx.fillText(mk.label, 34, y);
     });
     var px = ctx.getImageData(0, 0, W, H).data, n = 0;
     for (var q = 0; q < px.length; q += 16) { if (px[q] < 200 || px[q + 1] < 200 || px[q + 2] < 200) { n++; } }
