@@ -164,7 +164,7 @@ def _warm_solve(pb: RodProblem, load: LoadCase, options: SolverOptions):  # noqa
     start = warm_start.decode(pb, options.warm_state, T)
     if start is None:
         return None, None, 0, False
-    shooter = Shooter(pb, options.newton_tolerance)
+    shooter = warm_start.RayShooter(pb, options.newton_tolerance, start[0])
     try:
         attempts = warm_start.go_from(shooter, start, T, options.max_load_steps)
     except (ShootingFailure, RuntimeError):

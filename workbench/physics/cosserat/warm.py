@@ -1,22 +1,24 @@
-"""Warm starts of the Cosserat shooting: continue the load ramp from a solve at a smaller or larger
-multiple of the same load.
+"""Warm starts of the Cosserat shooting: continue the load ramp from a solve at a fraction of the same load.
 
 A cold solve ramps every load -- tip force and torque, tendon tensions and the weights -- along
 the straight path ``lam (W, F, M, T)``, ``lam`` from 0 to 1 (:meth:`~.shooting.Shooter.go_to`).  A warm
 start takes the converged state of an earlier solve of the same rod whose load was ``c (W, F, M, T)``
-for some ``c > 0`` (the same load ray) and continues the same ramp from ``lam = c`` to 1: the path
-is the cold path's own (from the unloaded rod, through the neighbour's load), so the answer is the
-one the load path from the unloaded state reaches.  A neighbour off the ray is refused
-(:func:`decode` returns ``None``): between two loads on different rays a straight path can reach
-another stable equilibrium than the cold ramp without any event on the way (measured on the
-branch-jump robot of ``tests/physics/test_load_path.py``: random neighbours led Newton and the
-ramp to a state 0.8 L from the load-path answer; ``tests/models/test_warm_cosserat.py``).  With
-gravity on a rod with mass the weights fix ``c = 1`` (the same load).
+for some ``0 < c <= 1`` (the same load ray) and continues the same ramp from ``lam = c`` to 1: the
+path is the tail of the cold path (from the unloaded rod, through the neighbour's load), so the
+answer is the one the load path from the unloaded state reaches.  Other states are refused
+(:func:`decode` returns ``None``).  Off the ray, a straight path between two loads can reach another
+stable equilibrium than the cold ramp without any event on the way (measured on the branch-jump
+robot of ``tests/physics/test_load_path.py``: random neighbours led Newton and the ramp to a state
+0.8 L from the load-path answer; ``tests/models/test_warm_cosserat.py``).  From a larger load
+(``c > 1``) the path runs backwards and inherits whatever branch the larger load's solve reached.
+With gravity on a rod with mass the weights fix ``c = 1`` (the same load).
 
 Load-path safety: a state is offered (:func:`encode`, called by
 :func:`~workbench.physics.cosserat.model.run`) only from a solve whose load path had no event and
 whose shooting Jacobian kept the straight rod's sign; the warm ramp starts there with that sign and
-the same path checks, and the model solves cold when it fails or records an event.
+the same path checks, its first step checked against the secant of the cold path
+(:class:`RayShooter`: measured, a single unchecked step from 1.0 to 1.2 x the branch-jump load
+landed on the curled branch), and the model solves cold when it fails or records an event.
 
 The state: ``[1, L, n_t, fingerprint, W (3), F (3), M (3), T (n_t), x (6)]`` with ``W`` the total
 weight of rod, disks and payload, ``fingerprint`` the sum of the stiffnesses and tendon offsets (a
@@ -29,10 +31,11 @@ import dataclasses
 
 import numpy as np
 
+from .._stepping import RampPolicy
 from .problem import RodProblem
-from .shooting import Shooter
+from .shooting import Shooter, ShootingFailure
 
-__all__ = ["encode", "decode", "go_from"]
+__all__ = ["RayShooter", "WarmAbandoned", "encode", "decode", "go_from"]
 
 _VERSION = 1.0
 _RAY_RTOL = 1e-9
@@ -59,7 +62,7 @@ def encode(pb: RodProblem, tensions: np.ndarray, x: np.ndarray) -> np.ndarray:
 
 def decode(pb: RodProblem, state: np.ndarray | None, tensions: np.ndarray) -> tuple[float, np.ndarray, np.ndarray] | None:
     """``(c, neighbour's tensions, neighbour's base wrench)`` when ``state`` is of the same rod at
-    ``c > 0`` times this load (``pb`` under ``tensions``); ``None`` otherwise."""
+    ``c`` times this load (``pb`` under ``tensions``), ``0 < c <= 1``; ``None`` otherwise."""
     if state is None:
         return None
     s = np.asarray(state, dtype=float).reshape(-1)
@@ -71,17 +74,69 @@ def decode(pb: RodProblem, state: np.ndarray | None, tensions: np.ndarray) -> tu
     if vv == 0.0:
         return None
     c = float(w @ v) / vv
-    if not c > 0.0 or np.linalg.norm(w - c * v) > _RAY_RTOL * np.linalg.norm(w):
+    if not 0.0 < c <= 1.0 + _RAY_RTOL or np.linalg.norm(w - c * v) > _RAY_RTOL * np.linalg.norm(w):
         return None
     return c, s[13:13 + n], s[13 + n:]
 
 
-def go_from(shooter: Shooter, start: tuple[float, np.ndarray, np.ndarray], tensions: np.ndarray,
+class WarmAbandoned(RuntimeError):
+    """The first warm step kept leaving the secant of the cold path: solve cold."""
+
+
+class RayShooter(Shooter):
+    """A :class:`~.shooting.Shooter` that starts at a neighbour's state ``c x`` the load and checks
+    the first step from there.
+
+    The ramp (:func:`workbench.physics._stepping.load_ramp`) checks a step against the secant of the
+    last two accepted points and has only one (the start) before the first step; the cold path
+    gives the second: the unloaded straight rod at ``lam = 0``.  A first step whose path measure
+    lands farther than ``max(jump_ratio |predicted move|, jump_floor)`` (the ramp's own rule) from
+    that secant is a failed attempt (the ramp halves it); after ``tries`` such attempts the warm
+    start is abandoned (:class:`WarmAbandoned`).
+    """
+
+    tries = 3
+
+    def __init__(self, pb: RodProblem, tol: float, c: float, compiled: bool | None = None) -> None:
+        super().__init__(pb, tol, compiled)
+        self.c = float(c)
+        self.rejected = 0
+        self._m0 = np.array([0.0, 0.0, 1.0, 0.0, 0.0, 1.0])  # the straight rod: tip / L, tip tangent
+        self._mc: np.ndarray | None = None
+
+    def start_at(self, start: tuple[float, np.ndarray, np.ndarray]) -> None:
+        """Make the neighbour's equilibrium ``start`` (:func:`decode`) the converged point."""
+        c, tau, x = start
+        self.point = dataclasses.replace(self.point, lam=c, tau=np.array(tau), x=np.array(x))
+        self.sign = 1  # the neighbour kept the straight rod's sign (encode is only called then)
+        self.residual(self.point.x[None], c, self.point.tau)
+        self._mc = np.asarray(self.path_point().measure)
+
+    def newton(self, x: np.ndarray, lam: float, tau: np.ndarray) -> np.ndarray:
+        """:meth:`Shooter.newton`, then the secant check while the ramp is still at its start."""
+        x = super().newton(x, lam, tau)
+        if self.point.lam != self.c or self._mc is None:
+            return x
+        m = np.asarray(self.path_point().measure)
+        move = (lam - self.c) / self.c * (self._mc - self._m0)
+        rule = RampPolicy()
+        if np.linalg.norm(m - self._mc - move) > max(rule.jump_ratio * np.linalg.norm(move), rule.jump_floor):
+            self.rejected += 1
+            if self.rejected >= self.tries:
+                raise WarmAbandoned("the first warm step left the cold path's secant")
+            raise ShootingFailure("the first warm step left the cold path's secant")
+        return x
+
+
+def go_from(shooter: RayShooter, start: tuple[float, np.ndarray, np.ndarray], tensions: np.ndarray,
             max_attempts: int) -> int:
     """Ramp ``shooter`` (a fresh one) from the neighbour's equilibrium ``start`` (:func:`decode`) to
-    its full load under ``tensions``; returns the ramp attempts (:meth:`~.shooting.Shooter.go_to`,
-    whose :class:`~.shooting.ShootingFailure` propagates)."""
-    c, tau, x = start
-    shooter.point = dataclasses.replace(shooter.point, lam=c, tau=np.array(tau), x=np.array(x))
-    shooter.sign = 1  # the neighbour kept the straight rod's sign (encode is only called then)
+    its full load under ``tensions``; returns the ramp attempts (:meth:`~.shooting.Shooter.go_to`).
+
+    Raises
+    ------
+    ShootingFailure, WarmAbandoned
+        The ramp failed, or its first step kept leaving the cold path (the caller solves cold).
+    """
+    shooter.start_at(start)
     return shooter.go_to(tensions, max_attempts)
