@@ -113,6 +113,10 @@ class WarmPool:
         _, i = min(fits)
         return entries[i][1], entries[i][2]
 
+    def __len__(self) -> int:
+        """The number of states kept."""
+        return sum(len(v) for v in self._states.values())
+
     def clear(self) -> None:
         """Forget every state."""
         self._states.clear()
