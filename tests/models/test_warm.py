@@ -164,6 +164,13 @@ def test_sweep_rows_record_the_warm_source_and_agree_with_cold_rows(tmp_path):
         a, b = np.asarray(by_s.loc[s, "positions"], float), np.asarray(c.loc[s, "positions"], float)
         assert np.abs(a - b).max() < 1e-8 * 0.4  # Newton tolerance 1e-9 on the scaled residual; L = 0.4 m
     WARM.clear()
+    # the report's Assumptions table says so; a cold study's does not
+    from workbench.report.assumptions import assumption_rows
+    from workbench.report.load import load_results
+
+    row = [r for r in assumption_rows(load_results(tmp_path / "warm")) if r.key == "solver.warm_start"]
+    assert len(row) == 1 and row[0].source.startswith("3 of 4 rows started")
+    assert not [r for r in assumption_rows(load_results(tmp_path / "cold")) if r.key == "solver.warm_start"]
 
 
 def test_evaluate_without_warm_start_neither_reads_nor_fills_the_pool(tmp_path):
