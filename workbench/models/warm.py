@@ -31,7 +31,7 @@ import numpy as np
 from ..robot import LoadCase, Robot
 from .result import PhysicsResult, SolverOptions
 
-__all__ = ["WarmPool", "load_vector", "on_ray", "solve_chain", "warm_key"]
+__all__ = ["WarmPool", "leaves_secant", "load_vector", "on_ray", "ray_fraction", "solve_chain", "warm_key"]
 
 
 def solve_chain(run: Callable[[Robot, LoadCase, SolverOptions], PhysicsResult], robot: Robot,
@@ -64,14 +64,37 @@ def load_vector(load: LoadCase) -> np.ndarray:
                            np.asarray(load.tip_torque, dtype=float)])
 
 
-def on_ray(other: np.ndarray, v: np.ndarray, rtol: float = 1e-9) -> bool:
-    """Is load vector ``other`` ``c v`` with ``0 < c <= 1``: a point of the straight load path
-    ``lam v`` (``lam`` from 0 to 1) every model's ramp follows from the unloaded state?"""
+def ray_fraction(other: np.ndarray, v: np.ndarray, rtol: float = 1e-9) -> float | None:
+    """``c`` where load vector ``other`` is ``c v`` with ``0 < c <= 1`` (a point of the straight load
+    path ``lam v``, ``lam`` from 0 to 1, every model's ramp follows from the unloaded state), else ``None``."""
+    other, v = np.asarray(other, dtype=float), np.asarray(v, dtype=float)
     vv = float(v @ v)
-    if vv == 0.0:
-        return False
+    if other.shape != v.shape or vv == 0.0:
+        return None
     c = float(other @ v) / vv
-    return 0.0 < c <= 1.0 + rtol and float(np.linalg.norm(other - c * v)) <= rtol * float(np.linalg.norm(other))
+    if not 0.0 < c <= 1.0 + rtol or float(np.linalg.norm(other - c * v)) > rtol * float(np.linalg.norm(other)):
+        return None
+    return min(c, 1.0)
+
+
+def on_ray(other: np.ndarray, v: np.ndarray, rtol: float = 1e-9) -> bool:
+    """Is ``other`` a fraction of ``v`` (:func:`ray_fraction`)?"""
+    return ray_fraction(other, v, rtol) is not None
+
+
+def leaves_secant(unloaded: np.ndarray, start: np.ndarray, c: float, lam: float, measure: np.ndarray,
+                  ratio: float, floor: float) -> bool:
+    """Does the first step of a warm ramp, from ``lam = c`` to ``lam``, leave the cold path?
+
+    A ramp checks a step against the secant of its last two accepted points
+    (:func:`workbench.physics._stepping.load_ramp`: farther than ``max(ratio |predicted move|, floor)``
+    from it is a jump); a warm ramp has one, its start (path measure ``start`` at ``c``), and the
+    cold path gives the second, the unloaded state (``unloaded`` at 0).  Used by the models' warm
+    starts (``cosserat``, ``beam3d``); checked by ``tests/models/test_warm_cosserat.py``.
+    """
+    m0, mc, m = (np.asarray(a, dtype=float) for a in (unloaded, start, measure))
+    move = (lam - c) / c * (mc - m0)
+    return float(np.linalg.norm(m - mc - move)) > max(ratio * float(np.linalg.norm(move)), floor)
 
 
 def warm_key(model: str, robot: Robot, load: LoadCase, options: SolverOptions) -> Hashable:

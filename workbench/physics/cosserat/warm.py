@@ -31,6 +31,7 @@ import dataclasses
 
 import numpy as np
 
+from ...models.warm import leaves_secant, ray_fraction
 from .._stepping import RampPolicy
 from .problem import RodProblem
 from .shooting import Shooter, ShootingFailure
@@ -69,12 +70,8 @@ def decode(pb: RodProblem, state: np.ndarray | None, tensions: np.ndarray) -> tu
     n = pb.n_tendons
     if s.size != 19 + n or not np.all(np.isfinite(s)) or not np.array_equal(s[:4], _head(pb)):
         return None
-    v, w = _load(pb, tensions), s[4:13 + n]
-    vv = float(v @ v)
-    if vv == 0.0:
-        return None
-    c = float(w @ v) / vv
-    if not 0.0 < c <= 1.0 + _RAY_RTOL or np.linalg.norm(w - c * v) > _RAY_RTOL * np.linalg.norm(w):
+    c = ray_fraction(s[4:13 + n], _load(pb, tensions), _RAY_RTOL)
+    if c is None:
         return None
     return c, s[13:13 + n], s[13 + n:]
 
@@ -117,10 +114,8 @@ class RayShooter(Shooter):
         x = super().newton(x, lam, tau)
         if self.point.lam != self.c or self._mc is None:
             return x
-        m = np.asarray(self.path_point().measure)
-        move = (lam - self.c) / self.c * (self._mc - self._m0)
         rule = RampPolicy()
-        if np.linalg.norm(m - self._mc - move) > max(rule.jump_ratio * np.linalg.norm(move), rule.jump_floor):
+        if leaves_secant(self._m0, self._mc, self.c, lam, self.path_point().measure, rule.jump_ratio, rule.jump_floor):
             self.rejected += 1
             if self.rejected >= self.tries:
                 raise WarmAbandoned("the first warm step left the cold path's secant")
