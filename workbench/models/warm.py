@@ -90,7 +90,7 @@ def leaves_secant(unloaded: np.ndarray, start: np.ndarray, c: float, lam: float,
     (:func:`workbench.physics._stepping.load_ramp`: farther than ``max(ratio |predicted move|, floor)``
     from it is a jump); a warm ramp has one, its start (path measure ``start`` at ``c``), and the
     cold path gives the second, the unloaded state (``unloaded`` at 0).  Used by the models' warm
-    starts (``cosserat``, ``beam3d``); checked by ``tests/models/test_warm_cosserat.py``.
+    starts (``cosserat``); checked by ``tests/models/test_warm_cosserat.py``.
     """
     m0, mc, m = (np.asarray(a, dtype=float) for a in (unloaded, start, measure))
     move = (lam - c) / c * (mc - m0)

@@ -11,7 +11,9 @@ stable equilibrium than the cold ramp without any event on the way (measured on 
 robot of ``tests/physics/test_load_path.py``: random neighbours led Newton and the ramp to a state
 0.8 L from the load-path answer; ``tests/models/test_warm_cosserat.py``).  From a larger load
 (``c > 1``) the path runs backwards and inherits whatever branch the larger load's solve reached.
-With gravity on a rod with mass the weights fix ``c = 1`` (the same load).
+With gravity on a rod with mass the weights fix ``c = 1`` (the same load).  Tendons alone (no
+weight, tip force or torque) are solved cold: the base wrench is then 0, the cold Newton's first
+guess exact.
 
 Load-path safety: a state is offered (:func:`encode`, called by
 :func:`~workbench.physics.cosserat.model.run`) only from a solve whose load path had no event and
@@ -70,7 +72,10 @@ def decode(pb: RodProblem, state: np.ndarray | None, tensions: np.ndarray) -> tu
     n = pb.n_tendons
     if s.size != 19 + n or not np.all(np.isfinite(s)) or not np.array_equal(s[:4], _head(pb)):
         return None
-    c = ray_fraction(s[4:13 + n], _load(pb, tensions), _RAY_RTOL)
+    v = _load(pb, tensions)
+    if not np.any(v[:9]):  # tendons alone: the base wrench is 0, the cold solve exact in one Newton check
+        return None
+    c = ray_fraction(s[4:13 + n], v, _RAY_RTOL)
     if c is None:
         return None
     return c, s[13:13 + n], s[13 + n:]
@@ -106,13 +111,16 @@ class RayShooter(Shooter):
         c, tau, x = start
         self.point = dataclasses.replace(self.point, lam=c, tau=np.array(tau), x=np.array(x))
         self.sign = 1  # the neighbour kept the straight rod's sign (encode is only called then)
-        self.residual(self.point.x[None], c, self.point.tau)
-        self._mc = np.asarray(self.path_point().measure)
+        self._mc = None  # measured by go_to's shot at its start point, before the first Newton
 
     def newton(self, x: np.ndarray, lam: float, tau: np.ndarray) -> np.ndarray:
-        """:meth:`Shooter.newton`, then the secant check while the ramp is still at its start."""
-        x = super().newton(x, lam, tau)
-        if self.point.lam != self.c or self._mc is None:
+        """:meth:`Shooter.newton`; while the ramp is still at its start, from the secant predictor
+        through the unloaded rod (``x(lam) = x(c) lam / c``) and followed by the secant check."""
+        first = self.point.lam == self.c
+        if first and self._mc is None:  # the last shot is go_to's of the start point
+            self._mc = np.asarray(self.path_point().measure)
+        x = super().newton(self.point.x * (lam / self.c) if first else x, lam, tau)
+        if not first:
             return x
         rule = RampPolicy()
         if leaves_secant(self._m0, self._mc, self.c, lam, self.path_point().measure, rule.jump_ratio, rule.jump_floor):
