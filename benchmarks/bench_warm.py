@@ -11,8 +11,9 @@ the branch-jump load of ``tests/physics/test_load_path.py`` (3 sections; tension
 3.11, 0, 0) N, tip force (0, -0.259, 0) N), where the cold ramp needs several steps, as one ray.  Cold: every load
 solved on its own.  Warm: each ray solved by ``solve_chain`` (its first load cold, each further one from
 the nearest smaller one).  Printed per model: solves, warm-started solves, median / total wall and CPU
-time per solve (the best of ``--repeats`` passes over all rays), and the largest tip and backbone distance
-/ L between the warm and cold answers (the agreement the solver tolerance allows).
+time per solve (the best of ``--repeats`` passes over all rays), the largest tip and backbone distance
+/ L between the warm and cold answers, and of each to a cold solve at a 100x tighter ``newton_tolerance``
+(the accuracy each keeps).
 """
 
 from __future__ import annotations
@@ -98,6 +99,11 @@ def bench(name: str, scales: list[float], repeats: int, jump: bool = False) -> N
               f"total wall {w.sum():6.2f} s, CPU {c.sum():6.2f} s")
     cw, ww = np.asarray(per["cold"][0]).sum(), np.asarray(per["warm"][0]).sum()
     print(f"  warm / cold total wall {ww / cw:.2f}; max warm-cold distance / L: tip {tip:.1e}, backbone {shape:.1e}")
+    tight = replace(options, newton_tolerance=options.newton_tolerance / 100)
+    for how, k in (("cold", 0), ("warm", 1)):
+        err = max(float(np.abs(res[k][i].positions - model(r, ld, tight).positions).max())
+                  for case, res in results.items() for i, ld in enumerate(rays[case])) / length
+        print(f"  {how}: max backbone distance / L to a cold solve at newton_tolerance / 100: {err:.1e}")
 
 
 def main() -> None:
