@@ -114,3 +114,4 @@ def test_length_control_ignores_the_state():
     cold = run(robot, load, OPTS)
     warm = run(robot, load, replace(OPTS, warm_state=state))
     assert warm.extras["warm_started"] == 0.0 and np.array_equal(warm.positions, cold.positions)
+    assert cold.warm_state is None  # its tensions came from the length solve, not the straight load path

@@ -13,9 +13,10 @@ stations (dense output of the final integration), tip frame ``R(L)``, ``length_c
 ramps, the event of the first one that had one); ``extras``: ``newton_iterations``,
 ``load_steps``, ``shots`` (integrated trajectories) and ``tip_residual``.  Warm starts
 (:mod:`.warm`): under tension control the ramp continues from ``options.warm_state`` when it is
-this rod at a multiple of this load (the same load ray), and the model solves cold when the warm ramp fails or has a load-path event (``extras["warm_started"]``
-1 or 0, only when a state was given); length control ignores it.  ``warm_state`` of the result: the
-final equilibrium, offered only without a load-path event.  Checked by
+this rod at a fraction of this load (the same load ray), else, or when the warm ramp fails or has
+a load-path event, the model solves cold (``extras["warm_started"]`` 1 or 0, only when a state was
+given); length control ignores it.  ``warm_state`` of the result: the final equilibrium of a
+tension-controlled solve without a load-path event (else ``None``).  Checked by
 ``tests/physics/test_cosserat_model.py`` and ``tests/models/test_warm_cosserat.py``.
 """
 
@@ -138,7 +139,9 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     frame[:3, 3] = tip[0, 0:3]
     U, _, Vt = np.linalg.svd(frame[:3, :3])
     frame[:3, :3] = U @ Vt
-    event = path_fields(*shooter.ramps)["path_event"]
+    # a state to start from: the end of the straight load path (tension control), without an event
+    offer = (act is None or act.mode == "tension") and not path_fields(*shooter.ramps)["path_event"] \
+        and shooter.sign == 1
     extras = {"newton_iterations": float(shooter.newton_iterations), "load_steps": float(attempts),
               "shots": float(shooter.shots), "tip_residual": res}
     if options.warm_state is not None:
@@ -149,14 +152,14 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
         model="cosserat", stations=stations, positions=Y[:, 0, 0:3], tip_frame=frame,
         length_change=float(tip[0, N_BASE] - robot.length), tendon_tensions=T, tip_twist=float(tip[0, N_BASE + 1]),
         solver=info, extras=extras,
-        warm_state=warm_start.encode(pb, T, shooter.x) if not event and shooter.sign == 1 else None,
+        warm_state=warm_start.encode(pb, T, shooter.x) if offer else None,
     )
 
 
 def _warm_solve(pb: RodProblem, load: LoadCase, options: SolverOptions):  # noqa: ANN202
     """``(shooter, tensions, attempts, True)`` of a solve warm-started from ``options.warm_state``
-    (tension control, a state on this load's ray: :mod:`.warm`), or ``(None, None, 0, False)``: no usable state, or the warm
-    ramp failed or had a load-path event (the caller solves cold)."""
+    (tension control, a state on this load's ray: :mod:`.warm`), or ``(None, None, 0, False)``: no
+    usable state, or the warm ramp failed or had a load-path event (the caller solves cold)."""
     act = load.actuation
     if options.warm_state is None or (act is not None and act.mode != "tension"):
         return None, None, 0, False

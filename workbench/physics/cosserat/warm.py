@@ -63,7 +63,8 @@ def encode(pb: RodProblem, tensions: np.ndarray, x: np.ndarray) -> np.ndarray:
     return np.concatenate([_head(pb), _load(pb, tensions), np.asarray(x, dtype=float)])
 
 
-def decode(pb: RodProblem, state: np.ndarray | None, tensions: np.ndarray) -> tuple[float, np.ndarray, np.ndarray] | None:
+def decode(pb: RodProblem, state: np.ndarray | None,
+           tensions: np.ndarray) -> tuple[float, np.ndarray, np.ndarray] | None:
     """``(c, neighbour's tensions, neighbour's base wrench)`` when ``state`` is of the same rod at
     ``c`` times this load (``pb`` under ``tensions``), ``0 < c <= 1``; ``None`` otherwise."""
     if state is None:
