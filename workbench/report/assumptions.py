@@ -200,7 +200,7 @@ def _warm_row(study: ResultSet) -> list[Assumption]:
     if solver.get("warm_start") is not True:
         return []
     res = study.results
-    warm = int((res["warm_from"].astype(str) != "").sum()) if "warm_from" in res else 0
+    warm = int((res["warm_from"].fillna("").astype(str) != "").sum()) if "warm_from" in res else 0
     return [Assumption("solver.warm_start", value="true",
                        source=f"{warm} of {len(res)} rows started from the state of an earlier case at a fraction of "
                        "their load (column warm_from: its case id), the others cold; answers agree with cold solves "

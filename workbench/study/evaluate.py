@@ -140,6 +140,8 @@ def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str
         except Exception as e:  # noqa: BLE001 - ModelFailure, exudyn.SolverError, bugs: all recorded
             kind = "memory" if isinstance(e, MemoryError) else "model"
             row = failed_rows(case_id, ran_m, [name], _reason(e), time.perf_counter() - t0, flat_m, failure=kind)[0]
+            if pipeline.warm_start:
+                row["warm_from"] = ""
         yield row
 
 
