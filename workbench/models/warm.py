@@ -2,14 +2,17 @@
 
 A model that supports warm starts returns :attr:`~workbench.models.result.PhysicsResult.warm_state`
 (an opaque plain-numpy state) and starts from ``SolverOptions.warm_state`` when it fits; a model
-without them ignores the option (``cosserat`` has them under tension control, see
-:mod:`workbench.physics.cosserat.warm`; the Exudyn models do not).  The model keeps the static
+without them ignores the option (``cosserat`` and ``spring_link`` have them under tension control,
+see :mod:`workbench.physics.cosserat.warm` and ``workbench.physics.spring_link.driver``; ``beam3d``,
+``ancf``, ``ancf3d``, ``contact`` and ``cc`` do not: a ``beam3d`` prototype was slower than its
+cold solve, ``benchmarks/README.md``).  The model keeps the static
 answer of the load path from the unloaded state: it uses a state only from a solve at a fraction
 ``0 < c <= 1`` of the same load and continues its ramp from there with its path checks, and solves cold
 when the state does not fit or the ramp sees an event.
 
 * :func:`solve_chain` -- a list of loads solved in order, each from the state of the nearest
-  earlier one on its ray (the calibration of issue 30 can solve its measured loads this way).
+  earlier one on its ray (the calibration of issue 30 can solve its measured loads this way; loads
+  on no common ray are solved cold).
 * :class:`WarmPool` -- the solved states of one process, by :func:`warm_key` (same model, robot,
   options and load kind), and the nearest one to a new load (Euclidean distance of
   :func:`load_vector`; ties go to the earliest stored) among the fractions of the load
@@ -90,7 +93,7 @@ def leaves_secant(unloaded: np.ndarray, start: np.ndarray, c: float, lam: float,
     (:func:`workbench.physics._stepping.load_ramp`: farther than ``max(ratio |predicted move|, floor)``
     from it is a jump); a warm ramp has one, its start (path measure ``start`` at ``c``), and the
     cold path gives the second, the unloaded state (``unloaded`` at 0).  Used by the models' warm
-    starts (``cosserat``); checked by ``tests/models/test_warm_cosserat.py``.
+    starts (``cosserat``, ``spring_link``); checked by ``tests/models/test_warm_cosserat.py``.
     """
     m0, mc, m = (np.asarray(a, dtype=float) for a in (unloaded, start, measure))
     move = (lam - c) / c * (mc - m0)
