@@ -7,9 +7,9 @@ for some ``0 < c <= 1`` (the same load ray) and continues the same ramp from ``l
 path is the tail of the cold path (from the unloaded rod, through the neighbour's load), so the
 answer is the one the load path from the unloaded state reaches.  Other states are refused
 (:func:`decode` returns ``None``).  Off the ray, a straight path between two loads can reach another
-stable equilibrium than the cold ramp without any event on the way (measured on the branch-jump
-robot of ``tests/physics/test_load_path.py``: random neighbours led Newton and the ramp to a state
-0.8 L from the load-path answer; ``tests/models/test_warm_cosserat.py``).  From a larger load
+stable equilibrium than the cold ramp without any event on the way (on the branch-jump robot of
+``tests/physics/test_load_path.py``, Newton from an off-ray neighbour's state lands on a curled
+branch: ``tests/models/test_warm_cosserat.py``).  From a larger load
 (``c > 1``) the path runs backwards and inherits whatever branch the larger load's solve reached.
 With gravity on a rod with mass the weights fix ``c = 1`` (the same load).  Tendons alone (no
 weight, tip force or torque) are solved cold: the base wrench is then 0, the cold Newton's first
@@ -19,8 +19,9 @@ Load-path safety: a state is offered (:func:`encode`, called by
 :func:`~workbench.physics.cosserat.model.run`) only from a solve whose load path had no event and
 whose shooting Jacobian kept the straight rod's sign; the warm ramp starts there with that sign and
 the same path checks, its first step checked against the secant of the cold path
-(:class:`RayShooter`: measured, a single unchecked step from 1.0 to 1.2 x the branch-jump load
-landed on the curled branch), and the model solves cold when it fails or records an event.
+(:class:`RayShooter`: the ramp has no secant for a first step, and one long step along the ray
+can land on another branch; ``tests/models/test_warm.py`` chains the branch-jump load to 1.4 x and
+compares with a continuation), and the model solves cold when it fails or records an event.
 
 The state: ``[1, L, n_t, fingerprint, W (3), F (3), M (3), T (n_t), x (6)]`` with ``W`` the total
 weight of rod, disks and payload, ``fingerprint`` the sum of the stiffnesses and tendon offsets (a
