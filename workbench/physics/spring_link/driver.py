@@ -5,7 +5,11 @@
 otherwise), ramps the loads (:func:`static_ramp` on :func:`workbench.physics._stepping.load_ramp`) and
 for dynamics integrates with implicit generalised-alpha, updating the tendon commands of
 :meth:`TendonActuation.command_at` every step.  :func:`run` is the registered model
-``"spring_link"`` (default :class:`SpringLinkParams`).  Checked by ``tests/physics/test_spring_link*.py``.
+``"spring_link"`` (default :class:`SpringLinkParams`).  Warm starts (:mod:`workbench.models.warm`): a
+tension-controlled static solve continues its ramp from ``options.warm_state`` when that is this chain
+at a fraction of this load (:func:`_warm_ramp`), else solves cold; ``PhysicsResult.warm_state`` is
+its equilibrium (coordinates and active set) when the load path had no event.  Checked by
+``tests/physics/test_spring_link*.py`` and ``tests/models/test_warm_spring_link.py``.
 """
 
 from __future__ import annotations
