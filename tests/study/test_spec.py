@@ -148,7 +148,8 @@ def test_cli_subprocess_exit_code_and_single_line():
 def test_solver_section_mirrors_solver_and_pipeline_options():
     """[solver] = the SolverOptions fields (``spring_link_backend``: the spring-link model's own setting)
     + the PipelineOptions fields + the per-case limits (which never reach the case parameters)."""
-    fields = {f.name: f.default for f in dataclasses.fields(SolverOptions) if f.name != "model_settings"}
+    fields = {f.name: f.default for f in dataclasses.fields(SolverOptions)
+              if f.name not in ("model_settings", "warm_state")}  # warm_state: a run-time value, no study key
     fields.update({f.name: f.default for f in dataclasses.fields(PipelineOptions)})
     fields["spring_link_backend"] = "auto"  # SpringLinkParams.backend's default
     fields["spring_link_axial"] = None  # SpringLinkParams.axial's default (the model's own rule)

@@ -64,6 +64,11 @@ class SolverOptions:
         ...))`` pairs is accepted); the model reads its entry with :meth:`settings`, e.g.
         ``{"spring_link": {"backend": "tree"}}`` (the study key ``[solver] spring_link_backend``,
         :func:`workbench.study.build.build_options`).
+    warm_state : ndarray, optional
+        An opaque state of an earlier solve of the same model and robot
+        (:attr:`PhysicsResult.warm_state`) the model may start from (:mod:`workbench.models.warm`);
+        a model without warm starts, or one that finds it incompatible, ignores it.  Not part of
+        equality, hashing or ``repr``.
 
     The study pipeline's own ``[solver]`` keys (``error_estimate``, ``error_estimate_exempt``) are not
     here (:class:`workbench.study.build.PipelineOptions`), nor ``by_model``: a model's options are built
@@ -79,8 +84,11 @@ class SolverOptions:
     damping: float = 0.0
     spectral_radius: float = 0.8
     model_settings: tuple[tuple[str, tuple[tuple[str, object], ...]], ...] = ()
+    warm_state: np.ndarray | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
+        if self.warm_state is not None:
+            object.__setattr__(self, "warm_state", np.asarray(self.warm_state, dtype=float).reshape(-1))
         for name in ("n_elements", "n_stations", "max_load_steps"):
             v = getattr(self, name)
             if int(v) != v or v < (2 if name == "n_stations" else 1):
@@ -161,6 +169,11 @@ class PhysicsResult:
         ``"tendon_tensions"`` (k, n_tendons), ``"length_change"`` (k,)).
     extras : mapping of str to float
         Model-specific scalar outputs (documented by each model).
+    warm_state : ndarray, optional
+        An opaque plain-numpy state a later solve of the same model and robot may start from
+        (``SolverOptions.warm_state``, :mod:`workbench.models.warm`); ``None`` when the model has
+        no warm starts or the state is not a safe start (a load-path event).  Not stored in the
+        result rows; not part of equality or ``repr``.
     """
 
     model: str
@@ -175,6 +188,7 @@ class PhysicsResult:
     time: np.ndarray | None = None
     series: Mapping[str, np.ndarray] = field(default_factory=dict)
     extras: Mapping[str, float] = field(default_factory=dict)
+    warm_state: np.ndarray | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         st = np.asarray(self.stations, dtype=float)

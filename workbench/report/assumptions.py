@@ -13,7 +13,8 @@ Gathered from data, never from docstrings: the ``ASSUMED`` tuples of
   series-parallel module geometry), values from the rows;
 
 then the study's own ``[report] assumptions`` (``"section.key"`` -> text), values from the rows,
-and how the error bars are made (the discretisation estimate and the models' orders).
+how the error bars are made (the discretisation estimate and the models' orders) and, when the
+study sets ``[solver] warm_start = true``, that solves started from other cases (:mod:`workbench.models.warm`).
 
 A swept value is shown as its range with the baseline of the study's base section.  Checked by
 ``tests/report/test_findings.py``.
@@ -191,4 +192,17 @@ def assumption_rows(study: ResultSet) -> list[Assumption]:
         if key in seen:  # the study's own words replace the preset's
             rows = [r for r in rows if r.key != key]
         rows.append(Assumption(str(key), str(text), value=_value(study, str(key))))
-    return rows + _estimate_row(study)
+    return rows + _estimate_row(study) + _warm_row(study)
+
+
+def _warm_row(study: ResultSet) -> list[Assumption]:
+    solver = study.spec.get("solver") if isinstance(study.spec.get("solver"), Mapping) else {}
+    if solver.get("warm_start") is not True:
+        return []
+    res = study.results
+    warm = int((res["warm_from"].fillna("").astype(str) != "").sum()) if "warm_from" in res else 0
+    return [Assumption("solver.warm_start", value="true",
+                       source=f"{warm} of {len(res)} rows started from the state of an earlier case at a fraction of "
+                       "their load (column warm_from: its case id), the others cold; answers agree with cold solves "
+                       "within the solver tolerance where the cold ramp follows the load path (docs/study-format.md "
+                       "\"Warm starts\")")]

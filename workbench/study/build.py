@@ -166,7 +166,7 @@ def build_load(robot, load: Mapping[str, Any]):
 
 
 #: ``[solver]`` keys the study pipeline reads, not the models (:class:`PipelineOptions`, :mod:`.by_model`)
-PIPELINE_KEYS = ("error_estimate", "error_estimate_exempt", "by_model")
+PIPELINE_KEYS = ("error_estimate", "error_estimate_exempt", "by_model", "warm_start")
 
 
 def build_options(solver: Mapping[str, Any]):
@@ -202,19 +202,27 @@ class PipelineOptions:
         Models whose discretisation *is* the hardware (e.g. a spring-link chain with one link per
         physical joint), so that coarsening them would change the robot, not the mesh; they get
         no estimate.
+    warm_start : bool
+        Start each model's solve from the nearest case of the same model and robot solved before in
+        the same worker process (:mod:`workbench.models.warm`; the rows record the source case in
+        ``warm_from``).  Off by default: results then do not depend on the execution order.
 
-    Checked by ``tests/study/test_estimate.py``.
+    Checked by ``tests/study/test_estimate.py`` and ``tests/models/test_warm.py``.
     """
 
     error_estimate: str = "richardson"
     error_estimate_exempt: tuple[str, ...] = ()
+    warm_start: bool = False
 
     def __post_init__(self) -> None:
         if self.error_estimate not in ("richardson", "none"):
             raise ValueError(f"error_estimate must be 'richardson' or 'none', got {self.error_estimate!r}")
+        if not isinstance(self.warm_start, bool):
+            raise ValueError(f"warm_start must be true or false, got {self.warm_start!r}")
         object.__setattr__(self, "error_estimate_exempt", tuple(str(m) for m in self.error_estimate_exempt))
 
 
 def build_pipeline_options(solver: Mapping[str, Any]) -> PipelineOptions:
     """:class:`PipelineOptions` from the ``[solver]`` parameters of one case."""
-    return PipelineOptions(**{k: solver[k] for k in ("error_estimate", "error_estimate_exempt") if k in solver})
+    return PipelineOptions(**{k: solver[k] for k in ("error_estimate", "error_estimate_exempt", "warm_start")
+                              if k in solver})

@@ -38,8 +38,8 @@ __all__ = ["BY_MODEL", "NOT_PER_MODEL", "by_model_problems", "per_model_options"
 
 #: The ``[solver]`` key of the per-model tables.
 BY_MODEL = "by_model"
-#: ``[solver]`` keys that are not per-model options: the per-case limits and the pipeline's error estimate.
-NOT_PER_MODEL = (*LIMIT_KEYS, BY_MODEL, "error_estimate", "error_estimate_exempt")
+#: ``[solver]`` keys that are not per-model options: the per-case limits, the pipeline's error estimate and warm starts.
+NOT_PER_MODEL = (*LIMIT_KEYS, BY_MODEL, "error_estimate", "error_estimate_exempt", "warm_start")
 
 
 def per_model_options() -> list[str]:

@@ -8,7 +8,10 @@ result-table row (:mod:`workbench.study.rows`).  :func:`iter_case_rows` yields t
 model at a time; :func:`evaluate_rows` is the task function of the sweep study kind
 (:data:`workbench.study.kinds.SWEEP`): the executors stream each row to the parent as soon as
 it exists, so a model that crashes the process does not take the finished models' rows with
-it.  Robots are memoised per process (:data:`ROBOTS`, a bounded :class:`RobotMemo`: robots are
+it.  With ``[solver] warm_start = true`` each model starts from the state of the nearest case of the
+same model, robot and options solved before in this process (:data:`WARM`, a
+:class:`~workbench.models.warm.WarmPool`); the row records that case's id in ``warm_from`` (``""``:
+solved cold).  Robots are memoised per process (:data:`ROBOTS`, a bounded :class:`RobotMemo`: robots are
 frozen values; the sweep kind's recorded parameters use the same memo).  Nothing here imports
 Exudyn; models are looked up (and imported) lazily through ``model_lookup`` (default
 :func:`workbench.models.get_model`).
@@ -20,15 +23,17 @@ from __future__ import annotations
 
 import time
 import traceback
+from dataclasses import replace
 from typing import Any, Callable, Iterator, Mapping, Sequence
 
+from ..models.warm import WarmPool, warm_key
 from .by_model import BY_MODEL, solver_for_model
 from .build import build_load, build_options, build_pipeline_options, resolve_case
 from .estimate import LazyCCResult, discretization_columns
 from .params import flatten_params
 from .rows import failed_rows, row_from_result
 
-__all__ = ["ROBOTS", "RobotMemo", "evaluate_batch", "evaluate_case", "evaluate_payload", "evaluate_rows",
+__all__ = ["ROBOTS", "RobotMemo", "WARM", "evaluate_batch", "evaluate_case", "evaluate_payload", "evaluate_rows",
            "iter_case_rows"]
 
 
@@ -88,6 +93,8 @@ class RobotMemo(dict):
 
 #: This process's memo of built robots (workers build a robot once per parameter set).
 ROBOTS = RobotMemo()
+#: This process's solved states for warm starts (``[solver] warm_start = true``).
+WARM = WarmPool()
 _FLAT_ROBOTS: dict[int, tuple] = {}  # flat ``p.robot.*`` cells of the memoised robots' parameters (flatten_params)
 
 
@@ -116,10 +123,15 @@ def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str
         opts, ran_m, flat_m = _model_resolution(name, options, ran, flat)
         try:
             fn = model_lookup(name)
+            key, source, run_opts = _warm_options(name, robot, load, opts, pipeline.warm_start)
             with quiet_if_loaded():
-                res = fn(robot, load, opts)
+                res = fn(robot, load, run_opts)
             wall = time.perf_counter() - t0
             row = row_from_result(res, case_id, name, ran_m, robot, wall, flat_m)
+            if pipeline.warm_start:
+                row["warm_from"] = source if res.extras.get("warm_started") == 1.0 else ""
+                if row["status"] == "ok":
+                    WARM.add(key, load, case_id, res.warm_state)
             if name == "cc":
                 cc_result.set(res)
             if row["status"] == "ok":  # the discretisation-error estimate (study/estimate.py)
@@ -128,7 +140,21 @@ def iter_case_rows(case_id: str, params: Mapping[str, Any], models: Sequence[str
         except Exception as e:  # noqa: BLE001 - ModelFailure, exudyn.SolverError, bugs: all recorded
             kind = "memory" if isinstance(e, MemoryError) else "model"
             row = failed_rows(case_id, ran_m, [name], _reason(e), time.perf_counter() - t0, flat_m, failure=kind)[0]
+            if pipeline.warm_start:
+                row["warm_from"] = ""
         yield row
+
+
+def _warm_options(name: str, robot, load, opts, warm: bool):  # noqa: ANN001, ANN202
+    """``(key, source case id, options)`` of a solve: with ``warm``, the options carry the state of
+    the nearest solved case in :data:`WARM` (:func:`~workbench.models.warm.warm_key`)."""
+    if not warm:
+        return None, "", opts
+    key = warm_key(name, robot, load, opts)
+    hit = WARM.nearest(key, load)
+    if hit is None:
+        return key, "", opts
+    return key, hit[0], replace(opts, warm_state=hit[1])
 
 
 def _model_resolution(name: str, options, ran: Mapping[str, Any], flat: Mapping[str, Any]):

@@ -95,6 +95,8 @@ class SolverSection(CaseLimitFields):
     spring_link_axial: bool | None = None
     error_estimate: Literal["richardson", "none"] = "richardson"
     error_estimate_exempt: list[str] = Field(default_factory=list)
+    # warm starts within a worker (workbench.models.warm); a case key only when true (keeps the case ids)
+    warm_start: bool = False
     # [solver.by_model.<model>] tables of per-model options (workbench.study.by_model checks them;
     # a case key only when set: keeps the case ids of the studies without it)
     by_model: dict[str, Any] = Field(default_factory=dict)

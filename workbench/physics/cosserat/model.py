@@ -11,8 +11,13 @@ stations (dense output of the final integration), tip frame ``R(L)``, ``length_c
 ``|v| - 1``, ``tip_twist`` = integral of ``u_3``, tensions; the load path (``SolverInfo.path_steps`` /
 ``path_event`` / ``path_event_fraction``: :meth:`~workbench.physics.cosserat.shooting.Shooter.go_to`'s
 ramps, the event of the first one that had one); ``extras``: ``newton_iterations``,
-``load_steps``, ``shots`` (integrated trajectories) and ``tip_residual``.  Checked by
-``tests/physics/test_cosserat_model.py``.
+``load_steps``, ``shots`` (integrated trajectories) and ``tip_residual``.  Warm starts
+(:mod:`.warm`): under tension control the ramp continues from ``options.warm_state`` when it is
+this rod at a fraction of this load (the same load ray), else, or when the warm ramp fails or has
+a load-path event, the model solves cold (``extras["warm_started"]`` 1 or 0, only when a state was
+given); length control ignores it.  ``warm_state`` of the result: the final equilibrium of a
+tension-controlled solve without a load-path event (else ``None``).  Checked by
+``tests/physics/test_cosserat_model.py`` and ``tests/models/test_warm_cosserat.py``.
 """
 
 from __future__ import annotations
@@ -26,6 +31,7 @@ from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOpti
 from ...robot import LoadCase, Robot
 from .._stepping import path_fields
 from ..tendon_loads import solve_length_controlled, tendon_rest_lengths
+from . import warm as warm_start
 from .problem import RodProblem, rod_problem
 from .rod import N_BASE, integrate_segments
 from .shooting import Shooter, ShootingFailure
@@ -118,11 +124,13 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
         raise ModelFailure("cosserat: tendons are routed continuously; tendon_model='eyelets' is not supported "
                            "(use beam3d, ancf or spring_link for discrete eyelets)")
     pb = rod_problem(robot, load)
-    shooter = Shooter(pb, options.newton_tolerance)
-    try:
-        T, attempts = _tensions(pb, load, options, shooter)
-    except (ShootingFailure, RuntimeError) as err:
-        raise ModelFailure(f"cosserat: {err}") from None
+    shooter, T, attempts, warm = _warm_solve(pb, load, options)
+    if shooter is None:
+        shooter = Shooter(pb, options.newton_tolerance)
+        try:
+            T, attempts = _tensions(pb, load, options, shooter)
+        except (ShootingFailure, RuntimeError) as err:
+            raise ModelFailure(f"cosserat: {err}") from None
     stations = np.linspace(0.0, robot.length, options.n_stations)
     tip, Y = integrate_segments(pb, shooter.x[None], T, 1.0, shooter.rtol, stations, compiled=shooter.compiled)
     res = float(np.max(np.abs(shooter.tip_residual(tip, 1.0, T))))
@@ -131,11 +139,39 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     frame[:3, 3] = tip[0, 0:3]
     U, _, Vt = np.linalg.svd(frame[:3, :3])
     frame[:3, :3] = U @ Vt
+    # a state to start from: the end of the straight load path (tension control), without an event
+    offer = (act is None or act.mode == "tension") and not path_fields(*shooter.ramps)["path_event"] \
+        and shooter.sign == 1
+    extras = {"newton_iterations": float(shooter.newton_iterations), "load_steps": float(attempts),
+              "shots": float(shooter.shots), "tip_residual": res}
+    if options.warm_state is not None:
+        extras["warm_started"] = float(warm)
     info = SolverInfo(converged=True, iterations=shooter.newton_iterations, wall_time=time.perf_counter() - t0,
                       message=f"{attempts} load steps", **path_fields(*shooter.ramps))
     return PhysicsResult(
         model="cosserat", stations=stations, positions=Y[:, 0, 0:3], tip_frame=frame,
         length_change=float(tip[0, N_BASE] - robot.length), tendon_tensions=T, tip_twist=float(tip[0, N_BASE + 1]),
-        solver=info, extras={"newton_iterations": float(shooter.newton_iterations), "load_steps": float(attempts),
-                             "shots": float(shooter.shots), "tip_residual": res},
+        solver=info, extras=extras,
+        warm_state=warm_start.encode(pb, T, shooter.x) if offer else None,
     )
+
+
+def _warm_solve(pb: RodProblem, load: LoadCase, options: SolverOptions):  # noqa: ANN202
+    """``(shooter, tensions, attempts, True)`` of a solve warm-started from ``options.warm_state``
+    (tension control, a state on this load's ray: :mod:`.warm`), or ``(None, None, 0, False)``: no
+    usable state, or the warm ramp failed or had a load-path event (the caller solves cold)."""
+    act = load.actuation
+    if options.warm_state is None or (act is not None and act.mode != "tension"):
+        return None, None, 0, False
+    T = np.zeros(pb.n_tendons) if act is None or pb.n_tendons == 0 else np.asarray(act.values, dtype=float)
+    start = warm_start.decode(pb, options.warm_state, T)
+    if start is None:
+        return None, None, 0, False
+    shooter = warm_start.RayShooter(pb, options.newton_tolerance, start[0])
+    try:
+        attempts = warm_start.go_from(shooter, start, T, options.max_load_steps)
+    except (ShootingFailure, RuntimeError):
+        return None, None, 0, False
+    if path_fields(*shooter.ramps)["path_event"] or shooter.sign != 1:
+        return None, None, 0, False
+    return shooter, T, attempts, True

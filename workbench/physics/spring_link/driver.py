@@ -5,7 +5,11 @@
 otherwise), ramps the loads (:func:`static_ramp` on :func:`workbench.physics._stepping.load_ramp`) and
 for dynamics integrates with implicit generalised-alpha, updating the tendon commands of
 :meth:`TendonActuation.command_at` every step.  :func:`run` is the registered model
-``"spring_link"`` (default :class:`SpringLinkParams`).  Checked by ``tests/physics/test_spring_link*.py``.
+``"spring_link"`` (default :class:`SpringLinkParams`).  Warm starts (:mod:`workbench.models.warm`): a
+tension-controlled static solve continues its ramp from ``options.warm_state`` when that is this chain
+at a fraction of this load (:func:`_warm_ramp`), else solves cold; ``PhysicsResult.warm_state`` is
+its equilibrium (coordinates and active set) when the load path had no event.  Checked by
+``tests/physics/test_spring_link*.py`` and ``tests/models/test_warm_spring_link.py``.
 """
 
 from __future__ import annotations
@@ -67,7 +71,8 @@ def _path_point(model: Chain) -> PathPoint:
 
 
 def static_ramp(model: Chain, options: SolverOptions, params: SpringLinkParams,
-                 apply: Callable[[float], None]) -> tuple[int, int]:
+                 apply: Callable[[float], None],
+                 check: Callable[[float, PathPoint], bool] | None = None) -> tuple[int, int]:
     """Ramp ``apply(lam)`` from 0 to 1 with repeated static solves; returns (steps, newton its).
 
     One attempt applies the load factor and solves, re-solving while the slack/taut active set
@@ -77,7 +82,8 @@ def static_ramp(model: Chain, options: SolverOptions, params: SpringLinkParams,
     an unsettled active set) restores the chain's state (:meth:`Chain.save_state`) and halves the
     increment (:data:`_STATIC_RAMP`); the ramp's :class:`~workbench.physics._stepping.LoadRampInfo` is
     appended to ``model.ramps`` (the result's path fields, :func:`~workbench.physics._stepping.path_fields`);
-    a non-positive rope rest length is not a solver failure and propagates.  Newton iterations
+    a non-positive rope rest length is not a solver failure and propagates.  ``check(lam, point)``
+    (a warm start's first-step check, :func:`_warm_ramp`) may reject a solved attempt.  Newton iterations
     of every attempt are counted.  Checked by ``test_max_load_steps_is_a_failure``,
     ``test_rigid_body_ramp_failure_names_the_numerical_cause`` and ``test_spring_link_layout.py``.
 
@@ -119,7 +125,8 @@ def static_ramp(model: Chain, options: SolverOptions, params: SpringLinkParams,
                     raise exu.SolverError("non-finite state")
                 mbs.systemData.SetODE2Coordinates(q, configuration=exu.ConfigurationType.Initial)
                 if not model.update_active_set():
-                    return _path_point(model)
+                    point = _path_point(model)
+                    return point if check is None or check(lam, point) else False
                 apply(lam)
             raise ModelFailure("spring_link: tendon slack/taut switching did not settle")
         except (exu.SolverError, RuntimeError) as err:  # ModelFailure is a RuntimeError too
@@ -168,10 +175,98 @@ def build_chain(robot: Robot, load: LoadCase, options: SolverOptions, geo: Chain
     return SpatialChain(robot, load, options, geo, params.torsion, params.axial)
 
 
+class _WarmAbandoned(Exception):
+    """A warm start's first step kept leaving the cold path (not a solver failure: the ramp stops)."""
+
+
+def _warm_load(model: Chain) -> np.ndarray:
+    """The ramped load (gravity, tip force, tip torque, tensions): the ray a warm start must lie on."""
+    act, ld = model.load.actuation, model.load
+    T = np.zeros(len(model.tendons)) if act is None else np.asarray(act.values, dtype=float)
+    return np.concatenate([model.robot.gravity_in_base(), ld.tip_force, ld.tip_torque, T])
+
+
+def _warm_head(model: Chain, size: int) -> np.ndarray:
+    n_q = len(model.mbs.systemData.GetODE2Coordinates())
+    return np.array([size, 1.0, model.robot.length, model.options.n_elements, n_q, 9 + len(model.tendons),
+                     float(model.planar), float(model.rigid_bodies)])
+
+
+def _warm_encode(model: Chain) -> np.ndarray:
+    """The warm state of the chain's equilibrium: header, ramped load, coordinates, active set."""
+    q, active = model.save_state()
+    body = np.concatenate([_warm_load(model), np.asarray(q, dtype=float), np.asarray(active, dtype=float)])
+    return np.concatenate([_warm_head(model, 8 + body.size), body])
+
+
+def _warm_decode(model: Chain, state) -> tuple[float, np.ndarray, list[bool]] | None:
+    """``(c, coordinates, active set)`` of the part of ``state`` (parts of several resolutions concatenated:
+    a Richardson solve's) that is this chain at ``0 < c <= 1`` x its load, else ``None``."""
+    from ...models.warm import ray_fraction
+
+    s = np.asarray(state, dtype=float).reshape(-1)
+    i = 0
+    if not np.all(np.isfinite(s)):
+        return None
+    while 8 <= s.size - i and 8 <= int(s[i]) <= s.size - i:
+        part, i = s[i:i + int(s[i])], i + int(s[i])
+        head = _warm_head(model, part.size)
+        if part.size != 8 + head[5] + head[4] + len(model.tendons) or not np.array_equal(part[:8], head):
+            continue
+        n_v, n_q = int(head[5]), int(head[4])
+        c = ray_fraction(part[8:8 + n_v], _warm_load(model))
+        return None if c is None else (c, part[8 + n_v:8 + n_v + n_q], [bool(a) for a in part[8 + n_v + n_q:]])
+    return None
+
+
+def _warm_ramp(model: Chain, params: SpringLinkParams, final: np.ndarray, start) -> tuple[int, int] | None:
+    """The static ramp continued from a neighbour's equilibrium ``start`` at ``c`` x this load
+    (:func:`_warm_decode`), its first step checked against the cold path's secant
+    (:func:`workbench.models.warm.leaves_secant`, three tries); ``None`` (the chain back in its
+    reference state) when it fails or has a path event."""
+    from ...models.warm import leaves_secant
+
+    c, q, active = start
+    reference, unloaded, ramps = model.save_state(), _path_point(model).measure, len(model.ramps)
+    model.restore_state((q, active))
+    at_c = _path_point(model).measure
+    state = {"first": True, "rejected": 0}
+
+    def check(lam: float, point: PathPoint) -> bool:
+        if state["first"] and leaves_secant(unloaded, at_c, c, lam, point.measure, _STATIC_RAMP.jump_ratio,
+                                            _STATIC_RAMP.jump_floor):
+            state["rejected"] += 1
+            if state["rejected"] >= 3:
+                raise _WarmAbandoned
+            return False
+        state["first"] = False
+        return True
+
+    def apply(t: float) -> None:
+        lam = c + t * (1.0 - c)
+        model.set_external(lam)
+        model.set_tendons(lam * final, lam)
+
+    try:
+        out = static_ramp(model, model.options, params, apply, check)
+    except (ModelFailure, _WarmAbandoned):
+        out = None
+    if out is None or model.ramps[-1].path_event:
+        del model.ramps[ramps:]
+        model.restore_state(reference)
+        return None
+    return out
+
+
 def _solve_static(model: Chain, params: SpringLinkParams, t0: float) -> PhysicsResult:
     act = model.load.actuation
     final = np.zeros(len(model.tendons)) if act is None else np.asarray(act.values)
-    steps, its = ramp_to(model, params, final)
+    # warm starts (workbench.models.warm): tension control only, from a state at a fraction of this load
+    tension = (act is None or act.mode == "tension") and not model.lagged_length
+    state = model.options.warm_state
+    start = _warm_decode(model, state) if tension and state is not None else None
+    warm = None if start is None else _warm_ramp(model, params, final, start)
+    steps, its = warm or ramp_to(model, params, final)
     repeats = 0
     if model.lagged_length:  # planar continuum length mode with axial springs: lagged couplings
 
@@ -189,7 +284,9 @@ def _solve_static(model: Chain, params: SpringLinkParams, t0: float) -> PhysicsR
     info = SolverInfo(converged=True, iterations=its, wall_time=time.perf_counter() - t0,
                       message=f"{steps} load steps" + (f" ({repeats} lagged-coupling equilibria)" if repeats else ""),
                       **path_fields(*model.ramps))
-    return model.result(info)
+    res = model.result(info)
+    extras = {**res.extras, **({} if state is None else {"warm_started": float(warm is not None)})}
+    return replace(res, extras=extras, warm_state=_warm_encode(model) if tension and not info.path_event else None)
 
 
 def _solve_dynamic(model: Chain, params: SpringLinkParams, t0: float) -> PhysicsResult:
@@ -289,8 +386,15 @@ def solve(robot: Robot, load: LoadCase, options: SolverOptions,
     check_model_inputs(robot, load, options)
     if params.richardson:
         check_richardson(options.n_elements, robot.n_sections, load.analysis)
-        return richardson_result(lambda n: solve(robot, load, replace(options, n_elements=n),
-                                                 replace(params, richardson=False)), options.n_elements)
+        states = []  # both resolutions' warm states, concatenated (each picks its own: _warm_decode)
+
+        def at(n: int) -> PhysicsResult:
+            res = solve(robot, load, replace(options, n_elements=n), replace(params, richardson=False))
+            states.append(res.warm_state)
+            return res
+
+        res = richardson_result(at, options.n_elements)
+        return replace(res, warm_state=None if any(s is None for s in states) else np.concatenate(states))
     planar, why = is_planar(robot, load)
     if params.dimension == "2d" and not planar:
         raise ModelFailure(f"spring_link: dimension='2d' requested but the case is not planar: {why}")
