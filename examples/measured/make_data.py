@@ -11,17 +11,16 @@ lab would see them:
 - in a tracker frame: ``p_tracker = R @ p_base + t`` with a rotation of 15 deg about a tilted axis
   and a translation of a few cm (:data:`TRUTH`);
 - with Gaussian noise (0.2 mm per coordinate), written in mm with 3 decimals;
-- with tensions read by load cells in counts (1 count = 2 mN) that have a constant zero offset:
-  the tension in tendon ``i`` is ``count_i * 0.002 N + command_zero[i]`` (the calibration's
-  ``command_zero``: what is added to each command to get the tension the robot feels).  A slack
-  tendon has tension 0, so its cell reads ``-command_zero[i]``: 0.02 .. 0.06 N (the cells read
-  high; a cell reading below zero would be refused by the reader, as a tension must be >= 0).
+- with tensions read by load cells in counts (1 count = 2 mN) that read high by a constant: the
+  tension in tendon ``i`` is ``count_i * 0.002 N + command_zero[i]`` (the calibration's
+  ``command_zero``: what is added to each command to get the tension the robot feels).
 
-Each row pulls one to three randomly chosen tendons with 0.2 .. 4 N; the others are slack.  The
-slack tendons are what makes every offset observable: an equal tension added to all three
-(equally spaced) tendons of a section bends nothing, so from loaded tendons alone only the
-differences of a section's offsets could be calibrated (the calibration clips a command plus
-offset at 0 N: a tendon cannot push).  Everything is drawn from
+Every tendon carries a pretension of 0.3 N, as labs do to keep tendons from going slack; each row
+adds 0.2 .. 4 N to one to three randomly chosen tendons.  No command plus offset comes near 0 N
+within the study's bounds, so the calibration never clips a tension.  What tip positions cannot
+tell: an equal tension added to all three (equally spaced) tendons of a section bends nothing, so
+each section's *mean* load-cell offset is invisible (only the differences between its cells are
+identifiable); the calibration flags those parameters as unidentifiable.  Everything is drawn from
 one seeded generator up front, so any subset of rows can be regenerated (:func:`generate` with
 ``rows``); ``tests/measure/test_measure_example.py`` checks the committed file that way.
 """
@@ -42,6 +41,7 @@ N_ROWS = 300
 #: the settings the Cosserat rod is solved with (the same as ``measured.toml``'s ``[solver]``)
 SOLVER = {"n_elements": 32}
 COUNT = 0.002  # N per load-cell count
+PRETENSION = 0.3  # N in every tendon
 COMMAND_COLUMNS = [f"cell{i}" for i in range(1, 7)]
 TIP_COLUMNS = ["tip_x", "tip_y", "tip_z"]
 
@@ -80,19 +80,18 @@ def draw(n_rows: int = N_ROWS, seed: int = SEED) -> tuple[np.ndarray, np.ndarray
     """Load-cell counts ``(n, 6)`` (int) and position noise ``(n, 3)`` [mm] of every row, seeded."""
     rng = np.random.default_rng(seed)
     zero = np.asarray(TRUTH["command_zero"])
-    tension = np.zeros((n_rows, 6))
+    tension = np.full((n_rows, 6), PRETENSION)
     for r in range(n_rows):
         loaded = rng.choice(6, size=rng.integers(1, 4), replace=False)
-        tension[r, loaded] = rng.uniform(0.2, 4.0, loaded.size)
+        tension[r, loaded] += rng.uniform(0.2, 4.0, loaded.size)
     counts = np.rint((tension - zero) / COUNT).astype(int)
     noise = rng.normal(0.0, TRUTH["noise_mm"], (n_rows, 3))
     return counts, noise
 
 
 def tensions(counts: np.ndarray) -> np.ndarray:
-    """The tension [N] the robot feels for load-cell counts: ``count * COUNT + command_zero`` (slack: exactly 0)."""
-    t = counts * COUNT + np.asarray(TRUTH["command_zero"])
-    return np.where(np.abs(t) < 1e-9, 0.0, t)
+    """The tension [N] the robot feels for load-cell counts: ``count * COUNT + command_zero``."""
+    return counts * COUNT + np.asarray(TRUTH["command_zero"])
 
 
 def generate(rows=None, n_rows: int = N_ROWS, seed: int = SEED) -> dict[str, np.ndarray]:
@@ -152,6 +151,7 @@ def write_truth(path: Path, sag: float, length: float) -> None:
         f"rotation_angle = {{ value = {TRUTH['rotation_angle_deg']}, unit = \"deg\" }}",
         f"noise = {{ value = {TRUTH['noise_mm']}, unit = \"mm\" }}   # Gaussian, per coordinate",
         f"count = {{ value = {COUNT}, unit = \"N\" }}          # one load-cell count",
+        f"pretension = {{ value = {PRETENSION}, unit = \"N\" }}     # in every tendon; loads on top",
         f"unloaded_sag = {{ value = {sag:.6g}, unit = \"m\", percent_of_length = {100 * sag / length:.3g} }}",
     ]
     path.write_text("\n".join(lines) + "\n")
