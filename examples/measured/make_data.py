@@ -15,12 +15,14 @@ lab would see them:
   tension in tendon ``i`` is ``count_i * 0.002 N + command_zero[i]`` (the calibration's
   ``command_zero``: what is added to each command to get the tension the robot feels).
 
-Every tendon carries a pretension of 0.3 N, as labs do to keep tendons from going slack; each row
-adds 0.2 .. 4 N to one to three randomly chosen tendons.  No command plus offset comes near 0 N
-within the study's bounds, so the calibration never clips a tension.  What tip positions cannot
-tell: an equal tension added to all three (equally spaced) tendons of a section bends nothing, so
-each section's *mean* load-cell offset is invisible (only the differences between its cells are
-identifiable); the calibration flags those parameters as unidentifiable.  Everything is drawn from
+Each row pulls one to three randomly chosen tendons with 0.2 .. 4 N; the others are slack (0 N, so
+their cells read ``-command_zero[i]`` = 0.02 .. 0.06 N: never below zero, which the reader would
+refuse).  Slack tendons are what makes the offsets identifiable: an offset acts only while its
+tendon pulls (the calibration clips command plus offset at 0 N: a tendon cannot push), so it does
+not act as a constant bend that the registration could absorb.  What stays invisible: an equal
+tension added to all three (equally spaced) tendons of a section bends nothing, so a section's
+offsets all set too *high* by the same amount change no tip (too low, they do: slack tendons stay
+at 0 N while the pulled ones lose tension); the calibration flags that.  Everything is drawn from
 one seeded generator up front, so any subset of rows can be regenerated (:func:`generate` with
 ``rows``); ``tests/measure/test_measure_example.py`` checks the committed file that way.
 """
@@ -41,7 +43,6 @@ N_ROWS = 300
 #: the settings the Cosserat rod is solved with (the same as ``measured.toml``'s ``[solver]``)
 SOLVER = {"n_elements": 32}
 COUNT = 0.002  # N per load-cell count
-PRETENSION = 0.3  # N in every tendon
 COMMAND_COLUMNS = [f"cell{i}" for i in range(1, 7)]
 TIP_COLUMNS = ["tip_x", "tip_y", "tip_z"]
 
@@ -80,18 +81,19 @@ def draw(n_rows: int = N_ROWS, seed: int = SEED) -> tuple[np.ndarray, np.ndarray
     """Load-cell counts ``(n, 6)`` (int) and position noise ``(n, 3)`` [mm] of every row, seeded."""
     rng = np.random.default_rng(seed)
     zero = np.asarray(TRUTH["command_zero"])
-    tension = np.full((n_rows, 6), PRETENSION)
+    tension = np.zeros((n_rows, 6))
     for r in range(n_rows):
         loaded = rng.choice(6, size=rng.integers(1, 4), replace=False)
-        tension[r, loaded] += rng.uniform(0.2, 4.0, loaded.size)
+        tension[r, loaded] = rng.uniform(0.2, 4.0, loaded.size)
     counts = np.rint((tension - zero) / COUNT).astype(int)
     noise = rng.normal(0.0, TRUTH["noise_mm"], (n_rows, 3))
     return counts, noise
 
 
 def tensions(counts: np.ndarray) -> np.ndarray:
-    """The tension [N] the robot feels for load-cell counts: ``count * COUNT + command_zero``."""
-    return counts * COUNT + np.asarray(TRUTH["command_zero"])
+    """The tension [N] the robot feels for load-cell counts: ``count * COUNT + command_zero`` (slack: exactly 0)."""
+    t = counts * COUNT + np.asarray(TRUTH["command_zero"])
+    return np.where(np.abs(t) < 1e-9, 0.0, t)
 
 
 def generate(rows=None, n_rows: int = N_ROWS, seed: int = SEED) -> dict[str, np.ndarray]:
@@ -151,7 +153,6 @@ def write_truth(path: Path, sag: float, length: float) -> None:
         f"rotation_angle = {{ value = {TRUTH['rotation_angle_deg']}, unit = \"deg\" }}",
         f"noise = {{ value = {TRUTH['noise_mm']}, unit = \"mm\" }}   # Gaussian, per coordinate",
         f"count = {{ value = {COUNT}, unit = \"N\" }}          # one load-cell count",
-        f"pretension = {{ value = {PRETENSION}, unit = \"N\" }}     # in every tendon; loads on top",
         f"unloaded_sag = {{ value = {sag:.6g}, unit = \"m\", percent_of_length = {100 * sag / length:.3g} }}",
     ]
     path.write_text("\n".join(lines) + "\n")

@@ -56,11 +56,11 @@ def test_file_is_small_and_the_tensions_are_physical(make_data, csv_rows):
     assert (EXAMPLE / "measured.csv").stat().st_size < 1_000_000
     _, rows = csv_rows
     tension = make_data.tensions(rows[:, :6].astype(int))
-    assert np.all(rows[:, :6] > 0)  # the reader refuses a negative tension
-    assert tension.min() >= make_data.PRETENSION - make_data.COUNT
-    loaded = tension > make_data.PRETENSION + 0.1
+    assert np.all(rows[:, :6] > 0)  # cells read high: never below zero (the reader refuses a negative tension)
+    assert tension.min() == 0.0  # slack tendons
+    loaded = tension > 0.0
     assert np.all((loaded.sum(axis=1) >= 1) & (loaded.sum(axis=1) <= 3))
-    assert tension.max() <= make_data.PRETENSION + 4.0 + make_data.COUNT
+    assert np.all(tension[loaded] >= 0.2 - make_data.COUNT) and tension.max() <= 4.0 + make_data.COUNT
 
 
 def test_truth_and_study_agree_with_the_script(make_data):
@@ -144,8 +144,8 @@ def test_calibration_recovers_the_truth(make_data, tmp_path):
     low, high = np.asarray(cos["calib.ci_low"], float), np.asarray(cos["calib.ci_high"], float)
     outside = [n for n, lo, hi, v in zip(names, low, high, true) if not lo <= v <= hi]
     assert not outside, f"generating values outside the cosserat intervals: {outside}"
-    # E and the registration are identifiable (finite intervals); each section's mean load-cell offset is not
-    # (an equal tension in three equally spaced tendons bends nothing), so the offsets' intervals may be open
+    # E and the registration are identifiable (finite intervals); the offsets may be flagged (open intervals):
+    # a section's three offsets set too high by one amount change no tip (make_data.py's docstring)
     seen = [not n.startswith("command_zero") for n in names]
     assert np.all(np.isfinite(low[seen]) & np.isfinite(high[seen])), [n for n, s in zip(names, seen) if s]
     assert np.all(high[:2] - low[:2] < 0.05 * true[:2])  # E to better than +-2.5 %
