@@ -26,6 +26,7 @@ from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOpti
 from ...robot import LoadCase, Robot
 from .._stepping import path_fields
 from ..tendon_loads import solve_length_controlled, tendon_rest_lengths
+from .eyelets import eyelet_route, integrate_eyelets
 from .problem import RodProblem, rod_problem
 from .rod import N_BASE, integrate_segments
 from .shooting import Shooter, ShootingFailure
@@ -102,29 +103,39 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     options : SolverOptions
         ``newton_tolerance`` (scaled tip residual; integration at a tenth of it),
         ``max_load_steps``, ``n_stations``; ``n_elements`` is not used (the integration is
-        adaptive, 8th order).  ``tendon_model`` must be ``"continuum"`` for loaded tendons.
+        adaptive, 8th order).  ``tendon_model``: ``"continuum"`` (Rucker & Webster) or ``"eyelets"``
+        (straight between the disks, :mod:`.eyelets`; tension control only).
 
     Raises
     ------
     ModelFailure
-        Dynamic analysis, eyelet tendons, or no converged equilibrium.
+        Dynamic analysis, length-controlled eyelet tendons, or no converged equilibrium.
     """
     t0 = time.perf_counter()
     check_model_inputs(robot, load, options)
     if load.analysis != "static":
         raise ModelFailure("cosserat: static analysis only (no dynamics in the shooting model)")
     act = load.actuation
-    if act is not None and options.tendon_model != "continuum" and any(v != 0 for v in act.values):
-        raise ModelFailure("cosserat: tendons are routed continuously; tendon_model='eyelets' is not supported "
-                           "(use beam3d, ancf or spring_link for discrete eyelets)")
+    eyelets = options.tendon_model == "eyelets"
+    if eyelets and act is not None and act.mode == "length":
+        raise ModelFailure("cosserat: length-controlled tendons need tendon_model='continuum' (eyelet routing "
+                           "is tension-controlled only; beam3d, ancf or spring_link carry eyelets in length mode)")
     pb = rod_problem(robot, load)
-    shooter = Shooter(pb, options.newton_tolerance)
+    try:
+        route = eyelet_route(robot, pb) if eyelets else None
+    except ValueError as err:
+        raise ModelFailure(f"cosserat: {err}") from None
+    shooter = Shooter(pb, options.newton_tolerance, route=route)
     try:
         T, attempts = _tensions(pb, load, options, shooter)
+        stations = np.linspace(0.0, robot.length, options.n_stations)
+        if route is None:
+            tip, Y = integrate_segments(pb, shooter.x[None], T, 1.0, shooter.rtol, stations,
+                                        compiled=shooter.compiled)
+        else:
+            tip, Y, _ = integrate_eyelets(pb, route, shooter.x[None], T, 1.0, shooter.rtol, stations)
     except (ShootingFailure, RuntimeError) as err:
         raise ModelFailure(f"cosserat: {err}") from None
-    stations = np.linspace(0.0, robot.length, options.n_stations)
-    tip, Y = integrate_segments(pb, shooter.x[None], T, 1.0, shooter.rtol, stations, compiled=shooter.compiled)
     res = float(np.max(np.abs(shooter.tip_residual(tip, 1.0, T))))
     frame = np.eye(4)
     frame[:3, :3] = tip[0, 3:12].reshape(3, 3)

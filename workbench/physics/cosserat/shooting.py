@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._stepping import LoadRampInfo, PathPoint, RampExhausted, RampPolicy, RampStalled, load_ramp
+from .eyelets import EyeletRoute, integrate_eyelets, straight_tendon_wrench
 from .problem import RodProblem
 from .rod import cross, integrate_segments
 
@@ -79,10 +80,16 @@ class Shooter:
     compiled : bool, optional
         Right-hand side by the numba kernel (default: where numba is installed) or numpy
         (:func:`~workbench.physics.cosserat.rod.integrate_segments`).
+    route : EyeletRoute, optional
+        Eyelet routing (:mod:`.eyelets`): the unknowns are then the rod's own clamp wrench and the
+        shots are :func:`~workbench.physics.cosserat.eyelets.integrate_eyelets`; ``None``: continuous
+        tendons.
     """
 
-    def __init__(self, pb: RodProblem, tol: float, compiled: bool | None = None) -> None:
+    def __init__(self, pb: RodProblem, tol: float, compiled: bool | None = None,
+                 route: EyeletRoute | None = None) -> None:
         self.pb = pb
+        self.route = route
         self.compiled = compiled
         self.tol = float(tol)
         self.rtol = max(1e-13, 0.1 * self.tol)
@@ -105,7 +112,10 @@ class Shooter:
 
     def residual(self, X: np.ndarray, lam: float, tau: np.ndarray) -> np.ndarray:
         """Scaled tip residuals ``(B, 6)`` of base wrenches ``X`` ``(B, 6)`` at load ``(lam, tau)``."""
-        tip, _ = integrate_segments(self.pb, X, tau, lam, self.rtol, compiled=self.compiled)
+        if self.route is None:
+            tip, _ = integrate_segments(self.pb, X, tau, lam, self.rtol, compiled=self.compiled)
+        else:
+            tip, _, _ = integrate_eyelets(self.pb, self.route, X, tau, lam, self.rtol)
         self.shots += X.shape[0]
         self._tip = tip[0]
         return self.tip_residual(tip, lam, tau)
@@ -159,6 +169,12 @@ class Shooter:
             a *= 0.5
         raise ShootingFailure("line search failed to reduce the tip residual")
 
+    def straight(self, lam: float, tau: np.ndarray) -> np.ndarray:
+        """``(6,)`` the unknowns on the straight rod under ``lam`` x the external loads and tensions
+        ``tau`` (the tendons count only with eyelets, where the unknowns are the rod's own wrench)."""
+        x = straight_rod_base_wrench(self.pb, lam)
+        return x if self.route is None else x + straight_tendon_wrench(self.route, tau)
+
     def path_point(self) -> PathPoint:
         """The load-path measure of the last converged state: tip position / L and tip tangent,
         with the sign of the shooting Jacobian's determinant (the last integrated shot's tip)."""
@@ -179,18 +195,18 @@ class Shooter:
         tau = np.asarray(tau, dtype=float)
         path: list[tuple[float, np.ndarray]] = [(0.0, start.x)]
 
-        def predict(t: float, lam: float) -> np.ndarray:
+        def predict(t: float, lam: float, ta: np.ndarray) -> np.ndarray:
             if len(path) >= 2:
                 (ta, xa), (tb, xb) = path[-2], path[-1]
                 return xb + (t - tb) / (tb - ta) * (xb - xa)
-            return start.x + straight_rod_base_wrench(self.pb, lam) - straight_rod_base_wrench(self.pb, start.lam)
+            return start.x + self.straight(lam, ta) - self.straight(start.lam, start.tau)
 
         def attempt(t: float) -> bool | PathPoint:
             lam = start.lam + t * (1.0 - start.lam)
             ta = start.tau + t * (tau - start.tau)
             self.attempts += 1
             try:
-                x = self.newton(predict(t, lam), lam, ta)
+                x = self.newton(predict(t, lam, ta), lam, ta)
             except ShootingFailure:
                 return False
             path.append((t, x))
