@@ -180,6 +180,29 @@ def _chords(P0, P1, mask, t, lengths):  # noqa: ANN001, ANN202
 
 
 @njit(cache=True)
+def _anderson(z, g, z_prev, g_prev, passing):  # noqa: ANN001, ANN202
+    """Anderson mixing of depth 1 on each shot's chords (Walker & Ni, SIAM J. Numer. Anal. 49(4), 2011):
+    from the last two iterates ``z -> g`` the next chords ``g - gamma (g - g_prev)`` (written into ``g``)
+    with ``gamma`` minimising ``|f - gamma (f - f_prev)|``, ``f = g - z``."""
+    for b in range(z.shape[0]):
+        num = 0.0
+        den = 0.0
+        for i in range(z.shape[1]):
+            if passing[i]:
+                for a in range(3):
+                    df = (g[b, i, a] - z[b, i, a]) - (g_prev[b, i, a] - z_prev[b, i, a])
+                    num += (g[b, i, a] - z[b, i, a]) * df
+                    den += df * df
+        if den == 0.0:
+            continue
+        gamma = num / den
+        for i in range(z.shape[1]):
+            if passing[i]:
+                for a in range(3):
+                    g[b, i, a] -= gamma * (g[b, i, a] - g_prev[b, i, a])
+
+
+@njit(cache=True)
 def _predict(y, B, R_prev, t_in, passing, t_out):  # noqa: ANN001, ANN202
     """``t_out = R_k R_{k-1}^T t_in`` of the passing tendons: the incoming chord carried by the frame's
     rotation over the last segment (exact on an evenly spaced constant-curvature stretch)."""
@@ -205,8 +228,8 @@ def eyelet_shots(y0, stations, section, weights, eyelet, offsets, last, tau, lam
     ``lam`` load factor of the disk weights; ``rtol``, ``atol`` DOP853's tolerances; ``chord_tol`` of the
     chord fixed point; ``out_s`` sorted arc lengths for dense output; DOP853's coefficients; the
     sections' constants (``s0s`` ... ``mu1s``), ``g`` (= ``lam`` x gravity) and the kernel's empty tendon
-    arrays.  Returns ``(y(L) after the tip's tendon loads, status, tendon lengths (B, n_t), chord
-    iterations, states at out_s (m, B*20))``; status 0 done, 1 too many evaluations on a segment, 2 step
+    arrays.  Returns ``(y(L) after the tip's tendon loads, status, tendon lengths (B, n_t), (chord
+    iterations, right-hand sides), states at out_s (m, B*20))``; status 0 done, 1 too many evaluations on a segment, 2 step
     below 10 ulp, 3 the chords did not settle in :data:`MAX_CHORD_ITERATIONS`.
     """
     NS = N_EYELET_STATE
@@ -220,6 +243,9 @@ def eyelet_shots(y0, stations, section, weights, eyelet, offsets, last, tau, lam
     Pn = np.empty((B, n_t, 3))
     t_in = np.zeros((B, n_t, 3))
     t_out = np.zeros((B, n_t, 3))
+    z = np.zeros((B, n_t, 3))
+    z_prev = np.zeros((B, n_t, 3))
+    g_prev = np.zeros((B, n_t, 3))
     lengths = np.zeros((B, n_t))
     seg_len = np.zeros((B, n_t))
     R_prev = np.zeros((B, 3, 3))
@@ -230,6 +256,7 @@ def eyelet_shots(y0, stations, section, weights, eyelet, offsets, last, tau, lam
         for a in range(3):
             R_prev[b, a, a] = 1.0
     iterations = 0
+    nfev = 0
     mask = np.zeros(n_t, dtype=np.bool_)
     passing = np.zeros(n_t, dtype=np.bool_)
     for j in range(K + 1):
@@ -260,28 +287,34 @@ def eyelet_shots(y0, stations, section, weights, eyelet, offsets, last, tau, lam
         sec = section[j]
         y_start = y.copy()
         settled = False
-        for _ in range(MAX_CHORD_ITERATIONS):
+        for q in range(MAX_CHORD_ITERATIONS):
             iterations += 1
             y = y_start.copy()
             _apply_disk(y, B, offsets[j], P, mask, tau, t_in, t_out, passing)
-            yb, status, _, at = kernel.dop853_segment(
+            yb, status, nf, at = kernel.dop853_segment(
                 y, stations[j], stations[j + 1], rtol, atol, _MAX_EVALUATIONS, out_s[lo:hi], A, Bw, C, E3, E5,
                 A_extra, C_extra, D, NS, s0s[sec], lss[sec], k0s[sec], k1s[sec], mu0s[sec], mu1s[sec], g,
                 c, d0, d1, se, ta, dr, idx)
+            nfev += nf
             if status != 0:
-                return yb, status, lengths, iterations, at_all
+                return yb, status, lengths, (iterations, nfev), at_all
             at_all[lo:hi] = at
             if not np.any(passing):
                 settled = True
                 break
             _eyelet_points(yb, B, offsets[j + 1], Pn)
+            z[:] = t_out
             if _chords(P_prev, Pn, passing, t_out, seg_len) <= chord_tol:
                 settled = True
                 break
+            if q > 0:
+                _anderson(z, t_out, z_prev, g_prev, passing)
+            z_prev[:] = z
+            g_prev[:] = t_out
         if not settled:
-            return yb, 3, lengths, iterations, at_all
+            return yb, 3, lengths, (iterations, nfev), at_all
         y = yb
-    return y, 0, lengths, iterations, at_all
+    return y, 0, lengths, (iterations, nfev), at_all
 
 
 def integrate_eyelets(pb: RodProblem, route: EyeletRoute, x0: np.ndarray, tau: np.ndarray, lam: float, rtol: float,
@@ -358,4 +391,19 @@ def straight_tendon_wrench(route: EyeletRoute, tau: np.ndarray) -> np.ndarray:
         arm = route.offsets[route.last[i], i] + route.stations[route.last[i]] * e3
         out[:3] += F
         out[3:] += np.cross(arm, F)
+    return out
+
+
+def rod_wrench_from_total(route: EyeletRoute, x_total: np.ndarray, tau: np.ndarray, p1: np.ndarray,
+                          R1: np.ndarray) -> np.ndarray:
+    """``(6,)`` the rod's own clamp wrench from a total (rod + tendons) one ``x_total`` (the
+    continuous model's unknowns) and that solution's pose ``p1``, ``R1`` at the first disk: each
+    tendon's first chord ``t_0`` runs from its anchor ``r_0`` to ``p1 + R1 r_1``, so ``n = N - sum
+    tau t_0``, ``m = M - sum r_0 x tau t_0``.  A predictor only (the rest of the shape is continuous)."""
+    out = np.array(x_total, dtype=float)
+    for i, t in enumerate(np.asarray(tau, dtype=float)):
+        chord = p1 + R1 @ route.offsets[1, i] - route.offsets[0, i]
+        F = t * chord / np.linalg.norm(chord)
+        out[:3] -= F
+        out[3:] -= np.cross(route.offsets[0, i], F)
     return out

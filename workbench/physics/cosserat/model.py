@@ -26,7 +26,7 @@ from ...models.result import ModelFailure, PhysicsResult, SolverInfo, SolverOpti
 from ...robot import LoadCase, Robot
 from .._stepping import path_fields
 from ..tendon_loads import solve_length_controlled, tendon_rest_lengths
-from .eyelets import eyelet_route, integrate_eyelets
+from .eyelets import eyelet_route, integrate_eyelets, rod_wrench_from_total
 from .problem import RodProblem, rod_problem
 from .rod import N_BASE, integrate_segments
 from .shooting import Shooter, ShootingFailure
@@ -53,6 +53,22 @@ def straight_compliance(pb: RodProblem) -> np.ndarray:
     return C
 
 
+def _eyelet_guess(pb: RodProblem, options: SolverOptions, shooter: Shooter, T: np.ndarray) -> np.ndarray | None:
+    """The eyelet shooting's predictor: the continuous-tendon solution (its tip differs by the eyelet
+    effect, ~1e-2 L on the peer benchmark) at a loose tolerance, as the rod's own clamp wrench
+    (:func:`.eyelets.rod_wrench_from_total`); ``None`` for continuous tendons or where it fails."""
+    if shooter.route is None or not np.any(T):
+        return None
+    continuous = Shooter(pb, max(options.newton_tolerance, 1e-6), compiled=shooter.compiled)
+    try:
+        continuous.go_to(T, options.max_load_steps)
+    except ShootingFailure:
+        return None
+    _, Y = integrate_segments(pb, continuous.x[None], T, 1.0, continuous.rtol, shooter.route.stations[1:2],
+                              compiled=shooter.compiled)
+    return rod_wrench_from_total(shooter.route, continuous.x, T, Y[0, 0, 0:3], Y[0, 0, 3:12].reshape(3, 3))
+
+
 def _tensions(pb: RodProblem, load: LoadCase, options: SolverOptions, shooter: Shooter) -> tuple[np.ndarray, int]:
     """Tendon tensions of the equilibrium (the shooter ends at it); returns (tensions, ramp attempts)."""
     act = load.actuation
@@ -60,7 +76,7 @@ def _tensions(pb: RodProblem, load: LoadCase, options: SolverOptions, shooter: S
         return np.zeros(pb.n_tendons), shooter.go_to(np.zeros(pb.n_tendons), options.max_load_steps)
     if act.mode == "tension":
         T = np.asarray(act.values, dtype=float)
-        return T, shooter.go_to(T, options.max_load_steps)
+        return T, shooter.go_to(T, options.max_load_steps, _eyelet_guess(pb, options, shooter, T))
     l0 = tendon_rest_lengths(pb.reference_tendon_lengths(), act.values, act.pretension, pb.tendon_stiffness)
     attempts = [0]
     # a shooting residual eps bends the rod by ~eps F_s L / EI, i.e. moves a tendon path by

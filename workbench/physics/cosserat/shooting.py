@@ -140,6 +140,8 @@ class Shooter:
         """
         fs, ms = self._scales(lam, tau)
         scale = np.array([fs, fs, fs, ms, ms, ms])
+        if self.route is not None:
+            return self._broyden(x, lam, tau, scale)
         try:
             for _ in range(_MAX_NEWTON):
                 h = 1e-7 * np.maximum(np.abs(x), scale)
@@ -157,6 +159,41 @@ class Shooter:
         except (RuntimeError, np.linalg.LinAlgError) as err:
             raise ShootingFailure(str(err)) from err
         raise ShootingFailure(f"no convergence in {_MAX_NEWTON} Newton iterations")
+
+    def _jacobian(self, x: np.ndarray, lam: float, tau: np.ndarray, scale: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Residual and forward-difference Jacobian at ``x`` (seven shots in one batch)."""
+        h = 1e-7 * np.maximum(np.abs(x), scale)
+        res = self.residual(np.vstack([x, x + np.diag(h)]), lam, tau)
+        if not np.all(np.isfinite(res)):
+            raise ShootingFailure("non-finite tip residual")
+        return res[0], ((res[1:] - res[0]) / h[:, None]).T
+
+    def _broyden(self, x: np.ndarray, lam: float, tau: np.ndarray, scale: np.ndarray) -> np.ndarray:
+        """Newton with Broyden's (good) rank-one updates of the difference Jacobian: a step that at
+        least halves the residual norm updates the Jacobian (one shot per iteration instead of seven);
+        any other step falls back to a fresh difference Jacobian and the backtracking line search.
+        Used with eyelets, whose shots cost more (the chords are iterated per segment)."""
+        try:
+            r0, J = self._jacobian(x, lam, tau, scale)
+            fresh = True
+            for _ in range(3 * _MAX_NEWTON):
+                if np.max(np.abs(r0)) <= self.tol:
+                    self.sign = int(np.sign(np.linalg.det(J)))
+                    return x
+                self.newton_iterations += 1
+                dx = np.linalg.solve(J, -r0)
+                ra = self.residual((x + dx)[None], lam, tau)[0]
+                if np.all(np.isfinite(ra)) and np.linalg.norm(ra) <= 0.5 * np.linalg.norm(r0):
+                    J = J + np.outer(ra - r0 - J @ dx, dx) / (dx @ dx)
+                    x, r0, fresh = x + dx, ra, False
+                    continue
+                if fresh:
+                    x = self._line_search(x, dx, r0, lam, tau)
+                r0, J = self._jacobian(x, lam, tau, scale)
+                fresh = True
+        except (RuntimeError, np.linalg.LinAlgError) as err:
+            raise ShootingFailure(str(err)) from err
+        raise ShootingFailure(f"no convergence in {3 * _MAX_NEWTON} Broyden iterations")
 
     def _line_search(self, x, dx, r0, lam, tau) -> np.ndarray:  # noqa: ANN001
         n0 = np.linalg.norm(r0)
@@ -182,9 +219,10 @@ class Shooter:
         return PathPoint(tuple(np.concatenate([tip[0:3] / self.pb.length, tip[3:12].reshape(3, 3)[:, 2]])),
                          self.sign)
 
-    def go_to(self, tau: np.ndarray, max_attempts: int) -> int:
+    def go_to(self, tau: np.ndarray, max_attempts: int, guess: np.ndarray | None = None) -> int:
         """Follow the straight load path from the last converged point to the full external
-        load with tensions ``tau`` [N]; returns the number of ramp attempts.
+        load with tensions ``tau`` [N]; returns the number of ramp attempts.  ``guess``: the
+        unknowns' predictor for a first attempt that goes the whole way (else the straight rod's).
 
         Raises
         ------
@@ -196,6 +234,8 @@ class Shooter:
         path: list[tuple[float, np.ndarray]] = [(0.0, start.x)]
 
         def predict(t: float, lam: float, ta: np.ndarray) -> np.ndarray:
+            if guess is not None and len(path) == 1 and t == 1.0:
+                return np.asarray(guess, dtype=float)
             if len(path) >= 2:
                 (ta, xa), (tb, xb) = path[-2], path[-1]
                 return xb + (t - tb) / (tb - ta) * (xb - xa)
