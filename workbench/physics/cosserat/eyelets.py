@@ -219,6 +219,24 @@ def _predict(y, B, R_prev, t_in, passing, t_out):  # noqa: ANN001, ANN202
 
 
 @njit(cache=True)
+def _arrive(y, B, weight, r, mask, passing, P, P_prev, t_in, t_out, seg_len, lengths, R_prev):  # noqa: ANN001, ANN202, PLR0913
+    """Arrival at a disk: its weight on the centreline, its eyelet points ``P``, the incoming chords
+    ``t_in`` (their lengths added to ``lengths``; ``P_prev`` moves on) and the predicted ``t_out``."""
+    for b in range(B):
+        for a in range(3):
+            y[b * N_EYELET_STATE + 12 + a] -= weight[a]
+    _eyelet_points(y, B, r, P)
+    _chords(P_prev, P, mask, t_in, seg_len)
+    for b in range(B):
+        for i in range(mask.shape[0]):
+            if mask[i]:
+                lengths[b, i] += seg_len[b, i]
+                for a in range(3):
+                    P_prev[b, i, a] = P[b, i, a]
+    _predict(y, B, R_prev, t_in, passing, t_out)
+
+
+@njit(cache=True)
 def eyelet_shots(y0, stations, section, weights, eyelet, offsets, last, tau, lam, rtol, atol, chord_tol,  # noqa: ANN001, ANN201, PLR0912, PLR0913, PLR0915
                  out_s, A, Bw, C, E3, E5, A_extra, C_extra, D, s0s, lss, k0s, k1s, mu0s, mu1s, g,
                  c, d0, d1, se, ta, dr, idx):
@@ -264,18 +282,8 @@ def eyelet_shots(y0, stations, section, weights, eyelet, offsets, last, tau, lam
             mask[i] = eyelet[j, i] and j > 0
             passing[i] = mask[i] and last[i] > j
         if j > 0:
-            for b in range(B):
-                for a in range(3):
-                    y[b * NS + 12 + a] -= (lam * weights[j, a]) if j < K else 0.0
-            _eyelet_points(y, B, offsets[j], P)
-            _chords(P_prev, P, mask, t_in, seg_len)
-            for b in range(B):
-                for i in range(n_t):
-                    if mask[i]:
-                        lengths[b, i] += seg_len[b, i]
-                        for a in range(3):
-                            P_prev[b, i, a] = P[b, i, a]
-            _predict(y, B, R_prev, t_in, passing, t_out)
+            _arrive(y, B, lam * weights[j] if j < K else np.zeros(3), offsets[j], mask, passing, P, P_prev, t_in,
+                    t_out, seg_len, lengths, R_prev)
         if j == K:
             _apply_disk(y, B, offsets[j], P, mask, tau, t_in, t_out, passing)
             break
