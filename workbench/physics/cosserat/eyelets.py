@@ -76,13 +76,9 @@ class EyeletRoute:
 
 
 def eyelet_route(robot: Robot, pb: RodProblem) -> EyeletRoute:
-    """The :class:`EyeletRoute` of ``robot`` (disks from its sections, weights from ``pb``).
-
-    Raises
-    ------
-    ValueError
-        A tendon with no disk on its route (nothing to pull on).
-    """
+    """The :class:`EyeletRoute` of ``robot`` (disks from its sections, weights from ``pb``).  Every
+    section has a disk at its end (``Section.n_disks >= 1``), so every station past the base is a disk
+    and a tendon has an eyelet at every station up to its end (the chords run station to station)."""
     L = pb.length
     routes = tendon_routes(robot)
     keys = sorted({0.0, L, *map(float, robot.section_ends), *map(float, pb.breakpoints),
@@ -102,9 +98,6 @@ def eyelet_route(robot: Robot, pb: RodProblem) -> EyeletRoute:
     offsets = np.zeros((st.size, n_t, 3))
     last = np.zeros(n_t, dtype=np.int64)
     for i, route in enumerate(routes):
-        if len(route) < 2:
-            raise ValueError(f"tendon {i} has no disk to run through (eyelet routing needs n_disks >= 1 in its "
-                             "section)")
         for s, d in route:
             j = index(s)
             eyelet[j, i] = True
