@@ -76,6 +76,27 @@ def test_planar_single_tendon_equals_the_segment_reference(disks):
     assert np.abs(res.tip_position[[0, 2]] - ref).max() < 1e-8 * 0.4, (res.tip_position, ref)
 
 
+def test_python_body_of_the_kernel_gives_the_compiled_shots():
+    """``eyelet_shots`` run as Python (``compiled=False``) and compiled: the same batch of shots (a bent
+    two-tendon state away from equilibrium, tapered offset, disk weights and gravity) to round-off."""
+    from workbench.physics.cosserat import rod_problem
+    from workbench.physics.cosserat.eyelets import eyelet_route, integrate_eyelets
+
+    tg = TendonGroup(angles=(0.3, 2.0), offset=0.02, offset_tip=0.012)
+    robot = Robot(sections=(Section(0.4, STIFF, tg, n_disks=5, disk_mass=0.01),), gravity=(0.0, 0.0, -9.81),
+                  base_rotation=base_rotation_for("horizontal"))
+    pb = rod_problem(robot, LoadCase())
+    route = eyelet_route(robot, pb)
+    x0 = np.array([[0.5, -0.2, -40.0, 0.3, -0.5, 0.01], [0.0, 0.1, -39.0, 0.35, -0.45, 0.0]])
+    tau = np.array([30.0, 10.0])
+    stations = np.linspace(0.0, 0.4, 7)
+    a = integrate_eyelets(pb, route, x0, tau, 1.0, 1e-10, stations)
+    b = integrate_eyelets(pb, route, x0, tau, 1.0, 1e-10, stations, compiled=False)
+    assert np.abs(a[0][:, :3]).max() > 0.05  # bent
+    for u, v in zip(a, b):
+        assert np.allclose(u, v, rtol=1e-12, atol=1e-14)
+
+
 def test_eyelets_converge_to_the_continuous_tendon_at_order_two():
     """The same rod, 4 / 8 / 16 / 32 disks: the tip gap to continuous routing falls at order ~2 (the
     chord's lever arm), as beam3d's eyelets do (docs/models.md); observed orders 2.16 / 2.04 / 2.01."""

@@ -319,8 +319,8 @@ def eyelet_shots(y0, stations, section, weights, eyelet, offsets, last, tau, lam
 
 
 def integrate_eyelets(pb: RodProblem, route: EyeletRoute, x0: np.ndarray, tau: np.ndarray, lam: float, rtol: float,
-                      stations: np.ndarray | None = None,
-                      chord_tol: float | None = None) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
+                      stations: np.ndarray | None = None, chord_tol: float | None = None,
+                      compiled: bool | None = None) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
     """Integrate ``B`` eyelet shots from the clamp to the tip.
 
     Parameters
@@ -338,6 +338,9 @@ def integrate_eyelets(pb: RodProblem, route: EyeletRoute, x0: np.ndarray, tau: n
         Sorted arc lengths at which to return the states.
     chord_tol : float, optional
         Convergence of the chords (unit vectors); default ``rtol``.
+    compiled : bool, optional
+        ``False``: run :func:`eyelet_shots` as Python (its ``py_func``; the functions it calls stay
+        compiled where numba is installed), checked against the compiled one by the tests.
 
     Returns
     -------
@@ -363,7 +366,8 @@ def integrate_eyelets(pb: RodProblem, route: EyeletRoute, x0: np.ndarray, tau: n
     ms = max(float(np.max(np.abs(x0[:, 3:]), initial=0.0)), fs * L)
     scale = np.concatenate([np.full(3, L), np.ones(9), np.full(3, fs), np.full(3, ms), np.full(2, L)])
     out_s = np.zeros(0) if stations is None else np.ascontiguousarray(stations, dtype=float)
-    yb, status, lengths, _, at = eyelet_shots(
+    shots = eyelet_shots if compiled is None or compiled else getattr(eyelet_shots, "py_func", eyelet_shots)
+    yb, status, lengths, _, at = shots(
         np.ascontiguousarray(y.reshape(-1)), route.stations, route.section, route.weights, route.eyelet,
         route.offsets, route.last, np.ascontiguousarray(tau, dtype=float), float(lam), float(rtol),
         rtol * np.tile(scale, B), float(rtol if chord_tol is None else chord_tol), out_s, *_DOP853,

@@ -146,7 +146,8 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
             tip, Y = integrate_segments(pb, shooter.x[None], T, 1.0, shooter.rtol, stations,
                                         compiled=shooter.compiled)
         else:
-            tip, Y, _ = integrate_eyelets(pb, route, shooter.x[None], T, 1.0, shooter.rtol, stations)
+            tip, Y, _ = integrate_eyelets(pb, route, shooter.x[None], T, 1.0, shooter.rtol, stations,
+                                          compiled=shooter.compiled)
     except (ShootingFailure, RuntimeError) as err:
         raise ModelFailure(f"cosserat: {err}") from None
     res = float(np.max(np.abs(shooter.tip_residual(tip, 1.0, T))))

@@ -115,7 +115,7 @@ class Shooter:
         if self.route is None:
             tip, _ = integrate_segments(self.pb, X, tau, lam, self.rtol, compiled=self.compiled)
         else:
-            tip, _, _ = integrate_eyelets(self.pb, self.route, X, tau, lam, self.rtol)
+            tip, _, _ = integrate_eyelets(self.pb, self.route, X, tau, lam, self.rtol, compiled=self.compiled)
         self.shots += X.shape[0]
         self._tip = tip[0]
         return self.tip_residual(tip, lam, tau)
