@@ -6,7 +6,9 @@ of the payload ``W_p`` at offset ``o`` in the tip frame and of a disk at the tip
 force scale ``F_s`` and by ``F_s L``.  One Newton iteration integrates seven shots as one batch
 (the iterate and six forward-difference perturbations share every integration step, so the
 difference quotients see one discretisation); the step is backtracked until the residual norm
-falls.  Large loads are reached with the common load ramp (:func:`workbench.physics._stepping.load_ramp`:
+falls.  With eyelets (:mod:`.eyelets`: the unknowns are the rod's own clamp wrench, a shot iterates
+its chords) the Jacobian is kept and updated by Broyden's rank-one formula while steps halve the
+residual (one shot per iteration), and a fresh one is taken otherwise.  Large loads are reached with the common load ramp (:func:`workbench.physics._stepping.load_ramp`:
 external loads and tendon tensions move together along a straight path from the last converged
 point; the first attempt is the whole way, a failure halves the increment, growth is capped at the
 load still to go), each Newton started from a secant predictor.  Each accepted solve reports its
