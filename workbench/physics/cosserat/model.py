@@ -1,6 +1,7 @@
 """The registered model ``"cosserat"``: ``run(robot, load, options) -> PhysicsResult``.
 
-Statics only.  Tension control: the tensions are the commands.  Length control: the tensions
+Statics only; tendons routed continuously or, with ``tendon_model = "eyelets"``, straight between the
+disks (:mod:`.eyelets`, tension control only; its Newton starts from the continuous solution).  Tension control: the tensions are the commands.  Length control: the tensions
 solve ``T = EA_t max(0, (l(T) - l0) / l0)`` (:func:`workbench.physics.tendon_loads.solve_length_controlled`,
 rest lengths from :func:`~workbench.physics.tendon_loads.tendon_rest_lengths`, compliance of the
 straight rod as the first quasi-Newton matrix), each ``l(T)`` a shooting solve warm-started from
@@ -62,10 +63,10 @@ def _eyelet_guess(pb: RodProblem, options: SolverOptions, shooter: Shooter, T: n
     continuous = Shooter(pb, max(options.newton_tolerance, 1e-4), compiled=shooter.compiled)
     try:
         continuous.go_to(T, options.max_load_steps)
-    except ShootingFailure:
+        _, Y = integrate_segments(pb, continuous.x[None], T, 1.0, continuous.rtol, shooter.route.stations[1:2],
+                                  compiled=shooter.compiled)
+    except (ShootingFailure, RuntimeError):
         return None
-    _, Y = integrate_segments(pb, continuous.x[None], T, 1.0, continuous.rtol, shooter.route.stations[1:2],
-                              compiled=shooter.compiled)
     return rod_wrench_from_total(shooter.route, continuous.x, T, Y[0, 0, 0:3], Y[0, 0, 3:12].reshape(3, 3))
 
 
