@@ -1,7 +1,7 @@
 """Eyelet routing for the Cosserat rod: tendons straight between disks, point loads at the disks.
 
-The subsegment Cosserat rod of Rao, Peyron, Lilge & Burgner-Kahrs (Front. Robot. AI 7:630245, 2021,
-Sec. 2.3.2): a tendon runs through an eyelet at every disk of its route
+The subsegment Cosserat rod of Rao, Peyron, Lilge & Burgner-Kahrs (Front. Robot. AI 7:630245, 2021, and
+its C++ code tdcr-modeling): a tendon runs through an eyelet at every disk of its route
 (:func:`workbench.physics._beam3d_layout.tendon_routes`, the same eyelets as ``beam3d``: the anchor on the
 base plate at ``s = 0``, then every disk up to the end of its section) and is straight between consecutive
 eyelets; between disks the rod carries no tendon load, so it obeys the tendon-free Cosserat equations
@@ -16,7 +16,7 @@ starts with the jump.  Rao et al. make every disk's wrench a shooting unknown (6
 by Levenberg-Marquardt: 120 unknowns on the benchmark robot).  Here the base wrench stays the only shooting
 unknown and each segment's chords are a fixed point solved as the integration reaches the segment: predict
 ``t_out = R_k R_{k-1}^T t_in`` (exact on a constant-curvature, evenly spaced stretch), integrate the
-segment, replace ``t_out`` by the chord to the eyelets reached, and repeat until the chords move less
+segment, replace ``t_out`` by the chord to the eyelets reached (Anderson mixing), and repeat until the chords move less
 than ``chord_tol`` (the map contracts: a change ``dt`` of a chord changes the next eyelet's chord by
 ``~ tau dt (h^2 / 6 EI + r^2 / GJ)``, ~0.1 dt on the benchmark robot; the converged shot is then a
 function of the base wrench to ``chord_tol``).  A batch of shots iterates together with common
