@@ -3,20 +3,22 @@ the ratio to the C++ peer's recorded medians (issue 31).
 
 Run from the repository root::
 
-    python benchmarks/bench_peer.py [--models cosserat,beam3d,spring_link,cc] [--cases 0,1,2] [--repeats 1]
+    python benchmarks/bench_peer.py [--models cosserat,cosserat_eyelets,beam3d,spring_link,cc] [--cases 0,1,2]
+                                    [--repeats 1]
                                     [--no-reference] [--ref-scale 4]
 
 Robot and cases (``../shared/notes/peer-benchmark.md``): 2 x 0.2 m NiTi (E 54 GPa, nu 0.3, d 1.4 mm, density
 6450 kg/m^3), 10 disks per section, 3 tendons per section at 90 / -30 / 210 deg, offset 10 mm, tendon EA 1e7 N,
 no gravity; tensions (section 1's three tendons, then section 2's) and a tip force in the base frame
-(:data:`CASES`).  Models: ``cosserat`` (continuous tendons, the peer's CR), ``beam3d`` with eyelets at 20
-elements (the peer's SSCR), ``spring_link`` with eyelets at 40 links (the peer's PRB), ``cc`` (the peer's CC;
+(:data:`CASES`).  Models: ``cosserat`` (continuous tendons, the peer's CR), ``cosserat_eyelets`` (the
+``cosserat`` model with ``tendon_model = "eyelets"``: the peer's SSCR, the same physics), ``beam3d`` with
+eyelets at 20 elements (also compared with the SSCR), ``spring_link`` with eyelets at 40 links (the peer's PRB), ``cc`` (the peer's CC;
 it ignores the tip force by design).
 
 Printed per model: the median over the solved cases of each case's best wall (and CPU) time of
 ``--repeats`` solves; cases solved / failed with the reasons; the tip distance / L to a reference solve of
-the same model and physics (max and median over the cases): ``cosserat`` at a 100x tighter
-``newton_tolerance`` (as the study pipeline's estimate), ``beam3d`` at ``--ref-scale`` times the elements
+the same model and physics (max and median over the cases): ``cosserat`` and ``cosserat_eyelets`` at a
+100x tighter ``newton_tolerance`` (as the study pipeline's estimate), ``beam3d`` at ``--ref-scale`` times the elements
 (an underestimate by ``ref-scale^-2``, 6 % at 4, for its order 2), ``spring_link`` against the independent
 eyelet model, ``beam3d`` at ``--ref-scale`` x 20 elements (the same eyelet physics: tendons straight
 between the disks, point loads at the disks; beam3d's extensibility is ~1e-4 L here), ``cc`` exact (no
@@ -57,23 +59,28 @@ CASES = (
 
 @dataclass(frozen=True)
 class Setup:
-    """How one model is run: its options, the reference options (``None``: exact), a label and the
-    reference's model (``None``: the same model)."""
+    """How one model is run: its options, the reference options (``None``: exact), a label, the
+    reference's model (``None``: the same model) and the registered model run (``None``: the row's name)."""
 
     options: SolverOptions
     reference: SolverOptions | None
     label: str
     reference_model: str | None = None
+    model: str | None = None
 
 
 def setups(ref_scale: int) -> dict[str, Setup]:
-    """The four models at the issue's resolutions, with their same-physics references."""
+    """The models at the issue's resolutions, with their same-physics references."""
     cos = SolverOptions(tendon_model="continuum")
+    cey = SolverOptions(tendon_model="eyelets")
     b3 = SolverOptions(n_elements=20, tendon_model="eyelets")
     sl = SolverOptions(n_elements=40, tendon_model="eyelets", model_settings={"spring_link": {"richardson": True}})
     return {
         "cosserat": Setup(cos, replace(cos, newton_tolerance=cos.newton_tolerance / 100),
                           f"tol {cos.newton_tolerance:g}; ref tol {cos.newton_tolerance / 100:g}"),
+        "cosserat_eyelets": Setup(cey, replace(cey, newton_tolerance=cey.newton_tolerance / 100),
+                                  f"eyelets; tol {cey.newton_tolerance:g}; ref tol {cey.newton_tolerance / 100:g}",
+                                  model="cosserat"),
         "beam3d": Setup(b3, replace(b3, n_elements=ref_scale * b3.n_elements),
                         f"eyelets, 20 el.; ref {ref_scale * 20} el."),
         "spring_link": Setup(sl, replace(b3, n_elements=ref_scale * b3.n_elements),
@@ -126,14 +133,14 @@ class Summary:
 
 def run_model(name: str, setup: Setup, cases: list[int], repeats: int, reference: bool) -> Summary:
     """Every case through ``name`` (and its reference), one line per case as it finishes."""
-    model, r = get_model(name), robot()
-    ref_model = get_model(setup.reference_model or name)
+    model, r = get_model(setup.model or name), robot()
+    ref_model = get_model(setup.reference_model or setup.model or name)
     walls, cpus, errors, failures, ref_failures = [], [], [], [], []
     for case in cases:
         out = solve(model, r, case, setup.options, repeats)
         if isinstance(out, str):
             failures.append((case, out))
-            print(f"  {name:>12} case {case:>2}: FAILED {out}", flush=True)
+            print(f"  {name:>16} case {case:>2}: FAILED {out}", flush=True)
             continue
         wall, cpu, tip = out
         walls.append(wall)
@@ -150,7 +157,7 @@ def run_model(name: str, setup: Setup, cases: list[int], repeats: int, reference
             else:
                 errors.append(float(np.linalg.norm(tip - ref[2])) / LENGTH)
                 err = f"{errors[-1]:.2e} L from the reference"
-        print(f"  {name:>12} case {case:>2}: {1e3 * wall:9.1f} ms wall {1e3 * cpu:9.1f} ms CPU  "
+        print(f"  {name:>16} case {case:>2}: {1e3 * wall:9.1f} ms wall {1e3 * cpu:9.1f} ms CPU  "
               f"tip {np.array2string(tip, precision=5)}  {err}", flush=True)
     return Summary(tuple(walls), tuple(cpus), tuple(errors), tuple(failures), tuple(ref_failures))
 
@@ -158,14 +165,18 @@ def run_model(name: str, setup: Setup, cases: list[int], repeats: int, reference
 def peer_rows() -> tuple[dict, dict[str, dict]]:
     """The peer's recorded timings: (source, {workbench model: peer row (with its key)})."""
     data = tomllib.loads((HERE / "peer_timings.toml").read_text())
-    by_model = {row["workbench_model"]: dict(row, key=key) for key, row in data["models"].items()
-                if row["workbench_model"]}
+    by_model = {}
+    for key, row in data["models"].items():
+        names = row["workbench_model"]
+        for name in [names] if isinstance(names, str) else names:
+            if name:
+                by_model[name] = dict(row, key=key)
     return data["source"], by_model
 
 
 def report(results: dict[str, Summary], labels: dict[str, str], peers: dict[str, dict], n_cases: int) -> None:
     """The summary table: medians, solved / failed, accuracy, speed-up over the peer."""
-    print(f"\n{'model':>12} {'resolution':<34} {'wall [ms]':>9} {'CPU [ms]':>9} {'solved':>7} {'max err':>9} "
+    print(f"\n{'model':>16} {'resolution':<34} {'wall [ms]':>9} {'CPU [ms]':>9} {'solved':>7} {'max err':>9} "
           f"{'med err':>9}  {'peer':>5} {'peer [ms]':>9} {'peer ok':>7} {'speed-up':>9}")
     for name, s in results.items():
         wall = 1e3 * float(np.median(s.walls)) if s.walls else math.nan
@@ -180,7 +191,7 @@ def report(results: dict[str, Summary], labels: dict[str, str], peers: dict[str,
             bound = "<" if p.get("upper_bound") else ""
             peer = (f"{p['key']:>5} {bound + format(p['median_ms'], 'g'):>9} {p['solved']:>4}/12 "
                     f"{bound + format(ratio, '.3g') + 'x':>9}")
-        print(f"{name:>12} {labels[name]:<34} {wall:9.1f} {cpu:9.1f} {len(s.walls):>3}/{n_cases:<3} {emax:>9} "
+        print(f"{name:>16} {labels[name]:<34} {wall:9.1f} {cpu:9.1f} {len(s.walls):>3}/{n_cases:<3} {emax:>9} "
               f"{emed:>9}  {peer}")
     for name, s in results.items():
         for case, why in s.failures:
@@ -192,7 +203,8 @@ def report(results: dict[str, Summary], labels: dict[str, str], peers: dict[str,
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--models", default="cosserat,beam3d,spring_link,cc", help="comma-separated model names")
+    ap.add_argument("--models", default="cosserat,cosserat_eyelets,beam3d,spring_link,cc",
+                    help="comma-separated model names")
     ap.add_argument("--cases", default=",".join(map(str, range(len(CASES)))), help="comma-separated case numbers")
     ap.add_argument("--repeats", type=int, default=1, help="solves per case (its best time counts)")
     ap.add_argument("--reference", action=argparse.BooleanOptionalAction, default=True,

@@ -244,9 +244,11 @@ MODELS: Mapping[str, ModelInfo] = {
     # no mesh (shooting to newton_tolerance): no order; its error is estimated by a tighter solve
     "cosserat": ModelInfo("workbench.physics.cosserat:run", "Cosserat rod", "#8c564b", accuracy="tolerance",
                           capabilities=Capabilities(
-        tendon_models=("continuum",), spatial_length_tendon_models=("continuum",), analyses=("static",),
-        note="Cosserat rod with continuously routed tendons (Rucker & Webster 2011), shooting with scipy; "
-             "static only; accuracy from newton_tolerance, n_elements unused")),
+        tendon_models=("continuum", "eyelets"), length_tendon_models=("continuum",),
+        spatial_length_tendon_models=("continuum",), analyses=("static",),
+        note="Cosserat rod with continuously routed tendons (Rucker & Webster 2011) or eyelets (straight between "
+             "disks, Rao et al. 2021's subsegment rod; tension control only), shooting; static only; accuracy "
+             "from newton_tolerance, n_elements unused")),
     "spring_link_cardan": ModelInfo("workbench.physics.spring_link.cardan:run", "spring-link, 2-DOF joints",
                                     "#17becf", order=2.0, capabilities=Capabilities(
         torsion=False, disk_weights="at the disk", extensibility=(),

@@ -85,6 +85,13 @@ COSSERAT = lambda c: Spec("cosserat", "tolerance")  # noqa: E731
 PAIRS: dict[str, Pair] = {p.name: p for p in (
     Pair("cosserat~beam3d", COSSERAT, _rod_eyelets("beam3d", 10), _routable),
     Pair("cosserat~ancf", COSSERAT, lambda c: Spec("ancf", "mesh", n=4), _planar),
+    # the same eyelet physics in two independent models (the beam3d side is shared with beam3d~ancf eyelets in
+    # the default tier; spatial cases only in the slow tier); cosserat eyelets are tension-controlled only
+    Pair("cosserat eyelets~beam3d eyelets", lambda c: Spec("cosserat", "eyelet_tolerance", disks=10),
+         lambda c: Spec("beam3d", "eyelets", disks=10), lambda c: _planar(c) and _loaded_tendons(c) and c.has("tension")),
+    Pair("cosserat eyelets~beam3d eyelets 3-D", lambda c: Spec("cosserat", "eyelet_tolerance", disks=10),
+         lambda c: Spec("beam3d", "eyelets", disks=10),
+         lambda c: not _planar(c) and _loaded_tendons(c) and c.has("tension"), slow_only=True),
     Pair("beam3d~ancf eyelets", lambda c: Spec("beam3d", "eyelets", disks=10), lambda c: Spec("ancf", "eyelets", disks=10),
          lambda c: _planar(c) and _loaded_tendons(c)),
     Pair("spring_link~cosserat", lambda c: Spec("spring_link", "mesh", n=8), COSSERAT,

@@ -10,7 +10,8 @@ ANCF's continuum tendon with a tapered offset, whose per-element reference curva
 constant and converges at order ~2, got a bar ~5 x too small.)  ``"eyelets"`` sides run ``per`` and
 ``2 per`` elements per disk interval at the declared order.  Special sides:
 
-* ``cosserat`` (no mesh): residual tolerances 1e-8 and 1e-10; the bar is the tip difference.
+* ``cosserat`` (no mesh): residual tolerances 1e-8 and 1e-10; the bar is the tip difference; with eyelets
+  (``"eyelet_tolerance"``) the same at ``disks`` per section.
 * eyelets extrapolated to continuous routing (issue 28 diagnostics: disk count ``d -> 2d`` with
   one element per disk interval, observed order ~2): the tip ``x_2d + (x_2d - x_d) / 3``, bar
   ``|x_2d - x_d| / 3``.
@@ -52,7 +53,8 @@ COSSERAT_TOL = (1e-8, 1e-10)
 class Spec:
     """How a side is solved: ``model``; ``kind`` one of ``"mesh"`` (``n`` elements per section,
     continuum tendons), ``"eyelets"`` (``disks`` per section, ``per`` elements per disk interval),
-    ``"routing"`` (eyelets at ``disks`` and ``2 disks``, extrapolated), ``"tolerance"``, ``"exact"``."""
+    ``"routing"`` (eyelets at ``disks`` and ``2 disks``, extrapolated), ``"tolerance"``, ``"eyelet_tolerance"``
+    (``"tolerance"`` with eyelets at ``disks`` per section), ``"exact"``."""
 
     model: str
     kind: str
@@ -70,6 +72,8 @@ class Spec:
             return f"{self.model} eyelets {self.disks}->{2 * self.disks} disks, extrapolated"
         if self.kind == "tolerance":
             return f"{self.model} (tol {COSSERAT_TOL[0]:g}/{COSSERAT_TOL[1]:g})"
+        if self.kind == "eyelet_tolerance":
+            return f"{self.model} eyelets ({self.disks} disks, tol {COSSERAT_TOL[0]:g}/{COSSERAT_TOL[1]:g})"
         return self.model
 
 
@@ -105,7 +109,8 @@ def _alarm(signum, frame):  # pragma: no cover - only on a hung solve
 @functools.cache
 def _compiled(model: str) -> None:
     """Run one small solve of ``model`` outside the timeout, once per process: a fresh install compiles the
-    cosserat numba kernel on its first solve (26-28 s CPU, once), which is not the case's solving time."""
+    cosserat numba kernel on its first solve (26-28 s CPU, once), and the eyelet kernel on its first eyelet
+    solve, which is not the case's solving time."""
     if model != "cosserat":
         return
     from workbench.robot import LoadCase
@@ -113,7 +118,9 @@ def _compiled(model: str) -> None:
     from workbench.robot.presets import build_preset
 
     robot = build_preset("rao_2021")
-    get_model(model)(robot, LoadCase(actuation=TendonActuation("tension", (1.0, 0.0, 0.0, 0.0, 0.0, 0.0))), SolverOptions())
+    for tendon_model in ("continuum", "eyelets"):
+        get_model(model)(robot, LoadCase(actuation=TendonActuation("tension", (1.0, 0.0, 0.0, 0.0, 0.0, 0.0))),
+                         SolverOptions(tendon_model=tendon_model))
 
 
 def _run(model: str, robot, load, opts: SolverOptions):
@@ -149,6 +156,10 @@ def _solves(spec: Spec, case: XCase):
     tight = dict(newton_tolerance=1e-10, max_load_steps=2000)
     if spec.kind == "tolerance":
         return [(robot, SolverOptions(newton_tolerance=t, max_load_steps=2000)) for t in COSSERAT_TOL]
+    if spec.kind == "eyelet_tolerance":
+        r = _with_disks(robot, spec.disks)
+        return [(r, SolverOptions(newton_tolerance=t, max_load_steps=2000, tendon_model="eyelets"))
+                for t in COSSERAT_TOL]
     if spec.kind == "exact":
         return [(robot, SolverOptions())]
     if spec.kind == "mesh":
@@ -195,7 +206,7 @@ def solve_side(spec: Spec, case: XCase) -> Side:
     order = registry.MODELS[spec.model].order
     if spec.kind == "mesh":
         order = effective_order(order, observed_order(diff, float(np.linalg.norm(tips[1] - tips[0]))))
-    if spec.kind == "tolerance":
+    if spec.kind in ("tolerance", "eyelet_tolerance"):
         return Side(spec, tuple(tips[1]), diff, tension, dt)
     if spec.kind == "routing":
         return Side(spec, tuple(tips[1] + (tips[1] - tips[0]) / 3.0), diff / 3.0, tension, dt)

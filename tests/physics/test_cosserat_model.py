@@ -60,8 +60,8 @@ def test_registered_and_rejections():
     act = TendonActuation("tension", (10.0, 0.0))
     with pytest.raises(ModelFailure, match="static"):
         run(robot, LoadCase(actuation=act, analysis="dynamic", duration=1.0), SolverOptions())
-    with pytest.raises(ModelFailure, match="eyelets"):
-        run(robot, LoadCase(actuation=act), SolverOptions(tendon_model="eyelets"))
+    with pytest.raises(ModelFailure, match="eyelet"):
+        run(robot, LoadCase(actuation=TendonActuation("length", (-1e-3, 0.0))), SolverOptions(tendon_model="eyelets"))
 
 
 def test_straight_routing_gives_exact_cc_arcs_in_space():

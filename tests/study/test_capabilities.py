@@ -42,8 +42,8 @@ CORPUS = [
     ("beam3d_continuum_arc", study('"beam3d"', load=ARC), E, "solver.tendon_model", "(got 'continuum')"),
     ("beam3d_swept_tendon_model", study('"beam3d"', sweep='product = { "solver.tendon_model" = ["eyelets", '
                                                            '"continuum"] }'), E, "solver.tendon_model", "beam3d"),
-    ("cosserat_eyelets", study('"cc", "cosserat"', solver='tendon_model = "eyelets"'), E, "solver.tendon_model",
-     "model 'cosserat' supports"),
+    ("cosserat_eyelets_length", study('"cosserat"', load=LENGTH, solver='tendon_model = "eyelets"'), E,
+     "solver.tendon_model", "model 'cosserat' supports"),
     ("cosserat_dynamic", study('"cosserat"', load='analysis = "dynamic"\nduration = 0.1'), E, "load.analysis",
      "supports only static analysis"),
     ("ancf3d_tension", study('"ancf3d"'), E, "load.tensions", "model 'ancf3d' cannot carry tendon loads"),
@@ -101,6 +101,7 @@ CONTROLS = [
     ("cc_everything", study('"cc"', robot="first_tendon_angle = 0.3", load='mode = "tension"\ntensions = [1.0, 0.0]\n'
                                                                            'tip_torque = [0.0, 0.0, 0.01]')),
     ("beam3d_eyelets", study('"cc", "beam3d"', solver='tendon_model = "eyelets"')),
+    ("cosserat_eyelets", study('"cc", "cosserat"', solver='tendon_model = "eyelets"')),
     ("ancf3d_tip_force", study('"ancf3d"', load='tip_force = [0.01, 0.02, 0.0]')),
     ("ancf_pi_tendon", study('"ancf"', robot="first_tendon_angle = 3.141592653589793")),
     ("spring_link_spatial_length_continuum", study('"spring_link"', robot="first_tendon_angle = 0.3", load=LENGTH,
@@ -158,7 +159,7 @@ PROBES = [  # (model, corpus id): validate refuses it, so must the model
     ("beam3d", "beam3d_continuum_tension"),
     ("ancf3d", "ancf3d_tension"), ("ancf3d", "ancf3d_pretension"), ("ancf3d", "ancf3d_tip_torque"),
     ("ancf", "ancf_tendon_angle"), ("ancf", "ancf_tip_force_y"), ("ancf", "ancf_tip_torque_z"),
-    ("cosserat", "cosserat_eyelets"), ("cosserat", "cosserat_dynamic"),
+    ("cosserat", "cosserat_eyelets_length"), ("cosserat", "cosserat_dynamic"),
 ]
 
 

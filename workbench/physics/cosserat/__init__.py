@@ -1,4 +1,4 @@
-"""Cosserat rod with continuously routed tendons (Rucker & Webster 2011): model ``"cosserat"``.
+"""Cosserat rod with continuously routed tendons (Rucker & Webster 2011) or eyelets: model ``"cosserat"``.
 
 The standard statics model of tendon-driven continuum robots: a geometrically exact rod
 (bending, torsion, shear and extension, ``K_se = diag(GA, GA, EA)``, ``K_bt = diag(EI, EI, GJ)``)
@@ -13,10 +13,12 @@ the Exudyn models it is compared with.
 * :mod:`.shooting` -- :class:`Shooter`: batched-shot Newton, the load ramp.
 * :mod:`.kernel` -- the right-hand side and scipy's DOP853 steps compiled with numba (optional; numpy and
   ``solve_ivp`` in :mod:`.rod` without it).
+* :mod:`.eyelets` -- ``tendon_model = "eyelets"``: tendons straight between the disks, point loads there
+  (the subsegment rod of Rao et al. 2021), the chords solved per segment inside each shot.
 * :mod:`.model` -- :func:`run`: tension or length control, results.
 
-Where it differs from the Exudyn models: the tendon is continuous (no eyelets; ``beam3d``,
-``ancf`` and ``spring_link`` eyelets converge to it as the disk count grows, order 2), the rod is
+Where it differs from the Exudyn models: the tendon is continuous by default (``beam3d``, ``ancf``,
+``spring_link`` and its own eyelets converge to it as the disk count grows, order 2), the rod is
 a continuum (no elements: ``options.n_elements`` is unused, the accuracy follows
 ``options.newton_tolerance``), and it is static only.  Limits: a shooting method needs a
 predictor close enough to the solution; the load ramp provides it (``options.max_load_steps``

@@ -1,6 +1,7 @@
 """The registered model ``"cosserat"``: ``run(robot, load, options) -> PhysicsResult``.
 
-Statics only.  Tension control: the tensions are the commands.  Length control: the tensions
+Statics only; tendons routed continuously or, with ``tendon_model = "eyelets"``, straight between the
+disks (:mod:`.eyelets`, tension control only; its Newton starts from the continuous solution).  Tension control: the tensions are the commands.  Length control: the tensions
 solve ``T = EA_t max(0, (l(T) - l0) / l0)`` (:func:`workbench.physics.tendon_loads.solve_length_controlled`,
 rest lengths from :func:`~workbench.physics.tendon_loads.tendon_rest_lengths`, compliance of the
 straight rod as the first quasi-Newton matrix), each ``l(T)`` a shooting solve warm-started from
@@ -32,6 +33,7 @@ from ...robot import LoadCase, Robot
 from .._stepping import path_fields
 from ..tendon_loads import solve_length_controlled, tendon_rest_lengths
 from . import warm as warm_start
+from .eyelets import eyelet_route, integrate_eyelets, rod_wrench_from_total
 from .problem import RodProblem, rod_problem
 from .rod import N_BASE, integrate_segments
 from .shooting import Shooter, ShootingFailure
@@ -58,6 +60,22 @@ def straight_compliance(pb: RodProblem) -> np.ndarray:
     return C
 
 
+def _eyelet_guess(pb: RodProblem, options: SolverOptions, shooter: Shooter, T: np.ndarray) -> np.ndarray | None:
+    """The eyelet shooting's predictor: the continuous-tendon solution (its tip differs by the eyelet
+    effect, ~1e-2 L on the peer benchmark) at a loose tolerance, as the rod's own clamp wrench
+    (:func:`.eyelets.rod_wrench_from_total`); ``None`` for continuous tendons or where it fails."""
+    if shooter.route is None or not np.any(T):
+        return None
+    continuous = Shooter(pb, max(options.newton_tolerance, 1e-4), compiled=shooter.compiled)
+    try:
+        continuous.go_to(T, options.max_load_steps)
+        _, Y = integrate_segments(pb, continuous.x[None], T, 1.0, continuous.rtol, shooter.route.stations[1:2],
+                                  compiled=shooter.compiled)
+    except (ShootingFailure, RuntimeError):
+        return None
+    return rod_wrench_from_total(shooter.route, continuous.x, T, Y[0, 0, 0:3], Y[0, 0, 3:12].reshape(3, 3))
+
+
 def _tensions(pb: RodProblem, load: LoadCase, options: SolverOptions, shooter: Shooter) -> tuple[np.ndarray, int]:
     """Tendon tensions of the equilibrium (the shooter ends at it); returns (tensions, ramp attempts)."""
     act = load.actuation
@@ -65,7 +83,7 @@ def _tensions(pb: RodProblem, load: LoadCase, options: SolverOptions, shooter: S
         return np.zeros(pb.n_tendons), shooter.go_to(np.zeros(pb.n_tendons), options.max_load_steps)
     if act.mode == "tension":
         T = np.asarray(act.values, dtype=float)
-        return T, shooter.go_to(T, options.max_load_steps)
+        return T, shooter.go_to(T, options.max_load_steps, _eyelet_guess(pb, options, shooter, T))
     l0 = tendon_rest_lengths(pb.reference_tendon_lengths(), act.values, act.pretension, pb.tendon_stiffness)
     attempts = [0]
     # a shooting residual eps bends the rod by ~eps F_s L / EI, i.e. moves a tendon path by
@@ -108,31 +126,40 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     options : SolverOptions
         ``newton_tolerance`` (scaled tip residual; integration at a tenth of it),
         ``max_load_steps``, ``n_stations``; ``n_elements`` is not used (the integration is
-        adaptive, 8th order).  ``tendon_model`` must be ``"continuum"`` for loaded tendons.
+        adaptive, 8th order).  ``tendon_model``: ``"continuum"`` (Rucker & Webster) or ``"eyelets"``
+        (straight between the disks, :mod:`.eyelets`; tension control only).
 
     Raises
     ------
     ModelFailure
-        Dynamic analysis, eyelet tendons, or no converged equilibrium.
+        Dynamic analysis, length-controlled eyelet tendons, or no converged equilibrium.
     """
     t0 = time.perf_counter()
     check_model_inputs(robot, load, options)
     if load.analysis != "static":
         raise ModelFailure("cosserat: static analysis only (no dynamics in the shooting model)")
     act = load.actuation
-    if act is not None and options.tendon_model != "continuum" and any(v != 0 for v in act.values):
-        raise ModelFailure("cosserat: tendons are routed continuously; tendon_model='eyelets' is not supported "
-                           "(use beam3d, ancf or spring_link for discrete eyelets)")
+    eyelets = options.tendon_model == "eyelets"
+    if eyelets and act is not None and act.mode == "length":
+        raise ModelFailure("cosserat: length-controlled tendons need tendon_model='continuum' (eyelet routing "
+                           "is tension-controlled only; beam3d, ancf or spring_link carry eyelets in length mode)")
     pb = rod_problem(robot, load)
-    shooter, T, attempts, warm = _warm_solve(pb, load, options)
-    if shooter is None:
-        shooter = Shooter(pb, options.newton_tolerance)
-        try:
+    route = eyelet_route(robot, pb) if eyelets else None
+    # warm starts: continuous routing only (the eyelet chords are solved afresh in every shot)
+    shooter, T, attempts, warm = (None, None, 0, False) if eyelets else _warm_solve(pb, load, options)
+    try:
+        if shooter is None:
+            shooter = Shooter(pb, options.newton_tolerance, route=route)
             T, attempts = _tensions(pb, load, options, shooter)
-        except (ShootingFailure, RuntimeError) as err:
-            raise ModelFailure(f"cosserat: {err}") from None
-    stations = np.linspace(0.0, robot.length, options.n_stations)
-    tip, Y = integrate_segments(pb, shooter.x[None], T, 1.0, shooter.rtol, stations, compiled=shooter.compiled)
+        stations = np.linspace(0.0, robot.length, options.n_stations)
+        if route is None:
+            tip, Y = integrate_segments(pb, shooter.x[None], T, 1.0, shooter.rtol, stations,
+                                        compiled=shooter.compiled)
+        else:
+            tip, Y, _ = integrate_eyelets(pb, route, shooter.x[None], T, 1.0, shooter.rtol, stations,
+                                          compiled=shooter.compiled)
+    except (ShootingFailure, RuntimeError) as err:
+        raise ModelFailure(f"cosserat: {err}") from None
     res = float(np.max(np.abs(shooter.tip_residual(tip, 1.0, T))))
     frame = np.eye(4)
     frame[:3, :3] = tip[0, 3:12].reshape(3, 3)
@@ -140,8 +167,8 @@ def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     U, _, Vt = np.linalg.svd(frame[:3, :3])
     frame[:3, :3] = U @ Vt
     # a state to start from: the end of the straight load path (tension control), without an event
-    offer = (act is None or act.mode == "tension") and not path_fields(*shooter.ramps)["path_event"] \
-        and shooter.sign == 1
+    offer = route is None and (act is None or act.mode == "tension") \
+        and not path_fields(*shooter.ramps)["path_event"] and shooter.sign == 1
     extras = {"newton_iterations": float(shooter.newton_iterations), "load_steps": float(attempts),
               "shots": float(shooter.shots), "tip_residual": res}
     if options.warm_state is not None:

@@ -6,7 +6,9 @@ of the payload ``W_p`` at offset ``o`` in the tip frame and of a disk at the tip
 force scale ``F_s`` and by ``F_s L``.  One Newton iteration integrates seven shots as one batch
 (the iterate and six forward-difference perturbations share every integration step, so the
 difference quotients see one discretisation); the step is backtracked until the residual norm
-falls.  Large loads are reached with the common load ramp (:func:`workbench.physics._stepping.load_ramp`:
+falls.  With eyelets (:mod:`.eyelets`: the unknowns are the rod's own clamp wrench, a shot iterates
+its chords) the Jacobian is kept and updated by Broyden's rank-one formula while steps halve the
+residual (one shot per iteration), and a fresh one is taken otherwise.  Large loads are reached with the common load ramp (:func:`workbench.physics._stepping.load_ramp`:
 external loads and tendon tensions move together along a straight path from the last converged
 point; the first attempt is the whole way, a failure halves the increment, growth is capped at the
 load still to go), each Newton started from a secant predictor.  Each accepted solve reports its
@@ -26,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._stepping import LoadRampInfo, PathPoint, RampExhausted, RampPolicy, RampStalled, load_ramp
+from .eyelets import EyeletRoute, integrate_eyelets, straight_tendon_wrench
 from .problem import RodProblem
 from .rod import cross, integrate_segments
 
@@ -79,10 +82,16 @@ class Shooter:
     compiled : bool, optional
         Right-hand side by the numba kernel (default: where numba is installed) or numpy
         (:func:`~workbench.physics.cosserat.rod.integrate_segments`).
+    route : EyeletRoute, optional
+        Eyelet routing (:mod:`.eyelets`): the unknowns are then the rod's own clamp wrench and the
+        shots are :func:`~workbench.physics.cosserat.eyelets.integrate_eyelets`; ``None``: continuous
+        tendons.
     """
 
-    def __init__(self, pb: RodProblem, tol: float, compiled: bool | None = None) -> None:
+    def __init__(self, pb: RodProblem, tol: float, compiled: bool | None = None,
+                 route: EyeletRoute | None = None) -> None:
         self.pb = pb
+        self.route = route
         self.compiled = compiled
         self.tol = float(tol)
         self.rtol = max(1e-13, 0.1 * self.tol)
@@ -105,7 +114,10 @@ class Shooter:
 
     def residual(self, X: np.ndarray, lam: float, tau: np.ndarray) -> np.ndarray:
         """Scaled tip residuals ``(B, 6)`` of base wrenches ``X`` ``(B, 6)`` at load ``(lam, tau)``."""
-        tip, _ = integrate_segments(self.pb, X, tau, lam, self.rtol, compiled=self.compiled)
+        if self.route is None:
+            tip, _ = integrate_segments(self.pb, X, tau, lam, self.rtol, compiled=self.compiled)
+        else:
+            tip, _, _ = integrate_eyelets(self.pb, self.route, X, tau, lam, self.rtol, compiled=self.compiled)
         self.shots += X.shape[0]
         self._tip = tip[0]
         return self.tip_residual(tip, lam, tau)
@@ -130,6 +142,8 @@ class Shooter:
         """
         fs, ms = self._scales(lam, tau)
         scale = np.array([fs, fs, fs, ms, ms, ms])
+        if self.route is not None:
+            return self._broyden(x, lam, tau, scale)
         try:
             for _ in range(_MAX_NEWTON):
                 h = 1e-7 * np.maximum(np.abs(x), scale)
@@ -148,6 +162,41 @@ class Shooter:
             raise ShootingFailure(str(err)) from err
         raise ShootingFailure(f"no convergence in {_MAX_NEWTON} Newton iterations")
 
+    def _jacobian(self, x: np.ndarray, lam: float, tau: np.ndarray, scale: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Residual and forward-difference Jacobian at ``x`` (seven shots in one batch)."""
+        h = 1e-7 * np.maximum(np.abs(x), scale)
+        res = self.residual(np.vstack([x, x + np.diag(h)]), lam, tau)
+        if not np.all(np.isfinite(res)):
+            raise ShootingFailure("non-finite tip residual")
+        return res[0], ((res[1:] - res[0]) / h[:, None]).T
+
+    def _broyden(self, x: np.ndarray, lam: float, tau: np.ndarray, scale: np.ndarray) -> np.ndarray:
+        """Newton with Broyden's (good) rank-one updates of the difference Jacobian: a step that at
+        least halves the residual norm updates the Jacobian (one shot per iteration instead of seven);
+        any other step falls back to a fresh difference Jacobian and the backtracking line search.
+        Used with eyelets, whose shots cost more (the chords are iterated per segment)."""
+        try:
+            r0, J = self._jacobian(x, lam, tau, scale)
+            fresh = True
+            for _ in range(3 * _MAX_NEWTON):
+                if np.max(np.abs(r0)) <= self.tol:
+                    self.sign = int(np.sign(np.linalg.det(J)))
+                    return x
+                self.newton_iterations += 1
+                dx = np.linalg.solve(J, -r0)
+                ra = self.residual((x + dx)[None], lam, tau)[0]
+                if np.all(np.isfinite(ra)) and np.linalg.norm(ra) <= 0.5 * np.linalg.norm(r0):
+                    J = J + np.outer(ra - r0 - J @ dx, dx) / (dx @ dx)
+                    x, r0, fresh = x + dx, ra, False
+                    continue
+                if fresh:
+                    x = self._line_search(x, dx, r0, lam, tau)
+                r0, J = self._jacobian(x, lam, tau, scale)
+                fresh = True
+        except (RuntimeError, np.linalg.LinAlgError) as err:
+            raise ShootingFailure(str(err)) from err
+        raise ShootingFailure(f"no convergence in {3 * _MAX_NEWTON} Broyden iterations")
+
     def _line_search(self, x, dx, r0, lam, tau) -> np.ndarray:  # noqa: ANN001
         n0 = np.linalg.norm(r0)
         a = 1.0
@@ -159,6 +208,12 @@ class Shooter:
             a *= 0.5
         raise ShootingFailure("line search failed to reduce the tip residual")
 
+    def straight(self, lam: float, tau: np.ndarray) -> np.ndarray:
+        """``(6,)`` the unknowns on the straight rod under ``lam`` x the external loads and tensions
+        ``tau`` (the tendons count only with eyelets, where the unknowns are the rod's own wrench)."""
+        x = straight_rod_base_wrench(self.pb, lam)
+        return x if self.route is None else x + straight_tendon_wrench(self.route, tau)
+
     def path_point(self) -> PathPoint:
         """The load-path measure of the last converged state: tip position / L and tip tangent,
         with the sign of the shooting Jacobian's determinant (the last integrated shot's tip)."""
@@ -166,9 +221,10 @@ class Shooter:
         return PathPoint(tuple(np.concatenate([tip[0:3] / self.pb.length, tip[3:12].reshape(3, 3)[:, 2]])),
                          self.sign)
 
-    def go_to(self, tau: np.ndarray, max_attempts: int) -> int:
+    def go_to(self, tau: np.ndarray, max_attempts: int, guess: np.ndarray | None = None) -> int:
         """Follow the straight load path from the last converged point to the full external
-        load with tensions ``tau`` [N]; returns the number of ramp attempts.
+        load with tensions ``tau`` [N]; returns the number of ramp attempts.  ``guess``: the
+        unknowns' predictor for a first attempt that goes the whole way (else the straight rod's).
 
         Raises
         ------
@@ -179,18 +235,20 @@ class Shooter:
         tau = np.asarray(tau, dtype=float)
         path: list[tuple[float, np.ndarray]] = [(0.0, start.x)]
 
-        def predict(t: float, lam: float) -> np.ndarray:
+        def predict(t: float, lam: float, ta: np.ndarray) -> np.ndarray:
+            if guess is not None and len(path) == 1 and t == 1.0:
+                return np.asarray(guess, dtype=float)
             if len(path) >= 2:
                 (ta, xa), (tb, xb) = path[-2], path[-1]
                 return xb + (t - tb) / (tb - ta) * (xb - xa)
-            return start.x + straight_rod_base_wrench(self.pb, lam) - straight_rod_base_wrench(self.pb, start.lam)
+            return start.x + self.straight(lam, ta) - self.straight(start.lam, start.tau)
 
         def attempt(t: float) -> bool | PathPoint:
             lam = start.lam + t * (1.0 - start.lam)
             ta = start.tau + t * (tau - start.tau)
             self.attempts += 1
             try:
-                x = self.newton(predict(t, lam), lam, ta)
+                x = self.newton(predict(t, lam, ta), lam, ta)
             except ShootingFailure:
                 return False
             path.append((t, x))
