@@ -77,3 +77,23 @@ def synthetic_study(n: int, names, seed: int = 0, noise: float = 1e-4, model: st
 def true_values(names, truth=None, table=PARAMETERS) -> np.ndarray:
     """The true parameter vector of :func:`synthetic_study`."""
     return np.array([(truth or {}).get(k, table[k][0]) for k in names])
+
+
+#: the calibration study tests/study/test_kind_contract.py runs (its data: :func:`write_contract_data`)
+CONTRACT_STUDY = "fixtures/fit_contract.toml"
+
+
+def write_contract_data(path) -> None:
+    """Write ``fixtures/fit_contract.csv``: 24 samples, tips CC predicts for :data:`ROBOT` at E = 60 GPa
+    and the registration of :data:`PARAMETERS`, plus 0.1 mm noise, in mm (``python -c "import fit_support;
+    fit_support.write_contract_data('fixtures/fit_contract.csv')"`` in ``tests/measure``)."""
+    names = ("robot.youngs_modulus", "registration.translation[0]", "registration.translation[1]",
+             "registration.translation[2]", "registration.rotation[0]", "registration.rotation[1]",
+             "registration.rotation[2]")
+    st = synthetic_study(24, names, seed=21, noise=1e-4)
+    m = st.measurements
+    lines = ["T1,T2,T3,T4,T5,T6,x,y,z"]
+    for c, p in zip(m.commands, m.tip_position * 1e3):
+        lines.append(",".join(f"{v:.6f}" for v in (*c, *p)))
+    with open(path, "w", encoding="utf-8") as f:
+        f.write("\n".join(lines) + "\n")
