@@ -150,6 +150,7 @@ def test_fit_sees_only_training_rows():
     p = Spy("cc", {"robot": st.robot, "load": {}, "solver": {}}, names, st.measurements)
     res = calibrate_on(p, st.calibration.parameters, st.measurements.tip_position, rows.train, 0.95, 100, None)
     assert res.success and len(seen) == res.evaluations > 3
+    assert p.timing.reused > 0 and p.timing.calls + p.timing.reused == res.evaluations  # registration steps reuse
     assert all(np.array_equal(s, rows.train) for s in seen)
     assert not np.isin(rows.test, np.concatenate(seen)).any()
 

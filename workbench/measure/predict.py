@@ -251,12 +251,14 @@ def solve_samples(model: str, robot, load: Mapping[str, Any], options, mode: str
 
 @dataclass
 class Timing:
-    """Model evaluations counted by a :class:`Predictor`: ``calls`` residual evaluations, ``samples``
-    model evaluations of one sample, ``seconds`` spent in the model (robot builds included)."""
+    """Model evaluations counted by a :class:`Predictor`: ``calls`` predictions that ran the model,
+    ``samples`` model evaluations of one sample, ``seconds`` spent in the model, ``reused``
+    predictions that only moved the last one (a registration change)."""
 
     calls: int = 0
     samples: int = 0
     seconds: float = 0.0
+    reused: int = 0
 
 
 @dataclass
@@ -276,6 +278,8 @@ class Predictor:
         Counts of the evaluations so far.
     robots : dict
         Memo of the robots built (:meth:`robot_for`).
+    recent : dict
+        The last four base-frame predictions, by what they were made for (:meth:`predict`).
     """
 
     model: str
@@ -284,6 +288,7 @@ class Predictor:
     measurements: Measurements
     timing: Timing = field(default_factory=Timing)
     robots: dict = field(default_factory=dict, repr=False)
+    recent: dict = field(default_factory=dict, repr=False)
 
     def robot_for(self, parts: VectorParts):
         """The robot with the calibrated key-path values and the case parameters (memoised by those
@@ -314,12 +319,31 @@ class Predictor:
     def predict(self, x: Sequence[float], idx: np.ndarray, backbones: bool = False
                 ) -> tuple[np.ndarray, np.ndarray | None]:
         """Tips ``(len(idx), 3)`` of samples ``idx`` in the measurement frame, and their backbones
-        ``(len(idx), n_stations, 3)`` when ``backbones`` (else ``None``)."""
-        t0 = time.perf_counter()
+        ``(len(idx), n_stations, 3)`` when ``backbones`` (else ``None``).
+
+        A recent base-frame prediction is reused when only the registration changed (the
+        Jacobian's registration columns: no model evaluation).
+        """
         idx = np.asarray(idx, dtype=int)
         m = self.measurements
         parts = split_vector(self.names, x, m.commands.shape[1])
         robot, params = self.robot_for(parts)
+        key = (tuple(parts.keys.items()), parts.command_zero.tobytes(), idx.tobytes(), backbones)
+        if key in self.recent:
+            tips, bb = self.recent[key]
+            self.timing.reused += 1
+        else:
+            tips, bb = self._base_frame(robot, params, parts, idx, backbones)
+            if len(self.recent) >= 4:
+                del self.recent[next(iter(self.recent))]
+            self.recent[key] = (tips, bb)
+        return to_frame(tips, m.frame, robot, parts), (None if bb is None else to_frame(bb, m.frame, robot, parts))
+
+    def _base_frame(self, robot, params, parts: VectorParts, idx: np.ndarray, backbones: bool
+                    ) -> tuple[np.ndarray, np.ndarray | None]:
+        """The model's tips (and backbones) of samples ``idx`` in the base frame (timed)."""
+        t0 = time.perf_counter()
+        m = self.measurements
         cmd = self.commands(parts, idx)
         options = model_options(params["solver"], self.model)
         if self.model == "cc":
@@ -335,7 +359,7 @@ class Predictor:
         self.timing.seconds += time.perf_counter() - t0
         if not np.isfinite(tips).all():
             raise PredictionFailure(f"model {self.model}: non-finite tip position")
-        return to_frame(tips, m.frame, robot, parts), (None if bb is None else to_frame(bb, m.frame, robot, parts))
+        return tips, bb
 
     def tips(self, x: Sequence[float], idx: np.ndarray) -> np.ndarray:
         """Tips ``(len(idx), 3)`` of samples ``idx`` in the measurement frame (:meth:`predict`)."""
