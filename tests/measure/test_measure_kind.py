@@ -171,3 +171,14 @@ def test_spread_samples_is_deterministic_and_spread():
     c = np.array([[0.0, 0.0], [1.0, 1.0], [0.9, 1.0], [0.0, 1.0], [1.0, 0.0], [0.5, 0.5]])
     assert spread_samples(c, 4).tolist() == [0, 1, 3, 4]
     assert spread_samples(c, 20).size == 6 and spread_samples(c[:0], 3).size == 0
+
+
+def test_a_robot_the_values_cannot_build_is_a_failed_row():
+    st = synthetic_study(10, NAMES[:1], seed=10)
+    bad = replace(st.calibration.parameters[0], name="robot.diameter", initial=-1e-3, lower=-2e-3, upper=-0.5e-3)
+    st = replace(st, calibration=replace(st.calibration, parameters=(bad,)))
+    row = _row(st, "cc", split_rows(10, 0.2, seed=10))
+    assert row["status"] == "failed" and row["failure"] == "model"
+    assert row["error"].startswith("calibration failed: model cc: the robot with robot.diameter = -0.001 cannot be "
+                                   "built: ")
+    assert np.isnan(row["calib.values"]).all() and row["calib.evaluations"] == 1

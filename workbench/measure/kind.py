@@ -90,7 +90,8 @@ class CalibrationKind(StudyKind):
              ) -> CalibrationStudy:
         from .spec import load_calibration_study
 
-        return replace(load_calibration_study(path, overrides=tuple(overrides)), overrides=tuple(overrides))
+        return replace(load_calibration_study(path, max_cases=max_cases, overrides=tuple(overrides)),
+                       overrides=tuple(overrides))
 
     def expand(self, spec: CalibrationStudy) -> list[Case]:
         return [Case(case_id=case_id_for({"fold": f, "config_hash": spec.config_hash}), index=f,
