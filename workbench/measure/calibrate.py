@@ -13,20 +13,23 @@ Jacobian: forward differences (scipy ``"2-point"``) with the relative step ``dif
 (:func:`diff_step`): CC is closed-form arithmetic, so the default ``sqrt(eps) ~ 1.5e-8``; a physics
 model solves to a relative Newton tolerance ``tau``, so its tips carry errors up to ~``tau`` and the
 step is ``sqrt(tau)`` (the step that balances truncation against that noise).  For CC one
-evaluation covers every training row in one vectorised call, so a Jacobian costs ``p`` batched calls.
+evaluation covers every training row in one vectorised call, so a Jacobian costs at most ``p``
+batched calls.
 
 Confidence intervals (linearised at the optimum, stated as such): ``cov = s^2 (J^T J)^-1`` with
 ``s^2 = SSR / (m - p)`` (``m`` residuals, ``p`` parameters), half-width
 ``t_{(1+c)/2, m-p} sqrt(cov_ii)``.  They assume independent, equal-variance residuals and a model
 that is linear in the parameters over the interval; they are not clipped to the bounds.  A
 parameter in a direction the data cannot see (singular values of the column-normalised ``J``
-below ``100 * diff_step``: a forward difference errs by about the step, relative, so smaller
-singular values cannot be told from zero) gets an
-infinite interval and the message names it.  A value within ``1e-6`` of its bound span from a bound
-is flagged ``at_bound`` (its interval then means little).
+below ``100 * diff_step``: a forward difference errs by about its relative step, so smaller
+singular values cannot be told from zero) gets an infinite interval and the message names it.
+A value within ``1e-6`` of its bound span from a bound is flagged ``at_bound`` (its interval then
+means little).  A Jacobian's registration columns cost no model evaluation (the predictor moves
+its last prediction, :class:`~workbench.measure.predict.Predictor`).
 
 Checked by ``tests/measure/test_measure_calibrate.py`` (recovery within the intervals, coverage over
-seeds, at-bound flag, unidentifiable parameters, held-out rows never in the fit).
+seeds, at-bound flag, unidentifiable parameters, held-out rows never in the fit) and
+``tests/measure/test_measure_calibrate_physics.py`` (a Cosserat rod recovers its own values).
 """
 
 from __future__ import annotations
