@@ -2,17 +2,20 @@
 
 The unknowns (``[calibration.parameters]``, command zero, registration; :class:`FitParameter`) are
 found by scipy's ``least_squares`` (trust-region reflective, ``method="trf"``) within their bounds,
-each variable scaled by its bound span (``x_scale``), at most ``max_evaluations`` residual
-evaluations (scipy's ``max_nfev``, which does not count the Jacobian's).
+each variable scaled by its bound span: the fit runs in ``u = (x - lower) / (upper - lower)`` in
+``[0, 1]`` (scipy's ``x_scale`` would scale the steps but not its ``xtol`` test, which compares a step
+with ``norm(x)``: with E ~ 6e10 Pa among the unknowns it stopped fits early), at most
+``max_evaluations`` residual evaluations (scipy's ``max_nfev``, which does not count the Jacobian's).
 
 Residuals: the tip position differences ``predicted - measured`` [m], three per training sample,
 in the measurement frame.  Measured orientations and backbone points do not enter the fit yet
 (they are stored and drawn; weighting them against positions is left for later).
 
-Jacobian: forward differences (scipy ``"2-point"``) with the relative step ``diff_step``
-(:func:`diff_step`): CC is closed-form arithmetic, so the default ``sqrt(eps) ~ 1.5e-8``; a physics
-model solves to a relative Newton tolerance ``tau``, so its tips carry errors up to ~``tau`` and the
-step is ``sqrt(tau)`` (the step that balances truncation against that noise).  For CC one
+Jacobian: forward differences (scipy ``"2-point"``) with the step ``diff_step`` in ``u``, i.e. that
+fraction of each bound span (:func:`diff_step`): CC is closed-form arithmetic, so the default
+``sqrt(eps) ~ 1.5e-8``; a physics model solves to a relative Newton tolerance ``tau``, so its tips
+carry errors up to ~``tau`` and the step is ``sqrt(tau)`` (the step that balances truncation
+against that noise).  For CC one
 evaluation covers every training row in one vectorised call, so a Jacobian costs at most ``p``
 batched calls.
 
@@ -152,39 +155,40 @@ def fit_parameters(residual: Callable[[np.ndarray], np.ndarray], parameters: Seq
     max_evaluations : int
         scipy ``max_nfev``.
     step : float or None
-        Relative finite-difference step (:func:`diff_step`).
+        Finite-difference step as a fraction of each bound span (:func:`diff_step`).
     """
     from scipy.optimize import least_squares
 
     lo = np.array([p.lower for p in parameters], dtype=float)
     hi = np.array([p.upper for p in parameters], dtype=float)
-    x0 = np.clip(np.array([p.initial for p in parameters], dtype=float), lo, hi)
+    span = hi - lo
+    u0 = np.clip((np.array([p.initial for p in parameters], dtype=float) - lo) / span, 0.0, 1.0)
     calls = [0]
 
-    def counted(x: np.ndarray) -> np.ndarray:
+    def counted(u: np.ndarray) -> np.ndarray:
         calls[0] += 1
-        return residual(x)
+        return residual(lo + span * u)
 
     t0 = time.perf_counter()
-    try:
-        res = least_squares(counted, x0, jac="2-point", bounds=(lo, hi), method="trf", x_scale=hi - lo,
+    try:  # in u = (x - lower) / span: scipy's xtol compares the step with norm(x), blind to x_scale
+        res = least_squares(counted, u0, jac="2-point", bounds=(0.0, 1.0), method="trf",
                             max_nfev=int(max_evaluations), diff_step=step)
     except PredictionFailure as e:
         return _failed(parameters, str(e), calls[0], time.perf_counter() - t0, confidence)
     seconds = time.perf_counter() - t0
+    x = lo + span * np.asarray(res.x, dtype=float)
+    J = np.asarray(res.jac, dtype=float) / span
     null_tol = 100.0 * (step if step is not None else math.sqrt(np.finfo(float).eps))
-    low, high, bad, s = linearised_intervals(np.asarray(res.jac, dtype=float), np.asarray(res.fun, dtype=float),
-                                             res.x, confidence, null_tol)
-    span = hi - lo
-    at_bound = (res.x - lo <= AT_BOUND * span) | (hi - res.x <= AT_BOUND * span)
+    low, high, bad, s = linearised_intervals(J, np.asarray(res.fun, dtype=float), x, confidence, null_tol)
+    at_bound = (x - lo <= AT_BOUND * span) | (hi - x <= AT_BOUND * span)
     names = tuple(p.name for p, b in zip(parameters, bad) if b)
     message = str(res.message)
     if names:
         message += f"; not identifiable from these data: {', '.join(names)} (infinite intervals)"
     if res.fun.size <= len(parameters):
         message += f"; {res.fun.size} residuals for {len(parameters)} parameters: no intervals"
-    return CalibrationResult(bool(res.status > 0), message, calls[0], seconds, np.asarray(res.x, dtype=float),
-                             low, high, at_bound, names, float(confidence), np.asarray(res.fun, dtype=float), s)
+    return CalibrationResult(bool(res.status > 0), message, calls[0], seconds, x, low, high, at_bound, names,
+                             float(confidence), np.asarray(res.fun, dtype=float), s)
 
 
 def calibrate_on(predictor: Predictor, parameters: Sequence[FitParameter], measured: np.ndarray,
