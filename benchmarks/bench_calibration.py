@@ -83,7 +83,8 @@ def _calibrate(model: str, n: int, solver: dict, max_evaluations: int) -> None:
     per = p.timing.seconds / max(1, p.timing.calls if model == "cc" else p.timing.samples)
     what = "evaluation over all rows" if model == "cc" else "sample solve"
     print(f"{model:9s} {n:6d} rows, {len(ps)} parameters: calibration {wall:7.2f} s wall, {cpu:7.2f} s CPU, "
-          f"{res.evaluations} evaluations, {per * 1e3:.2f} ms per {what}; converged {res.success}; "
+          f"{res.evaluations} residual evaluations ({p.timing.calls} ran the model), {per * 1e3:.2f} ms per {what}; "
+          f"converged {res.success}; "
           f"E {res.values[0] / 1e9:.3f} GPa (true {truth[0] / 1e9:.0f}, interval {res.ci_low[0] / 1e9:.3f}-"
           f"{res.ci_high[0] / 1e9:.3f}); {inside}/{len(ps)} true values inside their intervals; "
           f"s = {res.sigma * 1e3:.3f} mm (noise {NOISE * 1e3:.1f}); load {os.getloadavg()[0]:.1f}")
