@@ -33,7 +33,7 @@ import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from workbench.measure.calibrate import calibrate_on, diff_step  # noqa: E402
+from workbench.measure.calibrate import calibrate_on, diff_step, evaluation_noise  # noqa: E402
 from workbench.measure.predict import Predictor, model_options  # noqa: E402
 from workbench.measure.types import FitParameter, Measurements  # noqa: E402
 
@@ -75,9 +75,10 @@ def _data(model: str, n: int, solver: dict, seed: int = 0) -> tuple[Predictor, l
 
 def _calibrate(model: str, n: int, solver: dict, max_evaluations: int) -> None:
     p, ps, truth = _data(model, n, solver)
-    step = diff_step(model, model_options(solver, model).newton_tolerance)
+    tau = model_options(solver, model).newton_tolerance
     w0, c0 = time.perf_counter(), time.process_time()
-    res = calibrate_on(p, ps, p.measurements.tip_position, np.arange(n), 0.95, max_evaluations, step)
+    res = calibrate_on(p, ps, p.measurements.tip_position, np.arange(n), 0.95, max_evaluations, diff_step(model, tau),
+                       evaluation_noise(model, tau))
     wall, cpu = time.perf_counter() - w0, time.process_time() - c0
     inside = int(np.sum((res.ci_low <= truth) & (truth <= res.ci_high)))
     per = p.timing.seconds / max(1, p.timing.calls if model == "cc" else p.timing.samples)

@@ -30,7 +30,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from ..study.rows import failed_rows
-from .calibrate import CalibrationResult, calibrate_on, diff_step
+from .calibrate import CalibrationResult, calibrate_on, diff_step, evaluation_noise
 from .predict import PredictionFailure, Predictor, model_options
 from .types import SPLIT_CODES, CalibrationStudy, FoldRows
 
@@ -128,9 +128,9 @@ def calibration_row(case_id: str, model: str, study: CalibrationStudy, rows: Fol
     cc = model == "cc"
     train = np.asarray(rows.train if cc else rows.physics_train, dtype=int)
     test = np.asarray(rows.test if cc else rows.physics_test, dtype=int)
-    step = diff_step(model, model_options(study.solver, model).newton_tolerance)
+    tau = model_options(study.solver, model).newton_tolerance
     res = calibrate_on(predictor, settings.parameters, m.tip_position, train, settings.confidence,
-                       settings.max_evaluations, step)
+                       settings.max_evaluations, diff_step(model, tau), evaluation_noise(model, tau))
     per_eval = predictor.timing.seconds / max(1, predictor.timing.calls if cc else predictor.timing.samples)
     if not np.isfinite(res.values).all():
         return failed_rows(case_id, {}, [model], f"calibration failed: {res.message}", time.perf_counter() - t0,
