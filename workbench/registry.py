@@ -316,6 +316,7 @@ KINDS: Mapping[str, KindInfo] = {
                                 robot_show="workbench.experiments.series_parallel.show:show"),
     "grasp": KindInfo("workbench.experiments.whole_arm_grasp.kind:KIND"),
     "closed_loop": KindInfo("workbench.experiments.closed_loop.kind:KIND"),
+    "calibration": KindInfo("workbench.measure.kind:KIND"),
 }
 
 #: Study-specific figures, in report order (before the generic figures).

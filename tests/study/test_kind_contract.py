@@ -17,12 +17,14 @@ from workbench import registry
 from workbench.study import StudyKind, get_kind, kind_of
 
 STUDIES = Path(__file__).parents[1] / "regression" / "studies"
-#: the regression-size study each registered kind is checked on (its cheapest committed study)
+#: the regression-size study each registered kind is checked on (its cheapest committed study; a path
+#: elsewhere for a kind without a regression study)
 EXAMPLES = {
     "sweep": "quickstart.toml",
     "series_parallel": "series_parallel_s_shape.toml",
     "grasp": "whole_arm_grasp.toml",
     "closed_loop": "closed_loop.toml",
+    "calibration": Path(__file__).parents[1] / "measure" / "fixtures" / "fit_contract.toml",
 }
 #: the columns every row has, whatever the kind (docs/architecture.md, "Result tables"); a failed
 #: row also says why (``failure``; an ok row may leave it out: the store writes it empty)
@@ -37,6 +39,8 @@ def test_every_registered_kind_has_an_example():
 @pytest.fixture(scope="module", params=sorted(registry.KINDS))
 def loaded(request):
     name = request.param
+    if name == "calibration":  # its reader (helper meas-data's workbench.measure.spec) until merged
+        pytest.importorskip("workbench.measure.spec")
     path = STUDIES / EXAMPLES[name]
     assert kind_of(path) == name
     kind = get_kind(name)

@@ -43,7 +43,7 @@ def test_get_kind_resolves_the_registry():
     assert get_kind("sweep") is SWEEP
     sp = get_kind("series_parallel")
     assert sp.name == "series_parallel" and sp is registry.resolve(registry.KINDS["series_parallel"].target)
-    assert set(registry.KINDS) == {"sweep", "series_parallel", "grasp", "closed_loop"}
+    assert set(registry.KINDS) == {"sweep", "series_parallel", "grasp", "closed_loop", "calibration"}
     with pytest.raises(KeyError, match="unknown study kind 'nope'; known kinds: sweep, series_parallel"):
         get_kind("nope")
 
