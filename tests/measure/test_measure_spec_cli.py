@@ -1,9 +1,8 @@
-"""``workbench validate`` on calibration studies (runs once the calibration kind is registered).
+"""``workbench validate`` on calibration studies: the CLI path end to end.
 
-The kind (``workbench/measure/kind.py``, registry ``KINDS["calibration"]``) is built by another part
-of issue 30; its ``load`` is :func:`workbench.measure.spec.load_calibration_study`.  Until its row is in
-the registry these tests are skipped; after the merge they check the CLI path end to end: one line on
-stderr naming the data file, the row and the column, exit code 2; the fixture accepted.
+The kind (``workbench/measure/kind.py``, registry ``KINDS["calibration"]``) loads through
+:func:`workbench.measure.spec.load_calibration_study`: a malformed data file is one line on stderr naming
+the data file, the row and the column, exit code 2; the fixture is accepted.
 """
 
 from __future__ import annotations
@@ -11,14 +10,9 @@ from __future__ import annotations
 import shutil
 from pathlib import Path
 
-import pytest
-
-from workbench import registry
 from workbench.cli import main
 
 FIX = Path(__file__).with_name("fixtures")
-pytestmark = pytest.mark.skipif("calibration" not in registry.table("kinds"),
-                                reason="the calibration study kind is not registered on this branch")
 
 
 def _copy(tmp: Path) -> Path:

@@ -39,8 +39,6 @@ def test_every_registered_kind_has_an_example():
 @pytest.fixture(scope="module", params=sorted(registry.KINDS))
 def loaded(request):
     name = request.param
-    if name == "calibration":  # its reader (helper meas-data's workbench.measure.spec) until merged
-        pytest.importorskip("workbench.measure.spec")
     path = STUDIES / EXAMPLES[name]
     assert kind_of(path) == name
     kind = get_kind(name)

@@ -83,6 +83,11 @@ class CalibrationResult:
         sample, for :func:`calibrate_on`; empty when failed).
     sigma : float
         ``s``, the residual standard deviation per coordinate [m].
+    covariance : ndarray, shape (p, p)
+        The linearised covariance ``s^2 (J^T J)^-1`` of the values (SI; NaN in the rows and columns
+        of unidentifiable parameters and when failed): the joint confidence region
+        ``d^T C^-1 d <= p' F(p', m - p; confidence)`` over the ``p'`` identifiable parameters
+        (Bates & Watts 1988, Sec. 2.3) -- the marginal intervals hold one parameter at a time.
     """
 
     success: bool
@@ -97,6 +102,7 @@ class CalibrationResult:
     confidence: float
     residuals: np.ndarray
     sigma: float
+    covariance: np.ndarray | None = None
 
 
 def evaluation_noise(model: str, newton_tolerance: float) -> float:
@@ -111,7 +117,7 @@ def diff_step(model: str, newton_tolerance: float) -> float | None:
 
 
 def linearised_intervals(J: np.ndarray, residuals: np.ndarray, x: np.ndarray, confidence: float,
-                         null_tolerance: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+                         null_tolerance: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, float, np.ndarray]:
     """Linearised confidence intervals at ``x`` from the Jacobian ``J`` (m, p) (module docstring).
 
     Returns
@@ -121,13 +127,15 @@ def linearised_intervals(J: np.ndarray, residuals: np.ndarray, x: np.ndarray, co
     unidentifiable : ndarray of bool, shape (p,)
     s : float
         Residual standard deviation (NaN when ``m <= p``).
+    cov : ndarray, shape (p, p)
+        ``s^2 (J^T J)^-1`` on the identifiable subspace, NaN rows / columns for the others.
     """
     from scipy.special import stdtrit
 
     m, p = J.shape
     if m <= p:
         inf = np.full(p, np.inf)
-        return x - inf, x + inf, np.zeros(p, dtype=bool), float("nan")
+        return x - inf, x + inf, np.zeros(p, dtype=bool), float("nan"), np.full((p, p), np.nan)
     s2 = float(residuals @ residuals) / (m - p)
     norms = np.linalg.norm(J, axis=0)
     dead = ~(norms > 0)
@@ -139,7 +147,11 @@ def linearised_intervals(J: np.ndarray, residuals: np.ndarray, x: np.ndarray, co
     cov_n = (Vt[keep].T / S[keep] ** 2) @ Vt[keep]  # pseudo-inverse of Jn^T Jn on the identifiable subspace
     sd = np.sqrt(s2 * np.clip(np.diag(cov_n), 0.0, None)) / np.where(dead, 1.0, norms)
     half = np.where(bad, np.inf, float(stdtrit(m - p, 0.5 + confidence / 2.0)) * sd)
-    return x - half, x + half, bad, math.sqrt(s2)
+    scale = 1.0 / np.where(dead, 1.0, norms)
+    cov = s2 * cov_n * np.outer(scale, scale)
+    cov[bad, :] = np.nan
+    cov[:, bad] = np.nan
+    return x - half, x + half, bad, math.sqrt(s2), cov
 
 
 def _failed(parameters: Sequence[FitParameter], message: str, evaluations: int, seconds: float,
@@ -194,7 +206,7 @@ def fit_parameters(residual: Callable[[np.ndarray], np.ndarray], parameters: Seq
     J = np.asarray(res.jac, dtype=float) / span
     h = step if step is not None else math.sqrt(np.finfo(float).eps)
     null_tol = 10.0 * (h + noise / h)
-    low, high, bad, s = linearised_intervals(J, np.asarray(res.fun, dtype=float), x, confidence, null_tol)
+    low, high, bad, s, cov = linearised_intervals(J, np.asarray(res.fun, dtype=float), x, confidence, null_tol)
     at_bound = (x - lo <= AT_BOUND * span) | (hi - x <= AT_BOUND * span)
     names = tuple(p.name for p, b in zip(parameters, bad) if b)
     message = str(res.message)
@@ -203,7 +215,7 @@ def fit_parameters(residual: Callable[[np.ndarray], np.ndarray], parameters: Seq
     if res.fun.size <= len(parameters):
         message += f"; {res.fun.size} residuals for {len(parameters)} parameters: no intervals"
     return CalibrationResult(bool(res.status > 0), message, calls[0], seconds, x, low, high, at_bound, names,
-                             float(confidence), np.asarray(res.fun, dtype=float), s)
+                             float(confidence), np.asarray(res.fun, dtype=float), s, cov)
 
 
 def calibrate_on(predictor: Predictor, parameters: Sequence[FitParameter], measured: np.ndarray,

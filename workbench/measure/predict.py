@@ -152,38 +152,17 @@ def model_options(solver: Mapping[str, Any], model: str):
 
 
 def _cc_tips(robot, mode: str, commands: np.ndarray) -> np.ndarray:
-    """CC tip positions ``(n, 3)`` in the base frame for ``commands`` ``(n, n_tendons)``.
+    """CC tip positions ``(n, 3)`` in the base frame for ``commands`` ``(n, n_tendons)`` (vectorised,
+    :func:`workbench.models.cc_batch.cc_tip_positions`)."""
+    from ..models.cc_batch import cc_tip_positions
 
-    Vectorised through ``workbench.models.cc_batch.cc_tip_positions`` when that module exists;
-    until it is merged, a loop over the arc map and forward kinematics that ``workbench.models.cc.run``
-    uses for its tip (the lead removes this fallback at merge).
-    """
-    try:
-        from ..models.cc_batch import cc_tip_positions
-    except ImportError:
-        from ..kinematics import forward_kinematics
-        from ..models.cc import arc_from_actuation
-        from ..robot import TendonActuation
-
-        out = np.empty((commands.shape[0], 3))
-        for i, c in enumerate(commands):
-            out[i] = forward_kinematics(*arc_from_actuation(robot, TendonActuation(mode, tuple(c))))[:3, 3]
-        return out
     return np.asarray(cc_tip_positions(robot, mode, commands), dtype=float)
 
 
 def _cc_backbones(robot, mode: str, commands: np.ndarray, n_stations: int) -> np.ndarray:
-    """CC backbones ``(k, n_stations, 3)`` in the base frame (``cc_batch.cc_backbones`` or ``cc.run`` per row)."""
-    try:
-        from ..models.cc_batch import cc_backbones
-    except ImportError:
-        from ..models import SolverOptions
-        from ..models.cc import run
-        from ..robot import LoadCase, TendonActuation
+    """CC backbones ``(k, n_stations, 3)`` in the base frame (:func:`workbench.models.cc_batch.cc_backbones`)."""
+    from ..models.cc_batch import cc_backbones
 
-        opts = SolverOptions(n_stations=n_stations)
-        return np.stack([run(robot, LoadCase(actuation=TendonActuation(mode, tuple(c))), opts).positions
-                         for c in commands]) if len(commands) else np.zeros((0, n_stations, 3))
     return np.asarray(cc_backbones(robot, mode, commands, n_stations), dtype=float)
 
 

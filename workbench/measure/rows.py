@@ -88,6 +88,8 @@ def _result_cells(res: CalibrationResult, seconds_per_evaluation: float) -> dict
         "calib.seconds_per_evaluation": float(seconds_per_evaluation), "calib.values": res.values.tolist(),
         "calib.ci_low": res.ci_low.tolist(), "calib.ci_high": res.ci_high.tolist(),
         "calib.at_bound": [bool(b) for b in res.at_bound], "calib.residual_sd": float(res.sigma),
+        "calib.covariance": (res.covariance if res.covariance is not None
+                             else np.full((res.values.size,) * 2, np.nan)).reshape(-1).tolist(),
     }
 
 
@@ -156,7 +158,7 @@ def calibration_row(case_id: str, model: str, study: CalibrationStudy, rows: Fol
         "sample.measured": m.tip_position[idx].reshape(-1).tolist(),
         "sample.predicted": predicted.reshape(-1).tolist(), **view,
         "_shapes": {"sample.commands": [-1, int(m.commands.shape[1])], "sample.measured": [-1, 3],
-                    "sample.predicted": [-1, 3], **view_shapes},
+                    "sample.predicted": [-1, 3], "calib.covariance": [len(res.values), -1], **view_shapes},
     }
     row["wall_time"] = time.perf_counter() - t0
     return row
