@@ -107,9 +107,9 @@ def main(quick: bool = False) -> None:
     from workbench.physics.ancf import run
     from workbench.reference.elastica import clamped_elastica
     from workbench.robot import LoadCase, TendonActuation
-    from workbench.robot.presets.steel_rod import steel_rod
+    from workbench.robot.presets import build_preset
 
-    robot = steel_rod(length=L, diameter=DIAM, gravity=G, base_orientation="horizontal")
+    robot = build_preset("steel_rod", length=L, diameter=DIAM, gravity=G, base_orientation="horizontal")
     cs = robot.sections[0].cross_section
     q = cs.mass_per_length * G
     t0 = time.perf_counter()
@@ -152,7 +152,8 @@ def main(quick: bool = False) -> None:
               f"(tip errors {err:.2e} vs {e16:.2e} m)")
 
     print("\n[3] ANCF dynamics: 10 s simulated, h = 2 ms, two antagonistic tendons, second 3 s late")
-    robot_t = steel_rod(length=L, diameter=DIAM, gravity=G, base_orientation="horizontal", tendon_count=2)
+    robot_t = build_preset("steel_rod", length=L, diameter=DIAM, gravity=G, base_orientation="horizontal",
+                           tendon_count=2)
     cases = [
         ("continuum", TendonActuation("tension", (60.0, 60.0), start_times=(0.0, 3.0))),
         ("eyelets", TendonActuation("tension", (60.0, 60.0), start_times=(0.0, 3.0))),

@@ -34,7 +34,7 @@ from workbench.physics.spring_link.tree import tree_tip_position
 from workbench.physics.spring_link import SpringLinkParams, solve
 from workbench.reference.elastica import clamped_elastica
 from workbench.robot import LoadCase, TendonActuation
-from workbench.robot.presets.steel_rod import steel_rod
+from workbench.robot.presets import build_preset
 from _timing import best_of
 
 L = 0.8
@@ -42,7 +42,7 @@ D = 0.02
 
 
 def _cases():
-    rod = steel_rod()
+    rod = build_preset("steel_rod")
     EI = rod.sections[0].cross_section.EI
     theta = math.pi / 2
     R = L / theta
@@ -51,7 +51,7 @@ def _cases():
 
     area = math.pi * 0.006**2 / 4
     rho = 4.0 * EI / L**3 / (area * 9.81)
-    heavy = steel_rod(gravity=9.81, base_orientation="horizontal", density=rho)
+    heavy = build_preset("steel_rod", gravity=9.81, base_orientation="horizontal", density=rho)
     q = heavy.sections[0].cross_section.mass_per_length * 9.81
     # elastica coordinates: a = base z (along the rod), b = base x (up); gravity along -b
     ref = clamped_elastica(L, EI, distributed_load=(0.0, -q), stations=2, n_continuation=8)
@@ -118,7 +118,7 @@ def main() -> None:
                       f"({an[m][1]:.2e} m, {1e3 * an[m][0]:.2f} ms): time ratio spring_link/ancf = {t / an[m][0]:.2f}")
 
     print("\n=== eyelet tendons at N = 16 (steel rod, 2 tendons) ===")
-    rod = steel_rod()
+    rod = build_preset("steel_rod")
     cases = {
         "tension, rope chain": LoadCase(actuation=TendonActuation("tension", (300.0, 0.0))),
         "length, reeving": LoadCase(actuation=TendonActuation("length", (-0.01, 0.0), pretension=10.0)),

@@ -28,7 +28,7 @@ from workbench.experiments.closed_loop.scenario import closed_loop
 from workbench.experiments.closed_loop.worker import _SessionPlant, row_models
 from workbench.kinematics import line_path, planar_forward_kinematics, planar_inverse_kinematics
 from workbench.models import SolverOptions, get_model
-from workbench.robot.presets.hannan_walker import hannan_walker
+from workbench.robot.presets import build_preset
 from workbench.study import RunConfig, SerialExecutor, StudyError, get_kind, kind_of, run_cases
 
 LINE = line_path(np.array([0.25, 0.0, 0.70]), np.array([0.35, 0.0, 0.60]), 6)
@@ -50,7 +50,7 @@ def test_settings_and_frames():
 
 
 def test_control_step_is_the_resolved_rate_iteration_of_eq11():
-    ell = hannan_walker().section_lengths
+    ell = build_preset("hannan_walker").section_lengths
     q0 = np.array([0.5, 0.4, 0.9, 0.2])
     target = np.array([-0.3, 0.62])
     y = planar_forward_kinematics(q0, ell)[:2, 3]
@@ -64,7 +64,7 @@ def test_control_step_is_the_resolved_rate_iteration_of_eq11():
 @pytest.mark.parametrize("kappa_d", [None, GRASP])
 def test_with_a_cc_plant_the_controller_is_exact(kappa_d):
     """The issue's physics check: on the controller's own CC model the closed loop is the open loop."""
-    robot = hannan_walker()
+    robot = build_preset("hannan_walker")
     ell = robot.section_lengths
     kd = None if kappa_d is None else kappa_d / ell
     plant, cables = ConsistentCCPlant(robot), hw_cable_map(robot)
@@ -84,7 +84,7 @@ def test_with_a_cc_plant_the_controller_is_exact(kappa_d):
 
 def test_the_loop_removes_the_plant_model_error_and_noise_sets_its_floor():
     """The cc model reads Eq 1 commands through the CC tendon map: ~1.5 mm off open loop, exact in the loop."""
-    robot = hannan_walker()
+    robot = build_preset("hannan_walker")
     ell, cables = robot.section_lengths, hw_cable_map(robot)
     plant = model_plant(get_model("cc"), robot, EYELETS, 20.0)
     st = ControllerSettings()
@@ -102,7 +102,7 @@ def test_the_loop_removes_the_plant_model_error_and_noise_sets_its_floor():
 
 
 def test_session_plant_gives_the_equilibria_of_fresh_solves():
-    robot = hannan_walker(base_orientation="horizontal", tendon_stiffness=1.6e4, payload_mass=0.5)
+    robot = build_preset("hannan_walker", base_orientation="horizontal", tendon_stiffness=1.6e4, payload_mass=0.5)
     ell, cables = robot.section_lengths, hw_cable_map(robot)
     st = ControllerSettings()
     fresh = run_open_loop(model_plant(get_model("spring_link"), robot, EYELETS, 20.0), cables, LINE[:3], ell, st)
@@ -155,7 +155,7 @@ def test_kind_loads_validates_and_runs(tmp_path):
     assert (cl["x.max_tracking_error"] < 2e-5).all() and (df[df["model"] == "cc"]["x.max_tracking_error"] > 1e-3).all()
     assert (cl["x.plant_solves"] == 10).all()
     # the recorded load is the plan's last cables (the scenario)
-    robot = hannan_walker()
+    robot = build_preset("hannan_walker")
     last = closed_loop(robot, n_samples=3)
     row = df[(df["model"] == "plan") & (df["p.scenario.shape"] == "line")].iloc[0]
     np.testing.assert_allclose(json.loads(row["p.load.length_changes"]), last["length_changes"], rtol=0, atol=1e-15)

@@ -25,7 +25,6 @@ from workbench.models import ModelFailure, SolverOptions
 from workbench.physics.spring_link import cardan
 from workbench.robot import LoadCase, TendonActuation
 from workbench.robot.presets import build_preset
-from workbench.robot.presets.hannan_walker import hannan_walker
 
 EYELETS = SolverOptions(n_elements=16, tendon_model="eyelets")
 
@@ -47,14 +46,14 @@ def test_preset_is_the_16_cable_robot_with_gravity_in_any_direction():
     assert gravity_label({"p.robot.gravity": 9.81, "p.robot.gravity_direction": "[0, 1, -1]",
                           "p.robot.base_orientation": "horizontal"}) == "g along base (-0.71, -0.71, 0)"
     # everything else is the planar preset's
-    p = hannan_walker()
+    p = build_preset("hannan_walker")
     assert [s.cross_section for s in r.sections] == [s.cross_section for s in p.sections]
     with pytest.raises(ValueError, match="gravity_direction must be 3 finite numbers"):
         build_preset("hannan_walker_3d", gravity_direction=[0.0, 0.0, 0.0])
 
 
 def test_eq1_per_plane_reduces_to_the_planar_map():
-    robot3, robot2 = build_preset("hannan_walker_3d"), hannan_walker()
+    robot3, robot2 = build_preset("hannan_walker_3d"), build_preset("hannan_walker")
     rng = np.random.default_rng(3)
     b = rng.uniform(-0.15, 0.15, (5, 16))
     q = np.stack([np.zeros_like(b), b], axis=-1)  # bending towards +-x only
@@ -124,7 +123,7 @@ def test_planar_motions_of_the_32_dof_chain_equal_the_planar_chain(gravity, orie
     """The issue's physics check: a planar plan on 16 two-DOF joints / 16 cables = 16 joints / 8 cables."""
     from workbench.physics.spring_link import solve
 
-    r2 = hannan_walker(gravity=gravity, base_orientation=orientation)
+    r2 = build_preset("hannan_walker", gravity=gravity, base_orientation=orientation)
     r3 = build_preset("hannan_walker_3d", gravity=gravity, base_orientation=orientation)
     plan = cc_cable_plan(r2, (0.25, 0.70), (0.35, 0.60), 3, sample=2)
     for pretension in (0.0, 20.0):

@@ -14,12 +14,12 @@ import pytest
 from workbench.experiments.hannan_walker.figures import matches
 from workbench.experiments.hannan_walker.replay import cable_changes_from_joint_angles, cc_cable_plan
 from workbench.experiments.hannan_walker.scenario import hannan_walker_line
-from workbench.robot.presets.hannan_walker import hannan_walker
+from workbench.robot.presets import build_preset
 
 
 @pytest.mark.parametrize("shape", ["line", "grasp"])
 def test_scenario_sample_is_the_plan_row(shape):
-    robot = hannan_walker()
+    robot = build_preset("hannan_walker")
     grasp = [-0.3, 0.3, 1.0, 1.6]
     kappa_d = np.asarray(grasp) / robot.section_lengths if shape == "grasp" else None
     plan = cc_cable_plan(robot, (0.25, 0.70), (0.35, 0.60), 6, kappa_d=kappa_d)
@@ -32,7 +32,7 @@ def test_scenario_sample_is_the_plan_row(shape):
 
 
 def test_plan_is_equal_joint_angles_and_eq1_cables():
-    robot = hannan_walker()
+    robot = build_preset("hannan_walker")
     plan = cc_cable_plan(robot, (0.25, 0.70), (0.35, 0.60), 3)
     per = 16 // robot.n_sections
     q = plan.joint_angles.reshape(3, robot.n_sections, per)
@@ -43,7 +43,7 @@ def test_plan_is_equal_joint_angles_and_eq1_cables():
 
 
 def test_unreachable_line_gives_no_commands_and_each_caller_its_wording():
-    robot = hannan_walker()
+    robot = build_preset("hannan_walker")
     plan = cc_cable_plan(robot, (0.25, 0.70), (2.0, 0.1), 4)
     assert not plan.success and plan.cable_changes is None and plan.joint_angles is None
     assert plan.tracking_error.max() > 1e-3

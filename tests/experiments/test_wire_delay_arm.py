@@ -20,20 +20,20 @@ from workbench.experiments.wire_delay.figures_arm import decoupled_target_tip, m
 from workbench.experiments.wire_delay.scenario import wire_delay_arm
 from workbench.models.cc import arc_from_actuation
 from workbench.robot import TendonActuation
-from workbench.robot.presets.cojocaru import cojocaru_tronconic
+from workbench.robot.presets import build_preset
 
 Q = math.pi / 4
 
 
 def test_upper_wires_share_section_1s_cone_so_their_path_changes_are_its_wire_changes():
-    robot = cojocaru_tronconic(n_sections=3)
+    robot = build_preset("cojocaru_tronconic", n_sections=3)
     c = passive_wire_changes(robot, Q, Q)
     first = wire_delay_commands(robot, theta=Q, alpha=Q, move_time=4.0, delay=0.0, delayed_wire=0).length_changes
     # every wire runs on the same cone rim (100 -> 40 mm over the arm): in section 1 all are 50 -> 40 mm
     np.testing.assert_allclose(c[:3], first, atol=1e-15)
     np.testing.assert_allclose(c[3:], first, atol=1e-15)
     # a cylindrical arm: every wire changes by exactly -d theta cos(sigma - phi) (Eq 19)
-    cyl = cojocaru_tronconic(n_sections=3, disk_diameter_step=0.0)
+    cyl = build_preset("cojocaru_tronconic", n_sections=3, disk_diameter_step=0.0)
     sig = np.asarray(cyl.sections[1].tendons.angles)
     for theta in (1e-3, Q):
         np.testing.assert_allclose(passive_wire_changes(cyl, theta, Q)[:3], -0.05 * theta * np.cos(sig - (Q + math.pi)),
@@ -41,7 +41,7 @@ def test_upper_wires_share_section_1s_cone_so_their_path_changes_are_its_wire_ch
 
 
 def test_arm_commands_per_passive_mode():
-    robot = cojocaru_tronconic(n_sections=3)
+    robot = build_preset("cojocaru_tronconic", n_sections=3)
     c = passive_wire_changes(robot, Q, Q)
     kw = dict(theta=Q, alpha=Q, move_time=4.0, delay=3.0, delayed_wire=0, slack_margin=2e-3)
     held = arm_commands(robot, passive="held", **kw)
@@ -54,7 +54,7 @@ def test_arm_commands_per_passive_mode():
     out = wire_delay_arm(robot, delay=3.0, passive="compensated")
     assert out["duration"] == 8.0 and out["analysis"] == "dynamic" and len(out["length_changes"]) == 9
     with pytest.raises(ValueError, match="scenario wire_delay_arm: the arm needs two or more sections"):
-        wire_delay_arm(cojocaru_tronconic(n_sections=1))
+        wire_delay_arm(build_preset("cojocaru_tronconic", n_sections=1))
 
 
 def _cc_arcs(robot, passive: str):
@@ -64,7 +64,7 @@ def _cc_arcs(robot, passive: str):
 
 def test_cc_kinematics_of_the_passive_commands_on_a_cylindrical_arm():
     """Held: section 2 bends back by exactly -theta (section 3 straight); compensated: both straight."""
-    robot = cojocaru_tronconic(n_sections=3, disk_diameter_step=0.0)
+    robot = build_preset("cojocaru_tronconic", n_sections=3, disk_diameter_step=0.0)
     H = robot.sections[0].length
     kappa, phi, _ = _cc_arcs(robot, "held")
     assert kappa[0] * H == pytest.approx(Q, rel=2e-3)  # the CC map's linear wire model vs Eq 4-11 (2nd order)
@@ -91,7 +91,7 @@ def test_beam3d_held_wires_bend_the_upper_sections_back_compensated_keep_them_st
     from workbench.models import SolverOptions, get_model
     from workbench.study.build import build_load
 
-    robot = cojocaru_tronconic(n_sections=3)
+    robot = build_preset("cojocaru_tronconic", n_sections=3)
     opts = SolverOptions(n_elements=6, tendon_model="eyelets", time_step=1e-2, n_stations=25)
     tips = {}
     for passive in ("held", "compensated"):

@@ -24,11 +24,11 @@ from workbench.experiments.wire_delay.analysis import (
 from workbench.experiments.wire_delay.figures import matches
 from workbench.experiments.wire_delay.scenario import wire_delay
 from workbench.robot import TendonActuation
-from workbench.robot.presets.cojocaru import cojocaru_tronconic
+from workbench.robot.presets import build_preset
 
 
 def _robot():
-    return cojocaru_tronconic(n_sections=1)
+    return build_preset("cojocaru_tronconic", n_sections=1)
 
 
 def test_scenario_commands_are_wire_delay_commands():

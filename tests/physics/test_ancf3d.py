@@ -10,7 +10,7 @@ import pytest
 from workbench.models import ModelFailure, SolverOptions
 from workbench.physics import ancf3d, beam3d
 from workbench.robot import LoadCase, Payload, Robot, TendonActuation
-from workbench.robot.presets.steel_rod import steel_rod
+from workbench.robot.presets import build_preset
 
 
 def _tilted(rod: Robot, angle: float) -> Robot:
@@ -24,7 +24,7 @@ def _tilted(rod: Robot, angle: float) -> Robot:
 
 @pytest.mark.parametrize("angle", [0.0, 1.1])
 def test_sag_in_any_plane_matches_euler_bernoulli(angle):
-    rod = _tilted(steel_rod(gravity=1.0, base_orientation="horizontal"), angle)
+    rod = _tilted(build_preset("steel_rod", gravity=1.0, base_orientation="horizontal"), angle)
     cs, L = rod.sections[0].cross_section, rod.length
     g = rod.gravity_in_base()
     q = cs.mass_per_length * np.linalg.norm(g)
@@ -37,7 +37,8 @@ def test_large_sag_with_payload_agrees_with_beam3d():
     """gamma = qL^3/EI = 1.47 plus a 10 g payload (tip sag 0.34 m of 1 m).  ANCF is converged
     (4e-7 m between 16 and 32 elements); the GE beam converges to it at 2nd order: measured
     tip distance 7.4e-4 / 1.85e-4 / 4.6e-5 m at 8 / 16 / 32 elements."""
-    rod = steel_rod(length=1.0, diameter=2e-3, gravity=9.81, base_orientation="horizontal", payload_mass=0.01)
+    rod = build_preset("steel_rod", length=1.0, diameter=2e-3, gravity=9.81, base_orientation="horizontal",
+                       payload_mass=0.01)
     a = ancf3d.run(rod, LoadCase(), SolverOptions(n_elements=16))
     assert -a.tip_position[0] > 0.3  # genuinely nonlinear (linear theory: 0.55 m)
     d = []
@@ -51,7 +52,7 @@ def test_large_sag_with_payload_agrees_with_beam3d():
 
 
 def test_tip_force_matches_linear_cantilever():
-    rod = steel_rod()
+    rod = build_preset("steel_rod")
     cs, L = rod.sections[0].cross_section, rod.length
     F = np.array([0.06, -0.08, 0.0])
     res = ancf3d.run(rod, LoadCase(tip_force=tuple(F)), SolverOptions(n_elements=8))
@@ -60,14 +61,14 @@ def test_tip_force_matches_linear_cantilever():
 
 
 def test_axial_force_length_change():
-    rod = steel_rod()
+    rod = build_preset("steel_rod")
     cs, L = rod.sections[0].cross_section, rod.length
     res = ancf3d.run(rod, LoadCase(tip_force=(0.0, 0.0, -500.0)), SolverOptions(n_elements=4))
     assert res.length_change == pytest.approx(-500.0 * L / cs.EA, rel=1e-6)
 
 
 def test_rejects_loaded_tendons_torque_and_payload_offset():
-    rod = steel_rod(tendon_count=3)
+    rod = build_preset("steel_rod", tendon_count=3)
     with pytest.raises(ModelFailure, match="beam3d"):
         ancf3d.run(rod, LoadCase(actuation=TendonActuation("tension", (1.0, 0.0, 0.0))), SolverOptions())
     with pytest.raises(ModelFailure, match="pretension"):

@@ -15,7 +15,7 @@ import pytest
 from workbench.models import ModelFailure, SolverOptions
 from workbench.physics import beam3d
 from workbench.robot import CrossSection, LoadCase, Robot, Section, TendonActuation, TendonGroup
-from workbench.robot.presets.steel_rod import steel_rod
+from workbench.robot.presets import build_preset
 
 
 def arc_points(s, kappa, phi):
@@ -29,7 +29,7 @@ def arc_points(s, kappa, phi):
 
 @pytest.mark.parametrize("phi", [0.0, 0.7, 2.5, -1.9])
 def test_pure_tip_moment_bends_into_exact_arc_in_any_plane(phi):
-    rod = steel_rod(tendon_count=3)
+    rod = build_preset("steel_rod", tendon_count=3)
     EI, L = rod.sections[0].cross_section.EI, rod.length
     theta = math.pi / 2
     M = EI * theta / L
@@ -45,7 +45,7 @@ def test_pure_tip_moment_bends_into_exact_arc_in_any_plane(phi):
 
 
 def test_torsion_matches_TL_over_GJ():
-    rod = steel_rod()
+    rod = build_preset("steel_rod")
     GJ, L = rod.sections[0].cross_section.GJ, rod.length
     Mt = 2.0
     res = beam3d.run(rod, LoadCase(tip_torque=(0.0, 0.0, Mt)), SolverOptions(n_elements=8))
@@ -57,7 +57,7 @@ def test_torsion_matches_TL_over_GJ():
 
 
 def test_three_equal_tensions_give_pure_compression():
-    rod = steel_rod(tendon_count=3, first_tendon_angle=0.3)
+    rod = build_preset("steel_rod", tendon_count=3, first_tendon_angle=0.3)
     EA, L = rod.sections[0].cross_section.EA, rod.length
     T = 100.0
     res = beam3d.run(rod, LoadCase(actuation=TendonActuation("tension", (T, T, T))),
@@ -95,7 +95,7 @@ def test_single_tendon_curvature_converges_to_Td_over_EI_with_eyelets():
 def test_sag_matches_euler_bernoulli_and_ancf3d():
     from workbench.physics import ancf3d
 
-    rod = steel_rod(gravity=1.0, base_orientation="horizontal")  # gravity along base -x
+    rod = build_preset("steel_rod", gravity=1.0, base_orientation="horizontal")  # gravity along base -x
     cs, L = rod.sections[0].cross_section, rod.length
     q = cs.mass_per_length * 1.0
     assert q * L**3 / cs.EI < 0.01  # small gamma: linear theory applies
@@ -113,7 +113,7 @@ def test_tip_force_beam3d_vs_ancf3d_converges():
     """GE beam (shear-deformable, 2nd order) vs ANCF cable under a lateral tip force."""
     from workbench.physics import ancf3d
 
-    rod = steel_rod()
+    rod = build_preset("steel_rod")
     cs, L = rod.sections[0].cross_section, rod.length
     F = 0.1
     ref = F * L**3 / (3 * cs.EI) + F * L / cs.GA  # Timoshenko, linear
@@ -143,7 +143,7 @@ def test_length_controlled_tendons_reproduce_cc_arc():
     dl = -d * theta * np.cos(sig - phi)
     errs = {}
     for nd in (8, 16):
-        rod = steel_rod(tendon_count=3, tendon_stiffness=1e8, disks_per_section=nd)
+        rod = build_preset("steel_rod", tendon_count=3, tendon_stiffness=1e8, disks_per_section=nd)
         res = beam3d.run(rod, LoadCase(actuation=TendonActuation("length", tuple(dl), pretension=5.0)),
                          SolverOptions(n_elements=8, tendon_model="eyelets"))
         tip_cc = arc_points([L], theta / L, phi)[0]
@@ -165,7 +165,7 @@ def test_free_vibration_first_frequency():
     taken from the upward zero crossings of the tip deflection about its mean.
     Measured: -0.11 % (16 el., h = 1 ms), +0.03 % (8 el.), -0.03 % (16 el., h = 0.5 ms).
     """
-    rod = steel_rod(tendon_count=1, disks_per_section=8)
+    rod = build_preset("steel_rod", tendon_count=1, disks_per_section=8)
     cs, L = rod.sections[0].cross_section, rod.length
     f_ref = 1.8751**2 * math.sqrt(cs.EI / (cs.mass_per_length * L**4)) / (2 * math.pi)
     act = TendonActuation("tension", (1e-3,), start_times=(1e-3,), ramp_durations=(0.0,))
@@ -236,7 +236,7 @@ def _first_mode_decay(beta: float, n_elements: int = 8):
     zeta from the ratio of successive peak-to-peak amplitudes of the tip deflection, over periods 2-6
     (the higher modes, damped ~ omega, have died out by then), with no numerical damping
     (spectral radius 1)."""
-    rod = steel_rod(tendon_count=1, disks_per_section=8)
+    rod = build_preset("steel_rod", tendon_count=1, disks_per_section=8)
     cs, L = rod.sections[0].cross_section, rod.length
     w1 = 1.8751**2 * math.sqrt(cs.EI / (cs.mass_per_length * L**4))
     act = TendonActuation("tension", (1e-3,), start_times=(1e-3,), ramp_durations=(0.0,))
@@ -262,7 +262,7 @@ def test_kelvin_voigt_damping_gives_the_modal_damping_ratio():
 
 
 def test_continuum_tendons_rejected_and_tendon_free_cases_run_with_it():
-    rod = steel_rod(tendon_count=3)
+    rod = build_preset("steel_rod", tendon_count=3)
     with pytest.raises(ModelFailure, match="eyelets"):
         beam3d.run(rod, LoadCase(actuation=TendonActuation("tension", (1.0, 0.0, 0.0))),
                    SolverOptions(tendon_model="continuum"))
@@ -272,13 +272,13 @@ def test_continuum_tendons_rejected_and_tendon_free_cases_run_with_it():
 
 
 def test_bad_actuation_length_is_rejected():
-    rod = steel_rod(tendon_count=3)
+    rod = build_preset("steel_rod", tendon_count=3)
     with pytest.raises(ValueError, match="3 tendons"):
         beam3d.run(rod, LoadCase(actuation=TendonActuation("tension", (1.0, 0.0))), SolverOptions())
 
 
 def test_ramp_cap_raises_model_failure():
-    rod = steel_rod(tendon_count=3)
+    rod = build_preset("steel_rod", tendon_count=3)
     # bending to 3 rad by a tip moment fails in one increment (measured); cap at 1 attempt
     M = rod.sections[0].cross_section.EI * 3.0 / rod.length
     with pytest.raises(ModelFailure, match="max_load_steps"):
@@ -303,7 +303,7 @@ def test_tapered_section_properties_per_element():
 
 def test_quiet_and_file_free(capfd, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    rod = steel_rod(tendon_count=3)
+    rod = build_preset("steel_rod", tendon_count=3)
     beam3d.run(rod, LoadCase(actuation=TendonActuation("tension", (5.0, 0.0, 0.0))),
                SolverOptions(n_elements=4, tendon_model="eyelets"))
     beam3d.run(rod, LoadCase(actuation=TendonActuation("length", (-1e-3, 0.0, 0.0), pretension=2.0),
@@ -315,7 +315,7 @@ def test_quiet_and_file_free(capfd, tmp_path, monkeypatch):
 
 
 def test_dynamic_series_shapes_and_start_from_equilibrium():
-    rod = steel_rod(tendon_count=3, gravity=9.81, base_orientation="horizontal")
+    rod = build_preset("steel_rod", tendon_count=3, gravity=9.81, base_orientation="horizontal")
     res = beam3d.run(rod, LoadCase(actuation=TendonActuation("tension", (20.0, 0.0, 0.0), start_times=(0.05, 0, 0)),
                                    analysis="dynamic", duration=0.1, ramp_time=0.02),
                      SolverOptions(n_elements=4, tendon_model="eyelets", time_step=2e-3))

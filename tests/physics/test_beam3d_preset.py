@@ -11,7 +11,6 @@ from workbench.models import SolverOptions
 from workbench.physics import beam3d
 from workbench.robot import CrossSection, LoadCase, Robot, Section, TendonActuation, TendonGroup
 from workbench.robot.presets import build_preset
-from workbench.robot.presets.cojocaru import cojocaru_tronconic
 
 
 def test_preset_structure():
@@ -31,7 +30,7 @@ def test_preset_structure():
         j_end = r.section_ends[list(r.sections).index(sec)]
         assert g.offset_at(s0 / j_end) == pytest.approx(r.sections[0].tendons.offset_tip)
     with pytest.raises(ValueError, match="diameters"):
-        cojocaru_tronconic(base_disk_diameter=0.05, disk_diameter_step=0.02)
+        build_preset("cojocaru_tronconic", base_disk_diameter=0.05, disk_diameter_step=0.02)
 
 
 def test_tapered_tendon_curvature_matches_T_d_cos_beta():
@@ -53,7 +52,7 @@ def test_tapered_tendon_curvature_matches_T_d_cos_beta():
 
 
 def test_equal_tensions_on_three_section_tronconic_robot_give_pure_compression():
-    robot = cojocaru_tronconic()
+    robot = build_preset("cojocaru_tronconic")
     T = 20.0
     values = (0.0,) * 6 + (T, T, T)  # the three wires of the last section
     res = beam3d.run(robot, LoadCase(actuation=TendonActuation("tension", values)),

@@ -18,7 +18,7 @@ from workbench.models import ModelFailure, SolverOptions, get_model
 from workbench.physics.cosserat import run
 from workbench.robot import CrossSection, LoadCase, Payload, Robot, Section, TendonActuation, TendonGroup
 from workbench.robot.orientation import base_rotation_for
-from workbench.robot.presets.steel_rod import steel_rod
+from workbench.robot.presets import build_preset
 
 L = 0.8
 
@@ -56,7 +56,7 @@ def exact_cc(robot: Robot, tensions, stations) -> np.ndarray:
 
 def test_registered_and_rejections():
     assert get_model("cosserat") is run
-    robot = steel_rod()
+    robot = build_preset("steel_rod")
     act = TendonActuation("tension", (10.0, 0.0))
     with pytest.raises(ModelFailure, match="static"):
         run(robot, LoadCase(actuation=act, analysis="dynamic", duration=1.0), SolverOptions())
@@ -84,7 +84,7 @@ def test_tendon_free_rod_equals_the_shooting_reference():
     (``workbench.reference.cosserat``, same equations, its own integration and shooting)."""
     from workbench.reference.cosserat import RodStiffness, solve_rod_tip_wrench
 
-    robot = steel_rod(gravity=9.81, base_orientation="horizontal", tendon_count=2)
+    robot = build_preset("steel_rod", gravity=9.81, base_orientation="horizontal", tendon_count=2)
     cs = robot.sections[0].cross_section
     F, M = np.array([3.0, -2.0, 1.0]), np.array([0.5, 1.0, -0.8])
     res = run(robot, LoadCase(tip_force=tuple(F), tip_torque=tuple(M)), SolverOptions(newton_tolerance=1e-11))
@@ -115,7 +115,7 @@ def test_tip_load_elastica(alpha):
     """Tip load alpha = PL^2/EI = 5 (tip deflection 0.71 L): observed 2.9e-9 L from the elastica."""
     from workbench.reference.elastica import clamped_elastica
 
-    robot = _stiff_axially(steel_rod(base_orientation="horizontal"))
+    robot = _stiff_axially(build_preset("steel_rod", base_orientation="horizontal"))
     EI = robot.sections[0].cross_section.EI
     P = alpha * EI / L**2
     res = run(robot, LoadCase(tip_force=(-P, 0.0, 0.0)), SolverOptions())
@@ -175,7 +175,7 @@ def test_disk_weights_are_point_loads_at_the_disks():
 def test_length_control_equals_tension_control_with_the_resulting_tensions():
     """Three tendons at 0 / 120 / 240 deg, one reeled in by 2 mm, 5 N pretension, gravity and an
     out-of-plane tip force; observed tensions (66.5, 19.5, 26.9) N, shapes equal to 5e-11 m."""
-    robot = steel_rod(tendon_count=3, gravity=9.81, base_orientation="horizontal")
+    robot = build_preset("steel_rod", tendon_count=3, gravity=9.81, base_orientation="horizontal")
     act = TendonActuation("length", (-2e-3, 0.0, 0.0), pretension=5.0)
     lc = run(robot, LoadCase(actuation=act, tip_force=(0.0, 0.5, 0.0)), SolverOptions())
     assert np.all(lc.tendon_tensions > 5.0) and lc.tendon_tensions[0] > 50.0
@@ -188,12 +188,13 @@ def test_length_control_equals_tension_control_with_the_resulting_tensions():
 def test_beam3d_eyelets_converge_to_the_continuum_tendon():
     """Planar: one tendon, 300 N at 20 mm on the 0.8 m steel rod, GE beam with 2 elements per disk
     interval: observed tip gap 1.8e-2 / 4.6e-3 / 1.2e-3 m at 4 / 8 / 16 disks (order 2)."""
-    robot0 = steel_rod()
+    robot0 = build_preset("steel_rod")
     load = LoadCase(actuation=TendonActuation("tension", (300.0, 0.0)))
     c = run(robot0, load, SolverOptions())
     gaps = []
     for n in (4, 8, 16):
-        b = get_model("beam3d")(steel_rod(disks_per_section=n), load, SolverOptions(n_elements=2 * n, tendon_model="eyelets"))
+        b = get_model("beam3d")(build_preset("steel_rod", disks_per_section=n), load,
+                                SolverOptions(n_elements=2 * n, tendon_model="eyelets"))
         gaps.append(np.linalg.norm(b.tip_position - c.tip_position))
     orders = np.log2(np.asarray(gaps[:-1]) / gaps[1:])
     assert np.all(orders > 1.8), gaps

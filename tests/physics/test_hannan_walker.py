@@ -12,18 +12,17 @@ from workbench.experiments.hannan_walker.replay import (
     replay_hannan_walker,
 )
 from workbench.robot import LoadCase, TendonActuation
-from workbench.robot.presets import build_preset, get_preset
-from workbench.robot.presets.hannan_walker import hannan_walker
+from workbench.robot.presets import build_preset
 
 
 def test_preset_geometry_matches_paper():
     r = build_preset("hannan_walker")
-    assert get_preset("hannan_walker") is hannan_walker
+    assert r.name == "hannan_walker"
     assert r.length == pytest.approx(0.8382)
     assert r.n_sections == 4
     assert [s.cross_section.diameter for s in r.sections] == pytest.approx([0.1016, 0.0889, 0.0762, 0.0635])
     assert [s.tendons.offset for s in r.sections] == pytest.approx([0.0508, 0.04445, 0.0381, 0.03175])
-    assert r.n_tendons == 8 and hannan_walker(planar=False).n_tendons == 16
+    assert r.n_tendons == 8 and build_preset("hannan_walker", planar=False).n_tendons == 16
     # joint spring k = EI / ds with ds = l / 4: the chain of 16 links has the preset's springs
     from workbench.physics.spring_link.geometry import chain_geometry_from_robot
 
@@ -31,11 +30,11 @@ def test_preset_geometry_matches_paper():
     assert geo.stiffness == pytest.approx(np.repeat([120.0, 80.0, 50.0, 25.0], 4))
     assert np.sum(geo.mass) + 0.0 == pytest.approx(2.15 - 0.8 / 8)  # base plate carries half a link
     with pytest.raises(ValueError, match="4 values"):
-        hannan_walker(diameters=(0.1, 0.1))
+        build_preset("hannan_walker", diameters=(0.1, 0.1))
 
 
 def test_cable_map_small_angle_and_round_trip():
-    robot = hannan_walker()
+    robot = build_preset("hannan_walker")
     q = np.full(16, 1e-7)
     dl = cable_changes_from_joint_angles(q, robot)
     # small angles: dl = -/+ w * (sum of the joint angles the cable passes)
@@ -55,7 +54,7 @@ def test_cable_map_equals_chain_geometry():
     from workbench.physics.spring_link.planar import PlanarChain
     from workbench.physics.spring_link.geometry import chain_geometry_from_robot
 
-    robot = hannan_walker(gravity=0.0)
+    robot = build_preset("hannan_walker", gravity=0.0)
     T = np.array([300.0, 0, 0, 100.0, 200.0, 0, 0, 50.0])
     load = LoadCase(actuation=TendonActuation("tension", tuple(T)))
     opts = SolverOptions(n_elements=16, tendon_model="eyelets")
@@ -78,7 +77,7 @@ def test_cable_map_equals_chain_geometry():
 
 def test_replay_short_line_without_and_with_gravity():
     line = ((0.25, 0.70), (0.35, 0.60))
-    rep0 = replay_hannan_walker(hannan_walker(gravity=0.0), *line, 2, pretension=20.0)
+    rep0 = replay_hannan_walker(build_preset("hannan_walker", gravity=0.0), *line, 2, pretension=20.0)
     # the controller tracks the line in CC
     assert np.abs(rep0.cc_tip - rep0.target).max() < 1e-8
     assert rep0.cable_changes.shape == (2, 8) and rep0.joint_angles.shape == (2, 16)
@@ -90,7 +89,8 @@ def test_replay_short_line_without_and_with_gravity():
     cc_sec = rep0.cc_joint_angles.reshape(2, 4, 4).sum(axis=2)
     ph_sec = rep0.joint_angles.reshape(2, 4, 4).sum(axis=2)
     assert np.abs(ph_sec - cc_sec).max() < 0.05
-    repg = replay_hannan_walker(hannan_walker(gravity=9.81, base_orientation="horizontal"), *line, 2, pretension=20.0)
+    repg = replay_hannan_walker(build_preset("hannan_walker", gravity=9.81, base_orientation="horizontal"), *line, 2,
+                                pretension=20.0)
     # gravity across the bending plane of a horizontal trunk changes the error
     assert np.all(np.abs(repg.tip_error - rep0.tip_error) > 1e-4)
 
@@ -98,7 +98,7 @@ def test_replay_short_line_without_and_with_gravity():
 def test_spatial_preset_bends_out_of_plane_with_cardan_joints():
     from workbench.physics.spring_link import SpringLinkParams, solve
 
-    robot = hannan_walker(planar=False, gravity=0.0)
+    robot = build_preset("hannan_walker", planar=False, gravity=0.0)
     T = np.zeros(16)
     T[1] = 40.0  # section 1, sigma = pi/2: bends towards +y
     res = solve(robot, LoadCase(actuation=TendonActuation("tension", tuple(T))),

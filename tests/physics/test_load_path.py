@@ -193,7 +193,7 @@ def test_cosserat_ramp_doubles_capped_at_the_remaining_load(monkeypatch):
     from workbench.models import SolverOptions
     from workbench.physics.cosserat import run, shooting
     from workbench.robot import LoadCase
-    from workbench.robot.presets.steel_rod import steel_rod
+    from workbench.robot.presets import build_preset
 
     trials: list[float] = []
     orig = shooting.Shooter.newton
@@ -206,7 +206,7 @@ def test_cosserat_ramp_doubles_capped_at_the_remaining_load(monkeypatch):
         return out
 
     monkeypatch.setattr(shooting.Shooter, "newton", newton)
-    res = run(steel_rod(), LoadCase(tip_force=(1.0, 0.0, 0.0)), SolverOptions())
+    res = run(build_preset("steel_rod"), LoadCase(tip_force=(1.0, 0.0, 0.0)), SolverOptions())
     assert trials == [1.0, 0.5, 1.0, 0.75, 1.0, 0.875, 1.0]
     assert (res.solver.path_steps, res.solver.path_event) == (4, "")
 

@@ -11,7 +11,7 @@ from workbench.models import get_model
 from workbench.models.result import ModelFailure, SolverOptions
 from workbench.physics.spring_link import run
 from workbench.robot import LoadCase, TendonActuation
-from workbench.robot.presets.steel_rod import steel_rod
+from workbench.robot.presets import build_preset
 
 L = 0.8
 
@@ -31,7 +31,7 @@ def test_registered_name():
 
 def test_pure_moment_converges_to_arc_second_order():
     """Tip moment M = theta EI / L bends the rod into an arc of angle theta (exact)."""
-    robot = steel_rod()
+    robot = build_preset("steel_rod")
     theta = math.pi / 2
     M = theta * _EI(robot) / L
     R = L / theta
@@ -52,10 +52,10 @@ def test_pure_moment_converges_to_arc_second_order():
 
 def test_self_weight_sag_converges_to_heavy_elastica():
     """Horizontal cantilever under self-weight, gamma = q L^3 / EI = 1: tip deflection/L = 0.123471."""
-    EI = _EI(steel_rod())
+    EI = _EI(build_preset("steel_rod"))
     area = math.pi * 0.006**2 / 4
     rho = 1.0 * EI / L**3 / (area * 9.81)
-    robot = steel_rod(gravity=9.81, base_orientation="horizontal", density=rho)
+    robot = build_preset("steel_rod", gravity=9.81, base_orientation="horizontal", density=rho)
     errs = []
     for n in (8, 16, 32):
         res = run(robot, LoadCase(), SolverOptions(n_elements=n))
@@ -69,7 +69,7 @@ def test_self_weight_sag_converges_to_heavy_elastica():
 
 def test_continuum_tendons_reproduce_constant_curvature_per_section():
     """Kinematic limit: pure tendon moments give equal joint angles per section (a CC shape)."""
-    robot = steel_rod(n_sections=2, tendon_count=2)
+    robot = build_preset("steel_rod", n_sections=2, tendon_count=2)
     EI, d = _EI(robot), 0.02
     T = (40.0, 0.0, 0.0, 25.0)  # section 1 pulled towards +x, section 2 towards -x
     res = run(robot, LoadCase(actuation=TendonActuation("tension", T)),
@@ -97,7 +97,7 @@ def test_continuum_tendons_reproduce_constant_curvature_per_section():
 def test_reeving_length_control_equals_constant_force_rope():
     """Eyelet tendons: a length-controlled reeving rope and a constant-force rope chain with the
     resulting tension give the same equilibrium (justifies using both)."""
-    robot = steel_rod()
+    robot = build_preset("steel_rod")
     opts = SolverOptions(n_elements=8, tendon_model="eyelets")
     res_l = run(robot, LoadCase(actuation=TendonActuation("length", (-0.01, 0.0), pretension=10.0)), opts)
     assert np.all(res_l.tendon_tensions > 0)
@@ -109,7 +109,7 @@ def test_eyelet_and_continuum_close_for_dense_eyelets():
     """Discrete eyelets bend less (chord lever arm); the gap shrinks as eyelets (disks) get denser."""
     gaps = []
     for n in (8, 16):
-        robot = steel_rod(disks_per_section=n)
+        robot = build_preset("steel_rod", disks_per_section=n)
         a = run(robot, LoadCase(actuation=TendonActuation("tension", (100.0, 0.0))), SolverOptions(n_elements=16, tendon_model="eyelets"))
         b = run(robot, LoadCase(actuation=TendonActuation("tension", (100.0, 0.0))), SolverOptions(n_elements=16, tendon_model="continuum"))
         gaps.append(np.linalg.norm(a.tip_position - b.tip_position))
@@ -118,7 +118,7 @@ def test_eyelet_and_continuum_close_for_dense_eyelets():
 
 @pytest.mark.parametrize("model", ["continuum", "eyelets"])
 def test_released_tendon_goes_slack(model):
-    robot = steel_rod()
+    robot = build_preset("steel_rod")
     res = run(robot, LoadCase(actuation=TendonActuation("length", (-0.02, 0.05))),
               SolverOptions(n_elements=8, tendon_model=model))
     assert res.tendon_tensions[0] > 0
@@ -130,7 +130,7 @@ def test_continuum_length_mode_tension_consistent():
     """Length control: tension equals EA_t * stretch / L_0 of the continuum tendon path, whose
     length includes the backbone's compression (the default chain has axial springs in planar
     continuum length mode), and the compression is the tensions' ``-sum(T) L / EA``."""
-    robot = steel_rod()
+    robot = build_preset("steel_rod")
     dl = -0.005
     res = run(robot, LoadCase(actuation=TendonActuation("length", (dl, 0.0))),
               SolverOptions(n_elements=16, tendon_model="continuum"))
@@ -150,7 +150,7 @@ def test_continuum_length_mode_tension_consistent():
 
 
 def test_dynamic_settles_to_static():
-    robot = steel_rod(gravity=9.81, base_orientation="horizontal")
+    robot = build_preset("steel_rod", gravity=9.81, base_orientation="horizontal")
     opts = SolverOptions(n_elements=8, damping=0.05, time_step=5e-3)
     stat = run(robot, LoadCase(actuation=TendonActuation("tension", (30.0, 0.0))), opts)
     dyn = run(robot, LoadCase(actuation=TendonActuation("tension", (30.0, 0.0)), analysis="dynamic",
@@ -163,7 +163,7 @@ def test_dynamic_series_labels_each_state_with_its_own_time():
     """Exudyn's pre-step callback gets the END time of the coming step: the recorded state (at
     the step's start) is labelled with the start time, its tensions are the commands of that
     time, and the time axis is the one ANCF records for the same case (0, h, ..., duration)."""
-    robot = steel_rod(gravity=9.81, base_orientation="horizontal")
+    robot = build_preset("steel_rod", gravity=9.81, base_orientation="horizontal")
     act = TendonActuation("tension", (30.0, 0.0))
     load = LoadCase(actuation=act, analysis="dynamic", duration=0.05, ramp_time=0.02)
     opts = SolverOptions(n_elements=8, damping=0.05, time_step=5e-3)
@@ -179,10 +179,10 @@ def test_dynamic_series_labels_each_state_with_its_own_time():
 
 
 def test_bad_inputs():
-    robot = steel_rod(n_sections=2)
+    robot = build_preset("steel_rod", n_sections=2)
     with pytest.raises(ValueError, match="multiple of the number of sections"):
         run(robot, LoadCase(), SolverOptions(n_elements=5))
-    r3 = steel_rod(tendon_count=3)
+    r3 = build_preset("steel_rod", tendon_count=3)
     with pytest.raises(ModelFailure, match="not planar"):
         solve(r3, LoadCase(actuation=TendonActuation("tension", (1.0, 0.0, 0.0))), SolverOptions(n_elements=4),
               SpringLinkParams(dimension="2d"))
@@ -193,7 +193,7 @@ def test_bad_inputs():
 def test_max_load_steps_is_a_failure():
     from workbench.physics.spring_link import SpringLinkParams, solve
 
-    robot = steel_rod()
+    robot = build_preset("steel_rod")
     # a huge tension in an eyelet tendon: buckling-like snap that cannot be reached in 1 step
     with pytest.raises(ModelFailure, match="max_load_steps"):
         solve(robot, LoadCase(actuation=TendonActuation("length", (-0.5, 0.0))),
@@ -211,7 +211,7 @@ def test_spatial_chain_equals_planar_chain_on_planar_case(tendon_model):
     """Eyelet ropes: the 3-D chain equals the planar one.  Continuum tendons: the 3-D chain's rope
     through every link eyelet converges to the planar chain's exact internal moments at order 2
     (the chord's lever arm), staying in the plane without twist."""
-    robot = steel_rod(gravity=9.81, base_orientation="horizontal")
+    robot = build_preset("steel_rod", gravity=9.81, base_orientation="horizontal")
     load = LoadCase(actuation=TendonActuation("tension", (300.0, 0.0)))
     diffs = []
     for n in ((8,) if tendon_model == "eyelets" else (8, 16)):
@@ -232,8 +232,8 @@ def test_spatial_chain_equals_planar_chain_on_planar_case(tendon_model):
 def test_spatial_out_of_plane_bend_is_rotated_planar_bend():
     """In the 3-D chain a tendon at sigma = pi/2 bends towards +y exactly like sigma = 0 bends
     towards +x."""
-    base = steel_rod(tendon_count=2)
-    rot = steel_rod(tendon_count=2, first_tendon_angle=math.pi / 2)
+    base = build_preset("steel_rod", tendon_count=2)
+    rot = build_preset("steel_rod", tendon_count=2, first_tendon_angle=math.pi / 2)
     load = LoadCase(actuation=TendonActuation("tension", (200.0, 0.0)))
     opts = SolverOptions(n_elements=8, tendon_model="continuum")
     a = solve(base, load, opts, SpringLinkParams(dimension="3d"))
@@ -245,7 +245,7 @@ def test_spatial_out_of_plane_bend_is_rotated_planar_bend():
 
 
 def test_spatial_pure_moment_in_oblique_plane_converges():
-    robot = steel_rod()
+    robot = build_preset("steel_rod")
     theta, phi = 1.2, 0.7
     M = theta * _EI(robot) / L
     # a moment about the axis (-sin phi, cos phi, 0) bends towards phi
@@ -270,14 +270,14 @@ def test_spatial_pure_moment_in_oblique_plane_converges():
 
 
 def test_spatial_equal_tensions_three_tendons_do_not_bend():
-    robot = steel_rod(tendon_count=3)
+    robot = build_preset("steel_rod", tendon_count=3)
     res = run(robot, LoadCase(actuation=TendonActuation("tension", (50.0, 50.0, 50.0))),
               SolverOptions(n_elements=8, tendon_model="continuum"))
     assert np.abs(res.tip_position - [0, 0, L]).max() < 1e-12
 
 
 def test_spatial_torsion_spring_and_locked_cardan_twist():
-    robot = steel_rod()
+    robot = build_preset("steel_rod")
     GJ = robot.sections[0].cross_section.GJ
     Mt = 2.0
     res = run(robot, LoadCase(tip_torque=(0.0, 0.0, Mt)), SolverOptions(n_elements=8))
@@ -299,7 +299,7 @@ def test_spatial_torsion_spring_and_locked_cardan_twist():
 @pytest.mark.parametrize("tendon_model", ["continuum", "eyelets"])
 def test_axial_springs_compress_exactly(dimension, tendon_model):
     """Equal antagonistic tensions on a straight rod: pure compression sum(T) L / EA."""
-    robot = steel_rod()
+    robot = build_preset("steel_rod")
     EA = robot.sections[0].cross_section.EA
     res = solve(robot, LoadCase(actuation=TendonActuation("tension", (100.0, 100.0))),
                 SolverOptions(n_elements=8, tendon_model=tendon_model),
@@ -309,7 +309,7 @@ def test_axial_springs_compress_exactly(dimension, tendon_model):
 
 
 def test_axial_springs_do_not_change_pure_bending():
-    robot = steel_rod()
+    robot = build_preset("steel_rod")
     load = LoadCase(tip_torque=(0.0, 20.0, 0.0))
     a = solve(robot, load, SolverOptions(n_elements=8), SpringLinkParams(axial=True))
     b = solve(robot, load, SolverOptions(n_elements=8))
@@ -325,7 +325,7 @@ def test_kinematic_tree_variant_matches_rigid_body_chain(dimension):
     the exact planar moments ``T d``) solves the planar chain's model."""
     from workbench.physics.spring_link.tree import tree_tip_position
 
-    robot = steel_rod(n_sections=2, gravity=9.81, base_orientation="horizontal")
+    robot = build_preset("steel_rod", n_sections=2, gravity=9.81, base_orientation="horizontal")
     load = LoadCase(actuation=TendonActuation("tension", (100.0, 0.0, 0.0, 50.0)))
     opts = SolverOptions(n_elements=8, tendon_model="continuum")
     a = tree_tip_position(robot, load, opts, dimension)
@@ -335,7 +335,7 @@ def test_kinematic_tree_variant_matches_rigid_body_chain(dimension):
 
 def test_dynamic_wire_delay_with_axial_springs_settles_to_static():
     """Length-controlled eyelet ropes, one motor starting 0.3 s late (Cojocaru's wire delay)."""
-    robot = steel_rod(gravity=9.81, base_orientation="horizontal")
+    robot = build_preset("steel_rod", gravity=9.81, base_orientation="horizontal")
     act = TendonActuation("length", (-0.01, 0.005), start_times=(0.0, 0.3), pretension=20.0)
     opts = SolverOptions(n_elements=8, tendon_model="eyelets", damping=0.02, time_step=5e-3)
     p = SpringLinkParams(axial=True)
@@ -351,11 +351,12 @@ def test_dynamic_wire_delay_with_axial_springs_settles_to_static():
 
 def test_quiet_and_file_free(tmp_path, monkeypatch, capfd):
     monkeypatch.chdir(tmp_path)
-    robot = steel_rod(gravity=9.81, base_orientation="horizontal")
+    robot = build_preset("steel_rod", gravity=9.81, base_orientation="horizontal")
     run(robot, LoadCase(actuation=TendonActuation("length", (-0.01, 0.0), pretension=5.0)),
         SolverOptions(n_elements=4, tendon_model="eyelets"))
-    solve(steel_rod(tendon_count=3), LoadCase(actuation=TendonActuation("tension", (5.0, 0.0, 0.0)), analysis="dynamic",
-                                              duration=0.02), SolverOptions(n_elements=4))
+    solve(build_preset("steel_rod", tendon_count=3),
+          LoadCase(actuation=TendonActuation("tension", (5.0, 0.0, 0.0)), analysis="dynamic", duration=0.02),
+          SolverOptions(n_elements=4))
     out, err = capfd.readouterr()
     assert out == "" and err == ""
     assert list(tmp_path.iterdir()) == []
@@ -394,7 +395,7 @@ _TREE_CASES = {
 
 @pytest.mark.parametrize("case", sorted(_TREE_CASES))
 def test_kinematic_tree_backend_equals_rigid_bodies(case):
-    robot = steel_rod(gravity=9.81, base_orientation="horizontal", n_sections=2, payload_mass=0.05)
+    robot = build_preset("steel_rod", gravity=9.81, base_orientation="horizontal", n_sections=2, payload_mass=0.05)
     model, load = _TREE_CASES[case]
     opts = SolverOptions(n_elements=16, tendon_model=model)
     a = solve(robot, load, opts, SpringLinkParams(backend="bodies", axial=False))  # the inextensible chain
@@ -408,7 +409,8 @@ def test_kinematic_tree_backend_equals_rigid_bodies(case):
 
 def test_tree_backend_rejects_what_it_cannot_do():
     with pytest.raises(ModelFailure, match="tree"):
-        solve(steel_rod(), LoadCase(), SolverOptions(n_elements=4), SpringLinkParams(backend="tree", axial=True))
+        solve(build_preset("steel_rod"), LoadCase(), SolverOptions(n_elements=4),
+              SpringLinkParams(backend="tree", axial=True))
 
 
 def test_sprung_torsion_tree_converges_to_rotation_vector_bodies_at_order_two():
@@ -417,7 +419,7 @@ def test_sprung_torsion_tree_converges_to_rotation_vector_bodies_at_order_two():
     bend, tip force and tip torque with gravity.  Observed max position difference 4.2e-5 /
     1.1e-5 / 2.6e-6 m at N = 8 / 16 / 32 (order 2.0); with X-Y-Z at every joint it is 6.2e-4 /
     3.0e-4 / 1.5e-4 m (order 1: the Cardan splitting's bending-to-twist coupling accumulates)."""
-    robot = steel_rod(tendon_count=4, gravity=9.81, base_orientation="horizontal")
+    robot = build_preset("steel_rod", tendon_count=4, gravity=9.81, base_orientation="horizontal")
     load = LoadCase(actuation=TendonActuation("tension", (300.0, 150.0, 0.0, 0.0)), tip_force=(0.5, -1.0, 2.0),
                     tip_torque=(0.3, -0.2, 0.4))
     diffs, twist = [], []
@@ -433,7 +435,7 @@ def test_sprung_torsion_tree_converges_to_rotation_vector_bodies_at_order_two():
 
 
 def test_dynamic_reeving_on_tree_backend_settles_to_static():
-    robot = steel_rod(gravity=9.81, base_orientation="horizontal")
+    robot = build_preset("steel_rod", gravity=9.81, base_orientation="horizontal")
     act = TendonActuation("length", (-0.01, 0.005), start_times=(0.0, 0.3), pretension=20.0)
     opts = SolverOptions(n_elements=8, tendon_model="eyelets", damping=0.02, time_step=5e-3)
     dyn = run(robot, LoadCase(actuation=act, analysis="dynamic", duration=1.5, ramp_time=0.5), opts)
@@ -456,7 +458,7 @@ def test_spatial_tree_backend_matches_cardan_bodies(tendon_model, mode):
     act = TendonActuation(mode, vals, pretension=5.0 if mode == "length" else 0.0)
     p_b = SpringLinkParams(dimension="3d", torsion="locked", backend="bodies")
     p_t = SpringLinkParams(dimension="3d", torsion="locked", backend="tree")
-    oblique = steel_rod(gravity=9.81, base_orientation="horizontal", tendon_count=4)
+    oblique = build_preset("steel_rod", gravity=9.81, base_orientation="horizontal", tendon_count=4)
     diffs = []
     for n in (8, 16):
         o = SolverOptions(n_elements=n, tendon_model=tendon_model)
@@ -466,7 +468,7 @@ def test_spatial_tree_backend_matches_cardan_bodies(tendon_model, mode):
         diffs.append(np.abs(a.positions - b.positions).max())
     assert diffs[0] < 5e-6 and diffs[1] < diffs[0] / 3, diffs
     opts = SolverOptions(n_elements=8, tendon_model=tendon_model)
-    single = steel_rod(tendon_count=4)
+    single = build_preset("steel_rod", tendon_count=4)
     only_y = TendonActuation(mode, (0.0, vals[0], 0.0, 0.0) if mode == "tension" else (0.0, vals[0], 0.0, 0.0),
                              pretension=act.pretension)
     a, b = solve(single, LoadCase(actuation=only_y), opts, p_b), solve(single, LoadCase(actuation=only_y), opts, p_t)
@@ -481,7 +483,7 @@ def test_equal_joint_angles_put_every_disk_exactly_on_a_cc_arc():
     kappa' = 2 tan(theta/2) / ds through its disks (kappa' -> theta/ds as N grows)."""
     from workbench.kinematics import forward_kinematics
 
-    robot = steel_rod(n_sections=2, tendon_count=2)
+    robot = build_preset("steel_rod", n_sections=2, tendon_count=2)
     N = 16
     res = run(robot, LoadCase(actuation=TendonActuation("tension", (60.0, 0.0, 0.0, 45.0))),
               SolverOptions(n_elements=N, tendon_model="continuum", n_stations=N + 1))

@@ -12,7 +12,7 @@ from workbench.models.result import ModelFailure, SolverInfo, SolverOptions
 from workbench.physics.spring_link import SpringLinkParams, run
 from workbench.physics.spring_link.driver import static_ramp
 from workbench.robot import LoadCase
-from workbench.robot.presets.steel_rod import steel_rod
+from workbench.robot.presets import build_preset
 
 
 def test_package_imports_without_exudyn():
@@ -56,7 +56,7 @@ def _chain(max_load_steps=200):
     from workbench.physics.spring_link.geometry import chain_geometry_from_robot
     from workbench.physics.spring_link.planar import PlanarChain
 
-    robot = steel_rod()
+    robot = build_preset("steel_rod")
     load = LoadCase(tip_torque=(0.0, 5.0, 0.0))
     opts = SolverOptions(n_elements=4, max_load_steps=max_load_steps)
     return PlanarChain(robot, load, opts, chain_geometry_from_robot(robot, 4)), opts

@@ -19,7 +19,7 @@ import pytest
 from workbench.models import SolverOptions, get_model
 from workbench.reference.elastica import clamped_elastica
 from workbench.robot import CrossSection, LoadCase, Robot, Section, TendonActuation, TendonGroup
-from workbench.robot.presets.steel_rod import steel_rod
+from workbench.robot.presets import build_preset
 
 L = 0.8
 OPTS = dict(newton_tolerance=1e-10, max_load_steps=2000)
@@ -33,17 +33,17 @@ def _orders(errors):
 def _dead_load(kind: str, value: float):
     """Horizontal 0.8 m, 6 mm steel rod (base x = world up); tip load or self-weight of the
     given dimensionless size; the elastica tip (base frame) as reference."""
-    rod = steel_rod()
+    rod = build_preset("steel_rod")
     cs = rod.sections[0].cross_section
     EI = cs.EI
     if kind == "alpha":
         P = value * EI / L**2
-        robot = steel_rod(base_orientation="horizontal")
+        robot = build_preset("steel_rod", base_orientation="horizontal")
         load = LoadCase(tip_force=(-P, 0.0, 0.0))
         ref = clamped_elastica(L, EI, tip_force=(0.0, -P), stations=2, n_continuation=10)
     else:
         g = value * EI / (cs.mass_per_length * L**3)
-        robot = steel_rod(base_orientation="horizontal", gravity=g)
+        robot = build_preset("steel_rod", base_orientation="horizontal", gravity=g)
         load = LoadCase()
         ref = clamped_elastica(L, EI, distributed_load=(0.0, -value * EI / L**3), stations=2, n_continuation=10)
     # elastica plane: a = base z (along the rod), b = base x

@@ -16,7 +16,7 @@ from workbench.experiments.wire_delay.analysis import (
     simulate_wire_delay,
     wire_lengths_tronconic_workbench,
 )
-from workbench.robot.presets.cojocaru import cojocaru_tronconic
+from workbench.robot.presets import build_preset
 
 SIGMA = np.array([0.0, 2 * np.pi / 3, 4 * np.pi / 3])
 
@@ -72,7 +72,7 @@ def test_no_delay_keeps_virtual_compression_zero_and_backbone_at_tendon_load_lev
     """Measured (8 el., 5 ms): |e| <= 1.8e-6 m during the move (tronconic interpolation of
     constant wire speeds is not exactly on the CC manifold), backbone length change equal to
     -sum(T) H / EA (the compression the bending tensions impose) within 0.07 %."""
-    robot = cojocaru_tronconic(n_sections=1)
+    robot = build_preset("cojocaru_tronconic", n_sections=1)
     r = simulate_wire_delay(robot, delay=0.0, move_time=4.0, duration=1.5)
     H = r.section_length
     assert np.max(np.abs(r.virtual_compression)) < 1e-5 * H
@@ -88,7 +88,7 @@ def test_delay_compresses_backbone_by_kinematic_share():
     are collectively too short (e < 0, Eq 12), the tendons tighten and the backbone
     shortens by the axial share 3 k_t / (3 k_t + k_b) of e (a springs-in-series estimate;
     measured within 1 % at t = 1 s, before the section buckles at t ~ 2 s)."""
-    robot = cojocaru_tronconic(n_sections=1)
+    robot = build_preset("cojocaru_tronconic", n_sections=1)
     r = simulate_wire_delay(robot, delay=3.0, move_time=4.0, duration=1.0)
     H = r.section_length
     e = r.virtual_compression[-1]
@@ -112,7 +112,7 @@ def test_full_delay_run_leaves_the_cc_manifold_and_recovers():
     leaves the CC tip by 0.15 m (non-CC shape) and comes back once wire 1 has caught up,
     oscillating about the CC shape (tip error <= 13.5 mm for t >= 7 s: residual vibration
     with beta = 1e-3 s)."""
-    robot = cojocaru_tronconic(n_sections=1)
+    robot = build_preset("cojocaru_tronconic", n_sections=1)
     r = simulate_wire_delay(robot)
     H = r.section_length
     i3 = np.argmin(np.abs(r.time - 3.0))

@@ -153,6 +153,7 @@ def test_solver_section_mirrors_solver_and_pipeline_options():
     fields.update({f.name: f.default for f in dataclasses.fields(PipelineOptions)})
     fields["spring_link_backend"] = "auto"  # SpringLinkParams.backend's default
     fields["spring_link_axial"] = None  # SpringLinkParams.axial's default (the model's own rule)
+    fields["spring_link_richardson"] = None  # unset: SpringLinkParams.richardson's default (off)
     fields["by_model"] = {}  # the per-model tables (workbench.study.by_model)
     section = SolverSection()
     assert set(SolverSection.model_fields) == set(fields) | set(LIMIT_KEYS)

@@ -39,6 +39,8 @@ _SHEAR_FACTOR_IF_NONE = 100.0
 _REGULARIZATION_FORCE = 1e-3
 #: an eyelet within this fraction of the rod length from a node sits on the node (``Beam3DSystem._node_at``)
 _ON_NODE = 1e-9
+#: entries (eps, gamma_y, gamma_z) of Exudyn's StrainLocal Voigt 6-vector (xx, yy, zz, yz, xz, xy)
+_STRAIN_ENTRIES = [0, 5, 4]
 
 
 def beam_section(cs, damping: float, axial_shear_scale: float = 1.0) -> "exu.BeamSection":
@@ -323,11 +325,13 @@ class Beam3DSystem:
     def element_strains(self) -> tuple[np.ndarray, np.ndarray]:
         """Strain ``(eps, gamma_y, gamma_z)`` and curvature ``(kappa_1 torsion, kappa_2, kappa_3)`` of every element, ``(n_el, 3)`` each."""
         mbs = self.mbs
-        # StrainLocal holds 6 entries: the first three are (eps, gamma_y, gamma_z); localPosition passed
-        # positionally (a keyword argument costs more than the call: benchmarks/README.md, "wire delay")
+        # StrainLocal is a Voigt 6-vector (xx, yy, zz, yz, xz, xy): eps = [0], gamma_y = [5] (xy),
+        # gamma_z = [4] (xz), engineering shear strains (Q / GA); checked against Timoshenko theory by
+        # tests/physics/test_beam3d_shear_strain.py.  localPosition passed positionally (a keyword
+        # argument costs more than the call: benchmarks/README.md, "wire delay")
         get, mid = mbs.GetObjectOutputBody, [0.0, 0.0, 0.0]
         strain, curv = exu.OutputVariableType.StrainLocal, exu.OutputVariableType.CurvatureLocal
-        g = np.array([get(e, strain, mid)[:3] for e in self.elements], dtype=float)
+        g = np.array([get(e, strain, mid) for e in self.elements], dtype=float)[:, _STRAIN_ENTRIES]
         k = np.array([get(e, curv, mid)[:3] for e in self.elements], dtype=float)
         return g, k
 

@@ -174,14 +174,14 @@ def build_options(solver: Mapping[str, Any]):
 
     The pipeline's keys (:data:`PIPELINE_KEYS`) are left out (:func:`build_pipeline_options`; a
     model's own ``by_model`` table is applied before, by
-    :func:`workbench.study.by_model.solver_for_model`); ``spring_link_backend`` and
-    ``spring_link_axial`` (when not ``None``) become the spring-link model's own settings
-    ``backend`` and ``axial`` (``SolverOptions.model_settings``, read by
-    ``workbench.physics.spring_link.run``).
+    :func:`workbench.study.by_model.solver_for_model`); ``spring_link_backend``,
+    ``spring_link_axial`` and ``spring_link_richardson`` (when not ``None``) become the spring-link
+    model's own settings ``backend``, ``axial`` and ``richardson`` (``SolverOptions.model_settings``,
+    read by ``workbench.physics.spring_link.run``).
     """
     from ..models.result import SolverOptions
 
-    own = {"spring_link_backend": "backend", "spring_link_axial": "axial"}
+    own = {"spring_link_backend": "backend", "spring_link_axial": "axial", "spring_link_richardson": "richardson"}
     fields = {k: v for k, v in solver.items() if k not in PIPELINE_KEYS and k not in own}
     spring = {name: solver[k] for k, name in own.items() if solver.get(k) is not None}
     if spring:

@@ -173,6 +173,29 @@ def _capability_rules(robot, load_case, params, models, solvers) -> list[str]:
     return out
 
 
+def _richardson_rules(robot, load_case, params, models, solvers) -> list[str]:
+    """``[solver] spring_link_richardson = true`` where the link count cannot be extrapolated
+    (:func:`workbench.physics.spring_link.richardson.richardson_problem`; with the study's error
+    estimate on, its half-resolution re-solve must extrapolate too)."""
+    if "spring_link" not in models:
+        return []
+    from ..physics.spring_link.richardson import richardson_problem
+
+    out: list[str] = []
+    for solver in solvers or [params.get("solver", {})]:
+        own = solver_for_model(solver, "spring_link")
+        if not own.get("spring_link_richardson"):
+            continue
+        estimate = (own.get("error_estimate", "richardson") != "none"
+                    and "spring_link" not in (own.get("error_estimate_exempt") or []))
+        why = richardson_problem(int(own.get("n_elements", 16)), robot.n_sections, load_case.analysis, estimate)
+        by_model = setters(solver, "spring_link_richardson", ["spring_link"])
+        key = f"solver.{BY_MODEL}.spring_link.spring_link_richardson" if by_model else "solver.spring_link_richardson"
+        if why and f"{key}: model 'spring_link' {why}" not in out:
+            out.append(f"{key}: model 'spring_link' {why}")
+    return out
+
+
 def _keyed(section: str, e: BaseException, names: Any) -> str:
     """``"<section>.<name>: <message>"`` when the message names exactly one parameter, else ``"<section>: ..."``."""
     import re
@@ -220,6 +243,7 @@ def _case_rules(params: dict[str, Any], min_time_step: float | None, models: Seq
             out.append(f"{key}: {e}" if key else _keyed("load", e, [k for k in load if load.get(k) is not None]))
             return out
         out.extend(_capability_rules(robot, load_case, {**params, "load": load}, models, solvers))
+        out.extend(_richardson_rules(robot, load_case, params, models, solvers))
         if not out and warnings_out is not None:
             from .plausibility import plausibility_warnings
 

@@ -93,6 +93,9 @@ class SolverSection(CaseLimitFields):
     spring_link_backend: Literal["auto", "tree", "bodies"] = "auto"
     # spring-link axial springs (SpringLinkParams.axial); None: the model's own rule (a case key only when set)
     spring_link_axial: bool | None = None
+    # spring-link Richardson extrapolation of N/2 and N links (SpringLinkParams.richardson); None: off
+    # (a case key only when set)
+    spring_link_richardson: bool | None = None
     error_estimate: Literal["richardson", "none"] = "richardson"
     error_estimate_exempt: list[str] = Field(default_factory=list)
     # warm starts within a worker (workbench.models.warm); a case key only when true (keeps the case ids)

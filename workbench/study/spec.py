@@ -288,10 +288,11 @@ def _resolve_base(sections: Mapping[str, BaseModel], robot_base: dict[str, Any] 
     base = {
         "robot": robot_base,
         "load": sections["load"].model_dump(),
-        # by_model, spring_link_axial and warm_start only when set (keeps the case ids of the studies without them)
+        # by_model, spring_link_axial, spring_link_richardson and warm_start only when set (keeps the case
+        # ids of the studies without them)
         "solver": sections["solver"].model_dump(exclude=set(LIMIT_KEYS) | (
-            set() if sections["solver"].by_model else {"by_model"}) | (
-            set() if sections["solver"].spring_link_axial is not None else {"spring_link_axial"}) | (
+            set() if sections["solver"].by_model else {"by_model"}) | {
+            k for k in ("spring_link_axial", "spring_link_richardson") if getattr(sections["solver"], k) is None} | (
             set() if sections["solver"].warm_start else {"warm_start"})),
         "derived": sections["derived"].model_dump(),
     }

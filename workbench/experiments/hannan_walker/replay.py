@@ -271,7 +271,7 @@ def replay_hannan_walker(
     Parameters
     ----------
     robot : Robot
-        Planar robot, usually ``hannan_walker()``.
+        Planar robot, usually ``build_preset("hannan_walker")``.
     start, end : array_like, shape (2,)
         Line end points in the base x-z plane, ``(x, z)`` [m].
     n_samples : int

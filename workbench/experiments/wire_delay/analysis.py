@@ -388,7 +388,7 @@ def simulate_wire_delay(
     Parameters
     ----------
     robot : Robot, optional
-        One section with exactly three tendons (default: ``cojocaru_tronconic(n_sections=1)``).
+        One section with exactly three tendons (default: ``build_preset("cojocaru_tronconic", n_sections=1)``).
     theta_final, alpha_final : float
         Target bending angle and the paper's direction alpha [rad] (phi = alpha + pi).
     move_time : float
@@ -411,9 +411,9 @@ def simulate_wire_delay(
     from ...physics.beam3d import run as beam3d_run
 
     if robot is None:
-        from ...robot.presets.cojocaru import cojocaru_tronconic
+        from ...robot.presets import build_preset
 
-        robot = cojocaru_tronconic(n_sections=1)
+        robot = build_preset("cojocaru_tronconic", n_sections=1)
     _check_driver_inputs(robot, move_time, delay, theta_final, delayed_wire)
     options = default_options() if options is None else options
     if duration is None:

@@ -415,6 +415,7 @@ def solve(robot: Robot, load: LoadCase, options: SolverOptions,
 
 def run(robot: Robot, load: LoadCase, options: SolverOptions) -> PhysicsResult:
     """Registered model ``"spring_link"``: :func:`solve` with default :class:`SpringLinkParams` except
-    the model's own settings in ``options`` (``options.settings("spring_link")``: ``backend`` and
-    ``axial``, the study keys ``solver.spring_link_backend`` and ``solver.spring_link_axial``)."""
+    the model's own settings in ``options`` (``options.settings("spring_link")``: ``backend``, ``axial`` and
+    ``richardson``, the study keys ``solver.spring_link_backend``, ``solver.spring_link_axial`` and
+    ``solver.spring_link_richardson``)."""
     return solve(robot, load, options, SpringLinkParams(**options.settings("spring_link")))

@@ -62,7 +62,8 @@ class SpringLinkParams:
         Static solves only.  ``False`` (default): one chain of ``n_elements`` links.  ``True``: chains of
         ``n_elements / 2`` and ``n_elements`` links, Richardson-extrapolated at order 2 in the link length
         (:mod:`.richardson`: positions, tip position, tensions; the error bar in the extras as
-        ``richardson_tip_bar``); ``n_elements`` must be a multiple of twice the number of sections.
+        ``richardson_tip_bar``); ``n_elements`` must be a multiple of twice the number of sections.  The study
+        key is ``[solver] spring_link_richardson``.
     """
 
     dimension: Literal["auto", "2d", "3d"] = "auto"

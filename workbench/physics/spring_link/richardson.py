@@ -8,8 +8,17 @@ links combine to ``x_R = x_N + (x_N - x_{N/2}) / 3``, whose error is of higher o
 stations, the tip position, the tendon tensions, the length change and the tip twist; the tip and
 joint rotations and the joint angles are the ``N``-link chain's (a combination of rotations is not a
 rotation).  The error bar ``|x_N - x_R|`` of the tip (an estimate of the ``N``-link chain's own error)
-is reported in the extras as ``richardson_tip_bar`` [m].  Checked by
-``tests/physics/test_spring_link_linkrope.py`` (``test_richardson_*``).
+is reported in the extras as ``richardson_tip_bar`` [m].
+
+From a study file: ``[solver] spring_link_richardson = true`` (``docs/study-format.md``).  The study's
+discretisation error estimate (:mod:`workbench.models.discretization`) then re-solves with the same
+setting, so it compares extrapolated results at ``N``, ``N/2`` and ``N/4`` links with the declared
+order 2 (lowered to the observed one where that is lower): an extrapolated result converges at a
+higher order, so the bar ``|q_N - q_N/2| / 3`` over-states its error (conservative).
+:func:`richardson_problem` is the rule ``validate`` applies before anything runs (the half-resolution
+re-solve of the estimate extrapolates ``N/4`` and ``N/2`` links).  Checked by
+``tests/physics/test_spring_link_linkrope.py`` (``test_richardson_*``) and
+``tests/study/test_spring_link_richardson_key.py``.
 """
 
 from __future__ import annotations
@@ -21,17 +30,31 @@ import numpy as np
 
 from ...models.result import ModelFailure, PhysicsResult
 
-__all__ = ["check_richardson", "richardson_result"]
+__all__ = ["check_richardson", "richardson_problem", "richardson_result"]
+
+
+def richardson_problem(n_links: int, n_sections: int, analysis: str, estimate: bool = False) -> str | None:
+    """Why ``n_links`` cannot be extrapolated, or ``None``.
+
+    Static solves only; ``n_links / 2`` links must be a multiple of the ``n_sections`` sections, and
+    with ``estimate`` (the study's discretisation error estimate re-solves at ``n_links / 2``, which
+    extrapolates ``n_links / 4`` and ``n_links / 2``) ``n_links / 4`` too.
+    """
+    if analysis != "static":
+        return "richardson=True extrapolates static solves only"
+    factor = 4 if estimate else 2
+    if n_links % (factor * n_sections):
+        why = ("the coarse chain has n_elements / 2 links" if not estimate else
+               "the error estimate's half-resolution solve extrapolates n_elements / 4 and n_elements / 2 links")
+        return f"richardson=True needs n_elements a multiple of {factor} x {n_sections} sections ({why}), got {n_links}"
+    return None
 
 
 def check_richardson(n_links: int, n_sections: int, analysis: str) -> None:
-    """Raise :class:`ModelFailure` unless a static solve with ``n_links`` can be extrapolated
-    (``n_links / 2`` links must be a multiple of the ``n_sections`` sections)."""
-    if analysis != "static":
-        raise ModelFailure("spring_link: richardson=True extrapolates static solves only")
-    if n_links % (2 * n_sections):
-        raise ModelFailure(f"spring_link: richardson=True needs n_elements a multiple of 2 x {n_sections} sections "
-                           f"(the coarse chain has n_elements / 2 links), got {n_links}")
+    """Raise :class:`ModelFailure` when :func:`richardson_problem` finds one (without the estimate's rule)."""
+    why = richardson_problem(n_links, n_sections, analysis)
+    if why:
+        raise ModelFailure(f"spring_link: {why}")
 
 
 def richardson_result(solve_at: Callable[[int], PhysicsResult], n_links: int) -> PhysicsResult:

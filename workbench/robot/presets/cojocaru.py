@@ -7,7 +7,7 @@ wires per segment at 120 degrees, end-disk diameters D1 > D2 per segment) but no
 dimensions; every number is a plausible default, assumed with its reason.  The parameters
 (defaults, units, and where each value comes from) are data in ``cojocaru_tronconic.toml``
 (``docs/robot-format.md``, "Presets"); this module holds the formula :func:`derive` that maps them
-to the :class:`Robot`, and :data:`cojocaru_tronconic`, the preset itself.  Checked by
+to the :class:`Robot`, and ``build_preset("cojocaru_tronconic")``, the preset itself.  Checked by
 ``tests/robot/test_data_presets.py``.
 """
 
@@ -17,10 +17,9 @@ import math
 
 from ..description import CrossSection, Payload, Robot, Section, TendonGroup
 from ..orientation import base_rotation_for
-from .data import FILES
 from .per_section import per_section
 
-__all__ = ["derive", "cojocaru_tronconic"]
+__all__ = ["derive"]
 
 
 def derive(
@@ -47,7 +46,7 @@ def derive(
     """Tronconic tentacle arm after Cojocaru et al. (the formula of ``cojocaru_tronconic.toml``).
 
     The parameters, their defaults, units and sources are data in ``cojocaru_tronconic.toml``;
-    :data:`cojocaru_tronconic` is that preset (defaults applied).
+    ``build_preset("cojocaru_tronconic", **params)`` (:mod:`workbench.robot.presets`) is that preset.
 
     Section ``k`` (0-based) is a truncated cone whose end disks have diameters
     ``D1_k = base_disk_diameter - k * disk_diameter_step`` (section base) and
@@ -145,7 +144,3 @@ def derive(
         base_rotation=base_rotation_for(base_orientation),
         name="cojocaru_tronconic",
     )
-
-
-#: The preset ``cojocaru_tronconic`` (its file's defaults, any parameter overridable by keyword).
-cojocaru_tronconic = FILES.cojocaru_tronconic

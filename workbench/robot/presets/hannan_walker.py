@@ -7,7 +7,7 @@ section's last (every fourth) segment.
 
 Not given in the paper and chosen as documented, plausible defaults (their values and sources are
 data in ``hannan_walker.toml``, ``docs/robot-format.md`` "Presets"; this module holds the formula
-:func:`derive` and :data:`hannan_walker`, the preset itself):
+:func:`derive` and ``build_preset("hannan_walker")``, the preset itself):
 
 * equal section lengths (83.82 / 4 cm), joints equally spaced (5.24 cm);
 * per-joint rotational spring stiffness per section ``joint_stiffness`` (120 / 80 / 50 /
@@ -35,9 +35,8 @@ from typing import Sequence
 
 from ..description import CrossSection, Payload, Robot, Section, TendonGroup
 from ..orientation import base_rotation_for
-from .data import FILES
 
-__all__ = ["derive", "hannan_walker", "HW_JOINTS_PER_SECTION"]
+__all__ = ["derive", "HW_JOINTS_PER_SECTION"]
 
 #: Joints per section (paper, Sec. 3: 16 joints, 4 sections): the formula's n.
 HW_JOINTS_PER_SECTION = 4
@@ -70,7 +69,7 @@ def derive(
     """The Hannan & Walker trunk as a 4-section robot (the formula of ``hannan_walker.toml``).
 
     The parameters, their defaults, units and sources are data in ``hannan_walker.toml``;
-    :data:`hannan_walker` is that preset (defaults applied).
+    ``build_preset("hannan_walker", **params)`` (:mod:`workbench.robot.presets`) is that preset.
 
     Parameters
     ----------
@@ -134,7 +133,3 @@ def derive(
         base_rotation=base_rotation_for(base_orientation),
         name="hannan_walker",
     )
-
-
-#: The preset ``hannan_walker`` (its file's defaults, any parameter overridable by keyword).
-hannan_walker = FILES.hannan_walker

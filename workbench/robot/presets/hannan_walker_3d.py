@@ -7,7 +7,7 @@ This preset is the spatial counterpart of the preset ``hannan_walker`` (the plan
 (sigma = 0, pi/2, pi, 3pi/2), and gravity along any direction ``gravity_direction`` of the world
 frame.  Its parameters (defaults, units, sources) are data in ``hannan_walker_3d.toml``
 (``docs/robot-format.md``, "Presets"); this module holds the formula :func:`derive` and
-:data:`hannan_walker_3d`, the preset itself.
+``build_preset("hannan_walker_3d")``, the preset itself.
 
 The joints' two degrees of freedom are a property of the model, not of the description: the
 Exudyn chain of two-DOF (Cardan, torsion-locked) joints is the registered model
@@ -23,9 +23,8 @@ from typing import Sequence
 
 from ..description import Robot
 from .data import FILES
-from .hannan_walker import hannan_walker
 
-__all__ = ["derive", "hannan_walker_3d"]
+__all__ = ["derive"]
 
 
 def _direction(values: Sequence[float]) -> tuple[float, float, float]:
@@ -51,7 +50,7 @@ def derive(
 ) -> Robot:
     """The 32-DOF, 16-cable Hannan & Walker trunk (the formula of ``hannan_walker_3d.toml``).
 
-    The preset :data:`~.hannan_walker.hannan_walker` with ``planar=False`` (its cable area and
+    The preset ``hannan_walker`` (``FILES.hannan_walker``) with ``planar=False`` (its cable area and
     strength at their defaults) and gravity along ``gravity_direction``; the parameters, their
     defaults, units and sources are data in ``hannan_walker_3d.toml``.
 
@@ -76,13 +75,9 @@ def derive(
         table order per section: sigma = 0, pi/2, pi, 3pi/2), name ``"hannan_walker_3d"``.
     """
     d = _direction(gravity_direction)
-    robot = hannan_walker(total_length=total_length, diameters=diameters, joint_stiffness=joint_stiffness,
-                          section_masses=section_masses, tendon_stiffness=tendon_stiffness, planar=False,
-                          gravity=gravity, base_orientation=base_orientation, payload_mass=payload_mass,
-                          axial_stiffness=axial_stiffness)
+    robot = FILES.hannan_walker(total_length=total_length, diameters=diameters, joint_stiffness=joint_stiffness,
+                                section_masses=section_masses, tendon_stiffness=tendon_stiffness,
+                                planar=False, gravity=gravity, base_orientation=base_orientation,
+                                payload_mass=payload_mass, axial_stiffness=axial_stiffness)
     g = float(gravity)
     return replace(robot, gravity=(g * d[0], g * d[1], g * d[2]), name="hannan_walker_3d")
-
-
-#: The preset ``hannan_walker_3d`` (its file's defaults, any parameter overridable by keyword).
-hannan_walker_3d = FILES.hannan_walker_3d

@@ -3,16 +3,15 @@
 Its parameters (defaults, units, and where each value comes from: the paper's length and mass, the
 assumed stiffnesses) are data in ``shao_harvester.toml`` (``docs/robot-format.md``, "Presets"); this
 module holds the formula :func:`derive` that maps them to the :class:`Robot`, and
-:data:`shao_harvester`, the preset itself.  Checked by ``tests/robot/test_data_presets.py``.
+``build_preset("shao_harvester")``, the preset itself.  Checked by ``tests/robot/test_data_presets.py``.
 """
 
 from __future__ import annotations
 
 from ..description import CrossSection, Payload, Robot, Section, TendonGroup
 from ..orientation import base_rotation_for
-from .data import FILES
 
-__all__ = ["derive", "shao_harvester"]
+__all__ = ["derive"]
 
 
 def derive(
@@ -59,7 +58,3 @@ def derive(
         base_rotation=base_rotation_for(base_orientation),
         name="shao_harvester",
     )
-
-
-#: The preset ``shao_harvester`` (its file's defaults, any parameter overridable by keyword).
-shao_harvester = FILES.shao_harvester

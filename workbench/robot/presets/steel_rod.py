@@ -3,7 +3,7 @@
 No paper describes the rod: the studies that use it (quickstart, bending, sag_validity) choose its
 dimensions.  Its parameters (defaults, units, and where each value comes from) are data in
 ``steel_rod.toml`` (``docs/robot-format.md``, "Presets"); this module holds the formula
-:func:`derive` that maps them to the :class:`Robot`, and :data:`steel_rod`, the preset itself.
+:func:`derive` that maps them to the :class:`Robot`, and ``build_preset("steel_rod")``, the preset itself.
 Checked by ``tests/robot/test_data_presets.py``.
 """
 
@@ -11,10 +11,9 @@ from __future__ import annotations
 
 from ..description import CrossSection, Payload, Robot, Section, TendonGroup
 from ..orientation import base_rotation_for
-from .data import FILES
 from .per_section import per_section
 
-__all__ = ["derive", "steel_rod"]
+__all__ = ["derive"]
 
 
 def derive(
@@ -41,7 +40,7 @@ def derive(
     """Uniform circular steel rod split into equal sections (the formula of ``steel_rod.toml``).
 
     The parameters, their defaults, units and sources are data in ``steel_rod.toml``;
-    :data:`steel_rod` is that preset (defaults applied).
+    ``build_preset("steel_rod", **params)`` (:mod:`workbench.robot.presets`) is that preset.
 
     Parameters
     ----------
@@ -112,7 +111,3 @@ def derive(
         base_rotation=base_rotation_for(base_orientation),
         name="steel_rod",
     )
-
-
-#: The preset ``steel_rod`` (its file's defaults, any parameter overridable by keyword).
-steel_rod = FILES.steel_rod
