@@ -1,11 +1,10 @@
-"""Fixtures shared across test folders, and the parallel run's grouping (pytest-xdist).
+"""Fixtures shared across test folders.
 
-The default run is parallel (``-n 2 --dist loadgroup`` in ``pyproject.toml``; ``-n 0``: one process).
-A test that uses a module- or session-scoped fixture of the tests (a Dask LocalCluster, the plug-in's
-pip install, the SLURM test cluster, a study run read by a module) gets the ``xdist_group`` of that
-fixture, so one worker builds it once and runs all its tests (:func:`pytest_collection_modifyitems`).
-The small studies are shared across workers by a file lock instead (:func:`small_study_run`), so the
-regression tier still spreads over both workers.
+The default run is parallel (``-n 2 --dist loadfile`` in ``pyproject.toml``; ``-n 0``: one process):
+one worker runs all tests of a file, so a module fixture (a Dask LocalCluster, the plug-in's pip
+install, a study run read by a module) and the SLURM tests' cluster are built once.  (``--dist
+loadgroup`` would group finer, but pytest-xdist 3.8's groups do not reach pytest 9.2's node ids.)
+The small studies are read by several files, so :func:`small_study_run` shares them across workers.
 """
 
 from __future__ import annotations
@@ -26,24 +25,6 @@ def _shared_root(tmp_path_factory, name: str) -> Path:
         root = tmp_path_factory.getbasetemp() / name
     root.mkdir(parents=True, exist_ok=True)
     return root
-
-
-#: wider fixtures that are not grouped: shared across workers by other means
-_UNGROUPED = {"small_study_run", "tmp_path_factory", "worker_id", "testrun_uid"}
-
-
-def pytest_collection_modifyitems(config, items):
-    """Group the tests of each module/session fixture defined under ``tests/`` (see the module docstring)."""
-    for item in items:
-        defs = getattr(item, "_fixtureinfo", None)
-        for name in item.fixturenames:
-            fixturedefs = defs.name2fixturedefs.get(name) if defs else None
-            if not fixturedefs or name in _UNGROUPED:
-                continue
-            fd = fixturedefs[-1]
-            if fd.scope in ("module", "package", "session") and "tests" in Path(fd.baseid or ".").parts[:1]:
-                item.add_marker(pytest.mark.xdist_group(f"{fd.baseid}::{name}"))
-                break
 
 
 @pytest.fixture(scope="session")

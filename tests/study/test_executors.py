@@ -100,7 +100,6 @@ def test_isolated_executor_streams_rows_and_reports_signal():
     assert out[1].crash.kind == "killed" and "SIGKILL" in out[1].crash.reason
 
 
-@pytest.mark.xdist_group("tests/study/test_executors.py::dask_scheduler")  # its 'dask' case: the shared cluster
 @pytest.mark.parametrize("executor", ["serial", "isolated", "dask"])
 def test_a_hanging_case_is_stopped_by_the_time_limit(tmp_path, write_study, executor, request):
     """max_case_seconds: the hanging case (an hour of sleep) is stored as a timeout; the others finish."""
@@ -240,7 +239,6 @@ def test_a_cluster_without_workers_is_an_infrastructure_error(tmp_path, write_st
     assert (tmp_path / "o" / "_manifest.json").exists()  # the run was recorded (and can be resumed)
 
 
-@pytest.mark.xdist_group("tests/study/test_executors.py::dask_scheduler")  # its 'dask' case: the shared cluster
 @pytest.mark.parametrize("kind", ["isolated", "dask"])
 def test_crash_inside_a_batch_is_blamed_on_its_case(tmp_path, write_study, kind, request):
     """Units grouped 4 per task: only the crashing case fails."""
