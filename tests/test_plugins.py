@@ -177,7 +177,9 @@ def _workbench(env, cwd, *args, timeout=600):
 
 def test_the_example_plugins_own_tests_pass(installed):
     tmp, env = installed
-    r = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", str(EXAMPLE / "tests")],
+    # -o addopts=: in one process (not the workbench's -n 2, from the pyproject.toml found above the example)
+    r = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-o", "addopts=",
+                        str(EXAMPLE / "tests")],
                        env=env, cwd=ROOT, capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stdout[-3000:] + r.stderr[-3000:]
     assert "18 passed" in r.stdout, r.stdout[-500:]

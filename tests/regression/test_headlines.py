@@ -14,7 +14,7 @@ import re
 import matplotlib
 import pytest
 
-from tests.regression.golden import small_study_paths
+from tests.regression.golden import SLOW_SMALL_STUDIES, small_study_paths
 from workbench.compare.table import compare_table
 from workbench.report.findings import opening_sections
 from workbench.report.headline import headlines
@@ -30,9 +30,12 @@ KNOWN_NOT_CONVERGED: dict[str, str] = {}
 
 
 def _params():
+    """One case per small study; the slow ones (``SLOW_SMALL_STUDIES``) run with ``-m slow`` or ``-m regression``,
+    as their golden tests do."""
     for p in small_study_paths():
         reason = KNOWN_NOT_CONVERGED.get(p.stem)
-        yield pytest.param(p, id=p.stem, marks=[pytest.mark.xfail(strict=True, reason=reason)] if reason else [])
+        marks = [pytest.mark.xfail(strict=True, reason=reason)] if reason else []
+        yield pytest.param(p, id=p.stem, marks=marks + ([pytest.mark.slow] if p.stem in SLOW_SMALL_STUDIES else []))
 
 
 def test_wire_delay_findings_give_peak_and_final_with_the_damping_assumption(small_study_run):
