@@ -14,9 +14,9 @@ put the tip of these samples if the parameters were *x*?".  :class:`Predictor` a
 4. The model predicts the tips in the base frame: CC for all samples at once (:func:`_cc_tips`), a
    physics model (``workbench.models.get_model(name)``, static analysis, the sample's tip force)
    sample by sample in one function (:func:`solve_samples`), along a nearest-neighbour chain in
-   command space (:func:`chain_order`: neighbouring samples are solved one after the other, so a
-   warm start from the previous solution -- not wired yet -- would start close; the order does not
-   change a result today, every solve starts from the straight rod).
+   command space (:func:`chain_order`); every solve starts cold from the straight rod, so the order
+   changes no result (the models' warm starts, ``workbench.models.warm``, apply only along one load
+   ray -- measured commands rarely share one -- and are not used here).
 5. The tips are moved into the measurement frame: ``p = R(rotation) p_base + translation``
    (registration, ``R`` from the rotation vector, :func:`to_frame`), the world frame of the robot's
    base pose, or left in the base frame.
