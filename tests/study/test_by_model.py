@@ -82,7 +82,7 @@ def _write(tmp_path, text):
 
 def test_each_model_is_validated_against_its_own_settings(tmp_path):
     """Without the beam3d table the study is refused for beam3d (continuum tendons); with it, it is valid;
-    a table that gives cosserat eyelets is refused naming that table's key."""
+    a table that gives cosserat eyelets in length mode is refused naming that table's key."""
     study = load_study(_write(tmp_path, MIXED))
     assert study.base["solver"]["by_model"] == {"beam3d": {"tendon_model": "eyelets"}}
     without = MIXED.replace('[solver.by_model.beam3d]\ntendon_model = "eyelets"\n', "")
