@@ -13,6 +13,9 @@ today:
     (:func:`workbench.study.evaluate.evaluate_rows`), so a crash keeps the finished models.
 ``"series_parallel"``, ``"grasp"``, ``"closed_loop"``
     In their experiment folders (``workbench/experiments/*/kind.py``).
+``"calibration"``
+    Measured data as the reference (``workbench/measure/kind.py``, ``docs/measurements.md``): one case
+    per fold, each model calibrated on its training rows and judged on the held-out ones.
 
 A new kind is a :class:`StudyKind` subclass in its experiment folder plus one ``registry.KINDS`` row
 (or, outside the workbench, a plug-in's ``trunk_workbench.kinds`` entry point, ``docs/plugins.md``);
