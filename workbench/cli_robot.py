@@ -111,6 +111,15 @@ def resolve_target(target: str, overrides: tuple[str, ...], find_study: Callable
     spec = kind.load(path, overrides=tuple(overrides))
     study = spec if isinstance(spec, Study) else getattr(spec, "study", None)  # a kind may wrap the sweep Study
     base = study.base if isinstance(study, Study) else None
+    if base is None and isinstance(getattr(spec, "robot", None), dict):  # a kind with one nominal robot (calibration)
+        if case is not None:
+            raise StudyError([f"--case {case}: a {kind.name!r} study has one nominal robot; drop --case"])
+        try:
+            robot, params = resolve_robot(spec.robot)
+        except (ValueError, TypeError, KeyError) as e:
+            raise StudyError([f"{path}: robot: {e}"]) from None
+        how = f"preset {params['preset']}" if "preset" in params else "described in the file"
+        return robot, params, f"study {path}: its nominal robot ({how}; before calibration)"
     if not isinstance(base, dict) or "robot" not in base:
         raise StudyError([f"{path}: a {kind.name!r} study has no [robot] section: robot show describes the tendon-"
                           f"driven robots of [robot] (this study's trunk is given by its own sections and its kind registers no "

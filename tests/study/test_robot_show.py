@@ -129,12 +129,22 @@ def test_override_and_tension(tmp_path, capsys):
     (["steel_rod", "--tension", "abc"], "--tension: not a number"),
     (["steel_rod", "--tension", "-2"], "--tension: tensions must be finite and >= 0"),
     (["steel_rod", "--tension", "1,2,3"], "--tension: give one tension per tendon: the robot has 2, got 3"),
+    (["examples/measured/measured.toml", "--case", "0"], "--case 0: a 'calibration' study has one nominal robot"),
 ])
 def test_bad_input_is_one_line(args, words, tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(ROOT)
     rc, o, e, out = _show(args, tmp_path, capsys)
     assert rc == 2 and not out.exists()
     assert len(e.strip().splitlines()) == 1 and words in e, e
+
+
+def test_a_calibration_study_shows_its_nominal_robot(tmp_path, capsys):
+    """The calibration kind (``examples/measured``) has no sweep base: robot show takes its nominal robot, the
+    robot the study starts calibrating from (Rao et al. 2021: NiTi, 1.4 mm rods)."""
+    rc, o, e, out = _show([str(ROOT / "examples/measured/measured.toml")], tmp_path, capsys)
+    assert rc == 0, e
+    assert "its nominal robot (preset rao_2021; before calibration)" in o and "robot.sections[0].diameter = 0.0014" in o
+    _check_picture(out)
 
 
 def test_out_must_be_a_file(tmp_path, capsys):
