@@ -38,7 +38,7 @@ from .measurements import is_calibration
 from .measurements_figures import measurement_figures
 from .context import PageContext
 from .page import render_page
-from .sections import esc
+from .escape import esc
 from .style import STYLE, ReportFigure, code_categories, pair_label
 from .viewer import viewer_scenes
 

@@ -26,7 +26,6 @@ string), shapes recovered from the row's own counts (:func:`points`).  Checked b
 from __future__ import annotations
 
 import hashlib
-import html
 import json
 from dataclasses import dataclass
 from pathlib import Path
@@ -34,21 +33,17 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from .escape import esc
 from ..units import unit_of
 from .context import PageContext, Section
 from .load import ResultSet
 from .style import fmt, model_label
 
-__all__ = ["FitSummary", "calibration_findings", "cell", "common_rows", "esc", "fit_summaries", "is_calibration",
+__all__ = ["FitSummary", "calibration_findings", "cell", "common_rows", "fit_summaries", "is_calibration",
            "measurements_section", "points", "texts"]
 
 #: CC models: the model under test whose error the findings line compares with the physics models'
 _CC = ("cc",)
-
-
-def esc(text: Any) -> str:
-    """HTML-escape and defuse URLs (as :func:`.sections.esc`; the viewer imports this module, sections the viewer)."""
-    return html.escape(str(text)).replace("://", ":&#8203;//")
 
 
 def is_calibration(study: ResultSet) -> bool:

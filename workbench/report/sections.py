@@ -10,7 +10,6 @@ by ``tests/report/test_report_build.py`` and the browser tests.
 
 from __future__ import annotations
 
-import html
 import json
 from datetime import datetime
 from typing import Any
@@ -18,20 +17,15 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from .escape import esc
 from .load import ResultSet, numeric
 from .measurements import is_calibration
 from .context import PageContext, Section
 from .style import fmt, model_label, short_label
 from .viewer import NOT_PHYSICS, disk_model
 
-__all__ = ["esc", "html_table", "provenance_section", "failed_section", "summary_section", "cases_section",
+__all__ = ["html_table", "provenance_section", "failed_section", "summary_section", "cases_section",
            "viewer_section", "figures_section", "spec_section"]
-
-
-def esc(text: Any) -> str:
-    """HTML-escape and defuse URLs (the report must contain no http(s):// references)."""
-    s = html.escape(str(text))
-    return s.replace("://", ":&#8203;//")
 
 
 _esc = esc
